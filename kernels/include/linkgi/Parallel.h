@@ -1,0 +1,25 @@
+// One dispatch point for data-parallel loops on the CPU.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+
+namespace linkgi
+{
+/// Called on the thread that started the work, between chunks: `fraction` in [0,1] of the
+/// current stage. Return false to abort; the engine then throws linkgi::Aborted.
+using ProgressCallback = std::function<bool(const char* stage, double fraction)>;
+
+/// Runs body(begin, end) over [0, n) on all cores, in ranges of at least `grain` items.
+void parallelRanges(std::size_t n, std::size_t grain,
+  const std::function<void(std::size_t begin, std::size_t end)>& body);
+
+/// Like parallelRanges, cut into a few sequential slices; `progress` is asked between slices
+/// (on the calling thread, so it may touch GUI or VTK state) and can abort the loop.
+void parallelFor(const char* stage, std::size_t n, std::size_t grain,
+  const std::function<void(std::size_t begin, std::size_t end)>& body,
+  const ProgressCallback& progress);
+
+/// Number of worker threads the loops use.
+int workerCount();
+}

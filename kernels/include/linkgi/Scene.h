@@ -1,0 +1,91 @@
+// Scene arrays: the engine's input, independent of VTK.
+#pragma once
+
+#include "linkgi/Math.h"
+
+#include <string>
+#include <vector>
+
+namespace linkgi
+{
+struct Triangle
+{
+  Index v[3];
+};
+
+enum class LightType : std::uint32_t
+{
+  Point = 0,       ///< isotropic, `intensity` in W/sr
+  Spot = 1,        ///< point light restricted to a cone around `direction`
+  Directional = 2, ///< parallel light travelling along `direction`, `intensity` in W/m^2
+};
+
+/// One light. Plain data: the same struct is read by the CPU and the GPU backends.
+struct Light
+{
+  LightType type = LightType::Point;
+  Vec3f position{ 0.f, 0.f, 0.f };
+  /// Direction the light travels (spot axis, or the directional light's rays); unit length.
+  Vec3f direction{ 0.f, 0.f, -1.f };
+  /// Linear RGB, HDR allowed. Point and spot: radiant intensity (W/sr), so a surface at
+  /// distance r facing the light receives intensity / r^2. Directional: irradiance on a
+  /// surface perpendicular to the light.
+  Vec3f intensity{ 1.f, 1.f, 1.f };
+  /// Spot only: half angle of the cone, in degrees.
+  float coneAngleDegrees = 30.f;
+  /// Spot only: cos(angle to axis)^exponent falloff inside the cone (0 = hard cone).
+  float spotExponent = 0.f;
+};
+
+/// Radiance arriving from infinity along directions that hit no geometry.
+/// A constant colour, optionally modulated by a lat-long (equirectangular) map with +Y up:
+/// column u = (atan2(d.x, -d.z) / 2pi + 1/2) * width, row v = acos(d.y) / pi * height.
+struct Environment
+{
+  Vec3f color{ 0.f, 0.f, 0.f };
+  int width = 0;
+  int height = 0;
+  std::vector<Vec3f> texels; ///< width * height RGB radiance values, row 0 at +Y
+
+  bool isBlack() const;
+  /// Radiance seen along the unit direction `d` (from the surface towards the sky).
+  Vec3f radiance(const Vec3f& d) const;
+};
+
+/// A triangle mesh with per-vertex shading data and lights.
+/// Vertices are the elements of the solution: a vertex shared by triangles with different
+/// normals (a sharp edge) must be split by the caller into one vertex per side.
+struct Scene
+{
+  std::vector<Vec3f> positions;
+  std::vector<Vec3f> normals;  ///< unit length, one per vertex, pointing to the lit side
+  std::vector<Vec3f> albedo;   ///< diffuse reflectance rho per vertex, each channel in [0,1]
+  std::vector<Vec3f> emission; ///< emitted radiance Le per vertex (empty = none)
+  std::vector<Triangle> triangles;
+  std::vector<Light> lights;
+  Environment environment;
+
+  std::size_t vertexCount() const { return positions.size(); }
+  std::size_t triangleCount() const { return triangles.size(); }
+};
+
+/// What validateScene does with albedo above 1 (physically, energy would be created).
+enum class AlbedoPolicy
+{
+  Clamp, ///< clamp each channel to [0,1] and report it in the returned warnings (default)
+  Reject ///< throw linkgi::Error
+};
+
+/// Checks a scene before solving and repairs what can be repaired, so that the solver never
+/// sees NaNs or out-of-range data. Throws linkgi::Error with a sentence naming the problem for:
+/// no vertices, no triangles, index out of range, array sizes that disagree, non-finite
+/// positions/normals/albedo/emission/light data, negative albedo or emission.
+/// Repairs (each listed in the returned warnings): degenerate triangles (zero area or repeated
+/// indices) are removed; zero-length normals are replaced by the area-weighted face normal;
+/// albedo above 1 is clamped (AlbedoPolicy::Clamp). A scene with no lights and a black
+/// environment and no emission is valid: its solution is all zero (warned).
+std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp);
+
+/// Axis-aligned bounding box diagonal length (used to scale ray offsets).
+float boundingDiagonal(const std::vector<Vec3f>& positions);
+}

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages LinkGI needs, only those that are missing, and unpacks
+# python3-paraview into a build-local prefix (it conflicts with python3-vtk9 system-wide).
+# Usage: scripts/setup.sh [--paraview-python]      (run as root, or with sudo available)
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build ccache pkg-config
+  libvtk9-dev python3-vtk9 python3-numpy
+  paraview-dev
+  libembree-dev libtbb-dev libopenmesh-dev
+  libgtest-dev libgmock-dev
+  xvfb xauth libgl1-mesa-dri
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+else
+  echo "setup: all ${#packages[@]} packages present"
+fi
+
+# pvbatch needs ParaView's Python modules; python3-paraview cannot be installed next to
+# python3-vtk9, so unpack its .deb into build/python3-paraview instead.
+if [ "${1:-}" = "--paraview-python" ]; then
+  top=$(cd "$(dirname "$0")/.." && pwd)
+  prefix="$top/build/python3-paraview"
+  if [ ! -d "$prefix/usr/lib/python3/dist-packages/paraview" ]; then
+    mkdir -p "$prefix" && cd "$prefix"
+    rm -f python3-paraview_*.deb
+    apt-get download python3-paraview >/dev/null 2>&1 || { "${sudo_cmd[@]}" apt-get update -qq && apt-get download python3-paraview; }
+    dpkg -x python3-paraview_*.deb "$prefix" && rm -f python3-paraview_*.deb
+    echo "setup: unpacked python3-paraview into $prefix"
+  fi
+fi
