@@ -1,1 +1,74 @@
-// (being written)
+#include "linkgi/Bounce.h"
+
+#include "linkgi/Error.h"
+
+namespace linkgi
+{
+void gatherRgb(const SparseMatrix& m, const Vec3f* x, Vec3f* y)
+{
+  parallelRanges(m.rows(), 256, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t r = begin; r < end; ++r)
+    {
+      Vec3f sum(0.f);
+      for (Index i = m.rowOffsets[r]; i < m.rowOffsets[r + 1]; ++i)
+      {
+        sum += x[m.columns[i]] * m.weights[i];
+      }
+      y[r] = sum;
+    }
+  });
+}
+
+std::vector<Vec3f> iterateBounces(const SparseMatrix& transport, const BounceInputs& inputs,
+  std::uint32_t bounces, const ProgressCallback& progress)
+{
+  const std::size_t n = inputs.fixedIrradiance.size();
+  std::vector<Vec3f> indirect(n, Vec3f(0.f)), radiance(n);
+  for (std::uint32_t b = 0; b < bounces; ++b)
+  {
+    if (progress && !progress("bounces", double(b) / bounces))
+    {
+      throw Aborted();
+    }
+    parallelRanges(n, 4096, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t e = begin; e < end; ++e)
+      {
+        radiance[e] = inputs.albedo[e] * (inputs.fixedIrradiance[e] + indirect[e]) * (1.f / kPi);
+        if (!inputs.emission.empty())
+        {
+          radiance[e] += inputs.emission[e];
+        }
+      }
+    });
+    gatherRgb(transport, radiance.data(), indirect.data());
+  }
+  return indirect;
+}
+
+std::vector<Vec3f> smoothFeatureAware(const std::vector<Vec3f>& values, const Topology& topology,
+  const std::vector<Vec3f>& normals, const Elements& elements, float cosFeatureAngle)
+{
+  std::vector<Vec3f> out(values.size());
+  parallelRanges(values.size(), 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t e = begin; e < end; ++e)
+    {
+      const Index v = elements.vertexOf(e);
+      const std::size_t sideOffset = e - v; // 0 for fronts, nv for backs
+      Vec3f sum = values[e];
+      float count = 1.f;
+      for (Index i = topology.neighbourOffsets[v]; i < topology.neighbourOffsets[v + 1]; ++i)
+      {
+        const Index u = topology.neighbours[i];
+        // Both sides of a two-sided pair negate both normals, so the test is the same.
+        if (dot(normals[v], normals[u]) > cosFeatureAngle)
+        {
+          sum += values[u + sideOffset];
+          count += 1.f;
+        }
+      }
+      out[e] = sum / count;
+    }
+  });
+  return out;
+}
+}

@@ -1,1 +1,261 @@
-// (being written)
+#include "linkgi/Links.h"
+
+#include "linkgi/Error.h"
+#include "linkgi/Sampling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace linkgi
+{
+bool isPerfectSquare(std::uint32_t n)
+{
+  const auto k = static_cast<std::uint32_t>(std::lround(std::sqrt(double(n))));
+  return n > 0 && k * k == n;
+}
+
+std::vector<Vec3f> makeDirectionSet(std::uint32_t n)
+{
+  if (!isPerfectSquare(n))
+  {
+    throw Error("The number of rays per vertex must be a perfect square (k*k, e.g. 64, 256, "
+                "1024); got " + std::to_string(n) + ".");
+  }
+  const auto k = static_cast<std::uint32_t>(std::lround(std::sqrt(double(n))));
+  std::vector<Vec3f> dirs;
+  dirs.reserve(n);
+  for (std::uint32_t by = 0; by < k; by += 4)
+  {
+    for (std::uint32_t bx = 0; bx < k; bx += 4)
+    {
+      for (std::uint32_t y = by; y < std::min(by + 4, k); ++y)
+      {
+        for (std::uint32_t x = bx; x < std::min(bx + 4, k); ++x)
+        {
+          dirs.push_back(cosineHemisphere((x + 0.5f) / k, (y + 0.5f) / k));
+        }
+      }
+    }
+  }
+  return dirs;
+}
+
+float rayEpsilon(const Scene& scene)
+{
+  return 1e-4f * boundingDiagonal(scene.positions);
+}
+
+std::vector<Vec3f> originShifts(const Scene& scene, const Topology& topology)
+{
+  constexpr float kShift = 0.01f; // of the distance to the one-ring centroid
+  std::vector<Vec3f> shifts(scene.vertexCount(), Vec3f(0.f));
+  for (std::size_t v = 0; v < shifts.size(); ++v)
+  {
+    const Index begin = topology.neighbourOffsets[v], end = topology.neighbourOffsets[v + 1];
+    if (begin == end)
+    {
+      continue;
+    }
+    Vec3f centroid(0.f);
+    for (Index i = begin; i < end; ++i)
+    {
+      centroid += scene.positions[topology.neighbours[i]];
+    }
+    centroid = centroid / float(end - begin);
+    const Vec3f& n = scene.normals[v];
+    Vec3f toCentroid = centroid - scene.positions[v];
+    toCentroid -= n * dot(n, toCentroid); // stay in the tangent plane
+    shifts[v] = toCentroid * kShift;
+  }
+  return shifts;
+}
+
+std::vector<Vec3f> frontFaceNormals(const Scene& scene)
+{
+  std::vector<Vec3f> normals(scene.triangleCount());
+  for (std::size_t t = 0; t < normals.size(); ++t)
+  {
+    const Index* v = scene.triangles[t].v;
+    const Vec3f& a = scene.positions[v[0]];
+    Vec3f n = normalize(cross(scene.positions[v[1]] - a, scene.positions[v[2]] - a));
+    const Vec3f vertexSum = scene.normals[v[0]] + scene.normals[v[1]] + scene.normals[v[2]];
+    normals[t] = dot(n, vertexSum) < 0.f ? -n : n;
+  }
+  return normals;
+}
+
+LinkHits traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
+  const RayTracer& tracer, const LinkOptions& options, const ProgressCallback& progress)
+{
+  const std::vector<Vec3f> dirs = makeDirectionSet(options.raysPerVertex);
+  const Elements elements{ scene.vertexCount(), options.twoSided };
+  const std::size_t n = dirs.size();
+  const float eps = rayEpsilon(scene);
+  LinkHits out;
+  out.raysPerVertex = options.raysPerVertex;
+  out.hits.resize(elements.count() * n);
+  parallelFor("links", elements.count(), 8,
+    [&](std::size_t begin, std::size_t end) {
+      std::vector<Ray> rays(n);
+      for (std::size_t x = begin; x < end; ++x)
+      {
+        const Index v = elements.vertexOf(x);
+        const Vec3f normal = scene.normals[v] * elements.sideSign(x);
+        const Frame frame = vertexFrame(normal, options.twist, options.seed, Index(x));
+        const Vec3f origin = scene.positions[v] + normal * eps + shifts[v];
+        for (std::size_t k = 0; k < n; ++k)
+        {
+          rays[k].origin = origin;
+          rays[k].direction = frame.toWorld(dirs[k]);
+        }
+        tracer.trace(rays.data(), &out.hits[x * n], n);
+      }
+    },
+    progress);
+  return out;
+}
+
+namespace
+{
+/// One chunk of compressed rows, built by one task.
+struct RowChunk
+{
+  std::vector<Index> columns, envColumns;
+  std::vector<float> weights, envWeights;
+  std::uint64_t rawLinks = 0;
+};
+
+/// Dense scratch row: accumulates weights by column and remembers which columns it touched.
+struct ScratchRow
+{
+  std::vector<float> value;
+  std::vector<Index> touched;
+
+  void add(Index column, float w)
+  {
+    if (value[column] == 0.f)
+    {
+      touched.push_back(column);
+    }
+    value[column] += w;
+  }
+  /// Appends the row in column order to (columns, weights) and clears the scratch.
+  std::size_t flush(std::vector<Index>& columns, std::vector<float>& weights)
+  {
+    std::sort(touched.begin(), touched.end());
+    for (Index c : touched)
+    {
+      columns.push_back(c);
+      weights.push_back(value[c]);
+      value[c] = 0.f;
+    }
+    const std::size_t count = touched.size();
+    touched.clear();
+    return count;
+  }
+};
+
+void assembleCsr(const std::vector<RowChunk>& chunks, std::size_t chunkRows,
+  const std::vector<Index>& rowCounts, bool environment, SparseMatrix& m)
+{
+  const std::size_t rows = rowCounts.size();
+  m.rowOffsets.resize(rows + 1);
+  m.rowOffsets[0] = 0;
+  std::partial_sum(rowCounts.begin(), rowCounts.end(), m.rowOffsets.begin() + 1,
+    [](Index a, Index b) { return a + b; });
+  m.columns.resize(m.rowOffsets[rows]);
+  m.weights.resize(m.rowOffsets[rows]);
+  parallelRanges(chunks.size(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c)
+    {
+      const auto& cols = environment ? chunks[c].envColumns : chunks[c].columns;
+      const auto& ws = environment ? chunks[c].envWeights : chunks[c].weights;
+      const Index offset = m.rowOffsets[c * chunkRows];
+      std::copy(cols.begin(), cols.end(), m.columns.begin() + offset);
+      std::copy(ws.begin(), ws.end(), m.weights.begin() + offset);
+    }
+  });
+}
+}
+
+LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
+  const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
+  const ProgressCallback& progress)
+{
+  const std::vector<Vec3f> dirs = makeDirectionSet(hits.raysPerVertex);
+  const Elements elements{ scene.vertexCount(), options.twoSided };
+  const std::size_t rows = elements.count(), n = dirs.size();
+  const Environment& env = scene.environment;
+  const std::size_t texels = env.hasTexture() ? env.texels.size() : 1;
+  const float w0 = kPi / float(n);
+
+  constexpr std::size_t kChunkRows = 64;
+  std::vector<RowChunk> chunks((rows + kChunkRows - 1) / kChunkRows);
+  std::vector<Index> rowCounts(rows), envRowCounts(rows);
+  parallelFor("compress", chunks.size(), 1,
+    [&](std::size_t begin, std::size_t end) {
+      // Scratch rows stay all-zero between rows (flush clears them), so they are only
+      // reallocated when the size changes.
+      thread_local ScratchRow row, envRow;
+      if (row.value.size() != rows)
+      {
+        row.value.assign(rows, 0.f);
+      }
+      if (envRow.value.size() != texels)
+      {
+        envRow.value.assign(texels, 0.f);
+      }
+      for (std::size_t c = begin; c < end; ++c)
+      {
+        RowChunk& chunk = chunks[c];
+        for (std::size_t x = c * kChunkRows; x < std::min(rows, (c + 1) * kChunkRows); ++x)
+        {
+          const Index v = elements.vertexOf(x);
+          const Frame frame = vertexFrame(
+            scene.normals[v] * elements.sideSign(x), options.twist, options.seed, Index(x));
+          for (std::size_t k = 0; k < n; ++k)
+          {
+            const Hit& h = hits.hits[x * n + k];
+            if (h.triangle == kInvalidIndex)
+            {
+              envRow.add(env.texelIndex(frame.toWorld(dirs[k])), w0);
+              ++chunk.rawLinks;
+              continue;
+            }
+            // A back-face hit is blocked; it sees the back side, black unless two-sided.
+            const bool back = dot(frame.toWorld(dirs[k]), faceNormals[h.triangle]) > 0.f;
+            if (back && !options.twoSided)
+            {
+              continue;
+            }
+            const Index offset = back ? Index(elements.vertexCount) : 0;
+            const Index* tri = scene.triangles[h.triangle].v;
+            const float bary[3] = { 1.f - h.u - h.v, h.u, h.v };
+            for (int j = 0; j < 3; ++j)
+            {
+              if (bary[j] > 0.f)
+              {
+                row.add(tri[j] + offset, w0 * bary[j]);
+                ++chunk.rawLinks;
+              }
+            }
+          }
+          rowCounts[x] = Index(row.flush(chunk.columns, chunk.weights));
+          envRowCounts[x] = Index(envRow.flush(chunk.envColumns, chunk.envWeights));
+        }
+      }
+    },
+    progress);
+
+  LinkStructure out;
+  assembleCsr(chunks, kChunkRows, rowCounts, false, out.transport);
+  assembleCsr(chunks, kChunkRows, envRowCounts, true, out.environment);
+  out.rays = hits.hits.size();
+  for (const RowChunk& chunk : chunks)
+  {
+    out.rawLinks += chunk.rawLinks;
+  }
+  return out;
+}
+}

@@ -1,1 +1,254 @@
-// (being written)
+#include "linkgi/Scene.h"
+
+#include "linkgi/Error.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace linkgi
+{
+bool Environment::isBlack() const
+{
+  return maxComponent(color) <= 0.f;
+}
+
+Index Environment::texelIndex(const Vec3f& d) const
+{
+  if (!hasTexture())
+  {
+    return 0;
+  }
+  const float u = std::atan2(d.x, -d.z) * (0.5f / kPi) + 0.5f;
+  const float v = std::acos(std::clamp(d.y, -1.f, 1.f)) / kPi;
+  const int col = std::min(width - 1, std::max(0, static_cast<int>(u * width)));
+  const int row = std::min(height - 1, std::max(0, static_cast<int>(v * height)));
+  return Index(row) * Index(width) + Index(col);
+}
+
+Vec3f Environment::radiance(const Vec3f& d) const
+{
+  return hasTexture() ? color * texels[texelIndex(d)] : color;
+}
+
+float boundingDiagonal(const std::vector<Vec3f>& positions)
+{
+  if (positions.empty())
+  {
+    return 0.f;
+  }
+  Vec3f lo = positions[0], hi = positions[0];
+  for (const Vec3f& p : positions)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  }
+  return length(hi - lo);
+}
+
+namespace
+{
+[[noreturn]] void fail(const std::string& what)
+{
+  throw Error(what);
+}
+
+template <typename Check>
+void checkArray(const std::vector<Vec3f>& values, const char* name, Check isBad, const char* problem)
+{
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    if (isBad(values[i]))
+    {
+      std::ostringstream msg;
+      msg << "Vertex " << i << " has " << problem << " " << name << " (" << values[i].x << ", "
+          << values[i].y << ", " << values[i].z << ").";
+      fail(msg.str());
+    }
+  }
+}
+
+bool notFinite(const Vec3f& v)
+{
+  return !isFinite(v);
+}
+bool negativeOrNotFinite(const Vec3f& v)
+{
+  return !isFinite(v) || v.x < 0.f || v.y < 0.f || v.z < 0.f;
+}
+
+void checkLights(const std::vector<Light>& lights)
+{
+  for (std::size_t i = 0; i < lights.size(); ++i)
+  {
+    const Light& l = lights[i];
+    const bool finite = isFinite(l.position) && isFinite(l.direction) && isFinite(l.intensity) &&
+      std::isfinite(l.coneAngleDegrees) && std::isfinite(l.spotExponent);
+    if (!finite)
+    {
+      fail("Light " + std::to_string(i) + " has a non-finite position, direction or intensity.");
+    }
+    if (l.intensity.x < 0.f || l.intensity.y < 0.f || l.intensity.z < 0.f)
+    {
+      fail("Light " + std::to_string(i) + " has a negative intensity.");
+    }
+    if (l.type != LightType::Point && length(l.direction) == 0.f)
+    {
+      fail("Light " + std::to_string(i) + " is a spot or directional light without a direction.");
+    }
+  }
+}
+
+/// Removes triangles with repeated indices or zero area; returns how many were removed.
+std::size_t removeDegenerateTriangles(Scene& scene)
+{
+  const std::size_t before = scene.triangles.size();
+  const auto degenerate = [&scene](const Triangle& t) {
+    if (t.v[0] == t.v[1] || t.v[1] == t.v[2] || t.v[0] == t.v[2])
+    {
+      return true;
+    }
+    const Vec3f& a = scene.positions[t.v[0]];
+    const Vec3f n = cross(scene.positions[t.v[1]] - a, scene.positions[t.v[2]] - a);
+    return !(dot(n, n) > 0.f);
+  };
+  scene.triangles.erase(
+    std::remove_if(scene.triangles.begin(), scene.triangles.end(), degenerate), scene.triangles.end());
+  return before - scene.triangles.size();
+}
+
+/// Replaces zero-length normals by the area-weighted normal of the adjacent triangles.
+std::size_t repairNormals(Scene& scene)
+{
+  std::vector<Vec3f> faceSum;
+  std::size_t repaired = 0;
+  for (std::size_t i = 0; i < scene.normals.size(); ++i)
+  {
+    const float len = length(scene.normals[i]);
+    if (len > 0.f && std::abs(len - 1.f) < 1e-3f)
+    {
+      continue;
+    }
+    if (len > 0.f)
+    {
+      scene.normals[i] = scene.normals[i] / len; // merely unnormalized: not worth a warning
+      continue;
+    }
+    if (faceSum.empty())
+    {
+      faceSum.assign(scene.positions.size(), Vec3f(0.f));
+      for (const Triangle& t : scene.triangles)
+      {
+        const Vec3f& a = scene.positions[t.v[0]];
+        const Vec3f n = cross(scene.positions[t.v[1]] - a, scene.positions[t.v[2]] - a);
+        for (Index v : t.v)
+        {
+          faceSum[v] += n;
+        }
+      }
+    }
+    scene.normals[i] = normalize(faceSum[i]);
+    ++repaired;
+  }
+  return repaired;
+}
+}
+
+std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy)
+{
+  std::vector<std::string> warnings;
+  const std::size_t n = scene.positions.size();
+  if (n == 0)
+  {
+    fail("The scene has no vertices.");
+  }
+  if (scene.triangles.empty())
+  {
+    fail("The scene has no triangles: global illumination needs surfaces (polygons or strips).");
+  }
+  if (scene.normals.size() != n || scene.albedo.size() != n ||
+    (!scene.emission.empty() && scene.emission.size() != n))
+  {
+    fail("The scene's normal, albedo or emission arrays do not have one value per vertex.");
+  }
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i)
+  {
+    for (Index v : scene.triangles[i].v)
+    {
+      if (v >= n)
+      {
+        fail("Triangle " + std::to_string(i) + " refers to vertex " + std::to_string(v) +
+          ", but the scene has only " + std::to_string(n) + " vertices.");
+      }
+    }
+  }
+  checkArray(scene.positions, "position", notFinite, "a non-finite (NaN or Inf)");
+  checkArray(scene.normals, "normal", notFinite, "a non-finite (NaN or Inf)");
+  checkArray(scene.albedo, "albedo", negativeOrNotFinite, "a negative or non-finite");
+  checkArray(scene.emission, "emission", negativeOrNotFinite, "a negative or non-finite");
+  checkLights(scene.lights);
+  if (!isFinite(scene.environment.color))
+  {
+    fail("The environment colour is not finite.");
+  }
+  if (!scene.environment.texels.empty() &&
+    scene.environment.texels.size() !=
+      static_cast<std::size_t>(scene.environment.width) * scene.environment.height)
+  {
+    fail("The environment map's texel count does not match its width x height.");
+  }
+
+  if (const std::size_t removed = removeDegenerateTriangles(scene))
+  {
+    warnings.push_back("Removed " + std::to_string(removed) + " degenerate triangles.");
+    if (scene.triangles.empty())
+    {
+      fail("Every triangle of the scene is degenerate (zero area).");
+    }
+  }
+  if (const std::size_t repaired = repairNormals(scene))
+  {
+    warnings.push_back(
+      "Replaced " + std::to_string(repaired) + " zero-length normals by face normals.");
+  }
+
+  std::size_t above = 0;
+  for (Vec3f& a : scene.albedo)
+  {
+    if (maxComponent(a) > 1.f)
+    {
+      ++above;
+      a = { std::min(a.x, 1.f), std::min(a.y, 1.f), std::min(a.z, 1.f) };
+    }
+  }
+  if (above > 0)
+  {
+    if (policy == AlbedoPolicy::Reject)
+    {
+      fail(std::to_string(above) +
+        " vertices have an albedo above 1, which would create energy; scale the albedo to [0,1].");
+    }
+    warnings.push_back("Clamped the albedo of " + std::to_string(above) +
+      " vertices to 1: an albedo above 1 would create energy.");
+  }
+
+  bool anyEmission = false;
+  for (const Vec3f& e : scene.emission)
+  {
+    anyEmission = anyEmission || maxComponent(e) > 0.f;
+  }
+  bool anyLight = false;
+  for (const Light& l : scene.lights)
+  {
+    anyLight = anyLight || maxComponent(l.intensity) > 0.f;
+  }
+  if (!anyLight && !anyEmission && scene.environment.isBlack())
+  {
+    warnings.push_back("The scene has no lights, no emission and a black environment: "
+                       "all irradiance is zero.");
+  }
+  return warnings;
+}
+}

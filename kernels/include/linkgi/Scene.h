@@ -48,6 +48,9 @@ struct Environment
   std::vector<Vec3f> texels; ///< width * height RGB radiance values, row 0 at +Y
 
   bool isBlack() const;
+  bool hasTexture() const { return width > 0 && height > 0 && !texels.empty(); }
+  /// Texel seen along the unit direction `d` (0 without a texture).
+  Index texelIndex(const Vec3f& d) const;
   /// Radiance seen along the unit direction `d` (from the surface towards the sky).
   Vec3f radiance(const Vec3f& d) const;
 };

@@ -1,0 +1,77 @@
+// Light links: shadow rays from each vertex (and its one-ring) to each light.
+#pragma once
+
+#include "linkgi/Parallel.h"
+#include "linkgi/RayTracer.h"
+#include "linkgi/Topology.h"
+
+#include <vector>
+
+namespace linkgi
+{
+/// Direction of the shadow ray from p: unnormalized for point and spot lights, so that
+/// t = 1 reaches the light; unit length for directional lights.
+LINKGI_HOST_DEVICE inline Vec3f directionToLight(const Light& light, const Vec3f& p)
+{
+  return light.type == LightType::Directional ? -normalize(light.direction) : light.position - p;
+}
+
+/// Irradiance at p (unit normal n) from one light, without visibility; also returns the
+/// shadow ray direction `toLight` = directionToLight(light, p).
+LINKGI_HOST_DEVICE inline Vec3f unshadowedIrradiance(const Light& light, const Vec3f& p, const Vec3f& n, Vec3f& toLight)
+{
+  toLight = directionToLight(light, p);
+  if (light.type == LightType::Directional)
+  {
+    return light.intensity * fmaxf(0.f, dot(n, toLight));
+  }
+  const float r2 = dot(toLight, toLight);
+  if (!(r2 > 0.f))
+  {
+    return Vec3f(0.f);
+  }
+  const float invR = 1.f / std::sqrt(r2);
+  const float cosSurface = dot(n, toLight) * invR;
+  if (cosSurface <= 0.f)
+  {
+    return Vec3f(0.f);
+  }
+  float spot = 1.f;
+  if (light.type == LightType::Spot)
+  {
+    const float cosAxis = -dot(toLight, normalize(light.direction)) * invR;
+    if (cosAxis < std::cos(light.coneAngleDegrees * (kPi / 180.f)))
+    {
+      return Vec3f(0.f);
+    }
+    spot = light.spotExponent > 0.f ? std::pow(fmaxf(cosAxis, 0.f), light.spotExponent) : 1.f;
+  }
+  return light.intensity * (spot * cosSurface / r2);
+}
+
+/// The shadow ray from `origin` towards a light, stopping just short of a point light.
+LINKGI_HOST_DEVICE inline Ray shadowRay(const Light& light, const Vec3f& origin, const Vec3f& toLight)
+{
+  Ray r;
+  r.origin = origin;
+  r.direction = toLight;
+  r.tnear = 0.f;
+  r.tfar = light.type == LightType::Directional ? 3.0e38f : 1.f - 1e-4f;
+  return r;
+}
+
+struct DirectLightResult
+{
+  std::vector<Vec3f> irradiance; ///< per element (back sides after front sides if two-sided)
+  std::uint64_t shadowRays = 0;
+};
+
+/// E_d per element: the unshadowed irradiance at the vertex times its visibility. With
+/// `oversampling`, visibility is the hat-weighted mean over the vertex (weight 1) and the
+/// midpoints of its incident edges (weight 1/2 each) - the 1:4 subdivision points of its
+/// one-ring - so a shadow edge crossing the one-ring darkens the vertex partially instead of
+/// snapping on or off. Edge samples are shared by both end points.
+DirectLightResult computeDirectLight(const Scene& scene, const Topology& topology,
+  const std::vector<Vec3f>& shifts, const RayTracer& tracer, bool twoSided, bool oversampling,
+  const ProgressCallback& progress = {});
+}

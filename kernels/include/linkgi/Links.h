@@ -1,0 +1,87 @@
+// Link generation and compression: the vertex-to-vertex transport matrix W.
+#pragma once
+
+#include "linkgi/Parallel.h"
+#include "linkgi/RayTracer.h"
+#include "linkgi/Scene.h"
+#include "linkgi/Topology.h"
+
+#include <vector>
+
+namespace linkgi
+{
+/// Elements are the vertices (front sides) and, for two-sided scenes, their back sides:
+/// element vertexCount + i is the back of vertex i (normal -n_i).
+struct Elements
+{
+  std::size_t vertexCount = 0;
+  bool twoSided = false;
+  std::size_t count() const { return twoSided ? 2 * vertexCount : vertexCount; }
+  Index vertexOf(std::size_t e) const { return Index(e < vertexCount ? e : e - vertexCount); }
+  float sideSign(std::size_t e) const { return e < vertexCount ? 1.f : -1.f; }
+};
+
+/// Sparse matrix in CSR form; row = receiving element.
+struct SparseMatrix
+{
+  std::vector<Index> rowOffsets; ///< rows + 1
+  std::vector<Index> columns;
+  std::vector<float> weights;
+  std::size_t rows() const { return rowOffsets.empty() ? 0 : rowOffsets.size() - 1; }
+  std::size_t nonZeros() const { return columns.size(); }
+  std::size_t bytes() const
+  {
+    return rowOffsets.size() * sizeof(Index) + columns.size() * sizeof(Index) +
+      weights.size() * sizeof(float);
+  }
+};
+
+/// What link generation produces. With cosine-weighted directions the geometry term and the
+/// pdf cancel: E_ind(x) = sum_y W[x][y] L(y) + sum_j Wenv[x][j] Lenv(j), each hit adding
+/// pi/n_C * barycentric weight to the links towards the hit triangle's three vertices, each
+/// miss pi/n_C to the environment texel it sees (one texel when the environment is a
+/// constant colour).
+struct LinkStructure
+{
+  SparseMatrix transport;   ///< W: element -> element
+  SparseMatrix environment; ///< Wenv: element -> environment texel
+  std::uint64_t rays = 0;
+  std::uint64_t rawLinks = 0; ///< links before merging equal (x, y) pairs, misses included
+};
+
+struct LinkOptions
+{
+  std::uint32_t raysPerVertex = 256;
+  bool twoSided = false;
+  bool twist = true;
+  std::uint32_t seed = 0;
+};
+
+/// Per ray: the triangle hit (kInvalidIndex = miss) and its barycentrics.
+struct LinkHits
+{
+  std::vector<Hit> hits; ///< elements x raysPerVertex, row-major
+  std::uint32_t raysPerVertex = 0;
+};
+
+/// Ray offset along the normal used throughout: a small fraction of the scene size.
+float rayEpsilon(const Scene& scene);
+
+/// Per vertex, a tiny shift of ray origins towards the centroid of its one-ring. A vertex in
+/// a concave corner (floor meeting a wall) lies exactly in the other surface's plane, so
+/// half its rays would otherwise start on that plane and leak through it.
+std::vector<Vec3f> originShifts(const Scene& scene, const Topology& topology);
+
+/// Front-side normal of each triangle: the winding normal, flipped where it disagrees with
+/// the sum of its vertex normals (so inconsistent winding does not turn surfaces black).
+std::vector<Vec3f> frontFaceNormals(const Scene& scene);
+
+/// Stage 1: shoots raysPerVertex rays from every element.
+LinkHits traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
+  const RayTracer& tracer, const LinkOptions& options, const ProgressCallback& progress = {});
+
+/// Stage 2: turns hits into links and merges links with the same (x, y) into CSR rows.
+LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
+  const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
+  const ProgressCallback& progress = {});
+}
