@@ -1,0 +1,40 @@
+// Small scenes for the engine tests, built with MeshBuilder.
+#pragma once
+
+#include "linkgi/MeshBuilder.h"
+
+namespace linkgi::test
+{
+/// Two unit squares, n x n cells each: `emitter` (Le = 1, rho = 0) and `receiver` (rho = 0).
+/// Parallel: facing each other at unit distance. Perpendicular: sharing an edge.
+/// Vertices [0, (n+1)^2) are the emitter, the rest the receiver.
+inline Scene twoSquares(bool perpendicular, int n)
+{
+  MeshBuilder b;
+  b.addQuadGrid({ 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, n, n, Vec3f(0.f), Vec3f(1.f)); // faces +z
+  if (perpendicular)
+  {
+    b.addQuadGrid({ 0, 0, 0 }, { 0, 0, 1 }, { 1, 0, 0 }, n, n, Vec3f(0.f)); // y = 0, faces +y
+  }
+  else
+  {
+    b.addQuadGrid({ 0, 0, 1 }, { 0, 1, 0 }, { 1, 0, 0 }, n, n, Vec3f(0.f)); // z = 1, faces -z
+  }
+  return b.take();
+}
+
+/// A closed room (inward box) with a block on the floor and a point light under the ceiling:
+/// a quick scene with shadows, colour bleeding and every stage of the solver.
+inline Scene roomWithBlock(float cell = 0.25f)
+{
+  MeshBuilder b;
+  b.addBox({ -2, 0, -2 }, { 2, 3, 2 }, cell, Vec3f(0.7f, 0.6f, 0.5f), true);
+  b.addBox({ -0.5f, 0, -0.5f }, { 0.5f, 1, 0.5f }, cell, Vec3f(0.2f, 0.7f, 0.3f));
+  Scene s = b.take();
+  Light l;
+  l.position = { 0.3f, 2.5f, 0.4f };
+  l.intensity = { 10.f, 9.f, 8.f };
+  s.lights.push_back(l);
+  return s;
+}
+}
