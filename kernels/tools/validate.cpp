@@ -1,1 +1,133 @@
-int main() { return 0; }
+// linkgi-validate: accuracy of the link solver against the path-traced reference, as JSON
+// lines: area-weighted relative RMSE of total irradiance (E_d + E_ind) per channel and for
+// luminance, per scene; and the furnace error against L = Le / (1 - rho).
+#include "linkgi/Error.h"
+#include "linkgi/Metrics.h"
+#include "linkgi/Reference.h"
+#include "linkgi/Scenes.h"
+#include "linkgi/Solver.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+
+namespace
+{
+using namespace linkgi;
+
+struct Args
+{
+  std::vector<std::string> scenes = { "cornell", "colorlamp", "torso", "tearoom" };
+  SolverOptions options;
+  std::uint32_t referenceFactor = 16; ///< reference paths per vertex = factor * n_C
+};
+
+Args parse(int argc, char** argv)
+{
+  Args a;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (i + 1 >= argc)
+    {
+      throw Error("Usage: linkgi-validate [--scenes a,b] [--rays 256] [--bounces 3] "
+                  "[--reference-factor 16]; " + arg + " needs a value.");
+    }
+    const std::string value = argv[++i];
+    if (arg == "--scenes")
+    {
+      a.scenes.clear();
+      std::stringstream ss(value);
+      for (std::string s; std::getline(ss, s, ',');)
+      {
+        a.scenes.push_back(s);
+      }
+    }
+    else if (arg == "--rays")
+      a.options.raysPerVertex = std::stoul(value);
+    else if (arg == "--bounces")
+      a.options.bounces = std::stoul(value);
+    else if (arg == "--reference-factor")
+      a.referenceFactor = std::max(1ul, std::stoul(value));
+    else
+      throw Error("Unknown argument " + arg + ".");
+  }
+  return a;
+}
+
+std::vector<Vec3f> sum(const std::vector<Vec3f>& a, const std::vector<Vec3f>& b)
+{
+  std::vector<Vec3f> t(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    t[i] = a[i] + b[i];
+  }
+  return t;
+}
+
+void validateScene(const std::string& name, const Args& args)
+{
+  const Scene scene = makeStandardScene(name);
+  Solver solver;
+  const Solution& sol = solver.update(scene, args.options);
+  ReferenceOptions ro;
+  ro.pathsPerVertex = args.referenceFactor * args.options.raysPerVertex;
+  ro.bounces = args.options.bounces;
+  const auto start = std::chrono::steady_clock::now();
+  const ReferenceSolution ref = solveReference(scene, ro);
+  const double msReference =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const ErrorMetrics e = relativeRmse(
+    sum(sol.direct, sol.indirect), sum(ref.direct, ref.indirect), vertexAreas(scene));
+  const ErrorMetrics ei = relativeRmse(sol.indirect, ref.indirect, vertexAreas(scene));
+  std::printf("{\"scene\":\"%s\",\"vertices\":%zu,\"rays_per_vertex\":%u,\"bounces\":%u,"
+              "\"reference_paths_per_vertex\":%u,\"rel_rmse_r\":%.4f,\"rel_rmse_g\":%.4f,"
+              "\"rel_rmse_b\":%.4f,\"rel_rmse_luminance\":%.4f,\"indirect_rel_rmse_luminance\":%.4f,"
+              "\"ms_solver\":%.1f,\"ms_reference\":%.1f}\n",
+    name.c_str(), scene.vertexCount(), args.options.raysPerVertex, args.options.bounces,
+    ro.pathsPerVertex, e.relRmse.x, e.relRmse.y, e.relRmse.z, e.relRmseLuminance,
+    ei.relRmseLuminance, solver.stats().msTotal, msReference);
+  std::fflush(stdout);
+}
+
+void validateFurnace(const Args& args)
+{
+  const Scene scene = makeStandardScene("furnace");
+  SolverOptions o = args.options;
+  o.bounces = 12; // residual rho^13 = 1e-4
+  const Solution& sol = Solver().update(scene, o);
+  const std::vector<float> area = vertexAreas(scene);
+  double worst = 0, mean = 0, total = 0;
+  for (std::size_t v = 0; v < scene.vertexCount(); ++v)
+  {
+    const double ratio = sol.radiance[v].x * (1.0 - scene.albedo[v].x) / scene.emission[v].x;
+    worst = std::max(worst, std::abs(ratio - 1.0));
+    mean += area[v] * ratio;
+    total += area[v];
+  }
+  std::printf("{\"scene\":\"furnace\",\"vertices\":%zu,\"rays_per_vertex\":%u,\"bounces\":%u,"
+              "\"max_rel_error\":%.5f,\"mean_rel_error\":%.5f}\n",
+    scene.vertexCount(), o.raysPerVertex, o.bounces, worst, std::abs(mean / total - 1.0));
+}
+}
+
+int main(int argc, char** argv)
+{
+  try
+  {
+    const Args args = parse(argc, argv);
+    validateFurnace(args);
+    for (const std::string& name : args.scenes)
+    {
+      validateScene(name, args);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "linkgi-validate: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
