@@ -17,7 +17,8 @@ TEST(TestAnalytic, FurnaceConvergesToLeOverOneMinusRho)
   const Scene s = makeStandardScene("furnace");
   SolverOptions o;
   o.bounces = 12;
-  const Solution& sol = Solver().update(s, o);
+  Solver solver;
+  const Solution& sol = solver.update(s, o);
   const std::vector<float> area = vertexAreas(s);
   double mean = 0, total = 0;
   for (std::size_t v = 0; v < s.vertexCount(); ++v)
@@ -39,7 +40,8 @@ double formFactor(bool perpendicular)
   SolverOptions o;
   o.raysPerVertex = 1024;
   o.bounces = 1;
-  const Solution& sol = Solver().update(s, o);
+  Solver solver;
+  const Solution& sol = solver.update(s, o);
   const std::vector<float> area = vertexAreas(s);
   double e = 0, a = 0;
   for (std::size_t v = s.vertexCount() / 2; v < s.vertexCount(); ++v)
@@ -91,7 +93,8 @@ TEST(TestAnalytic, CornellBoxAgreesWithReference)
     SolverOptions o;
     o.raysPerVertex = rays;
     o.bounces = ro.bounces;
-    const Solution& sol = Solver().update(s, o);
+    Solver solver;
+  const Solution& sol = solver.update(s, o);
     const ErrorMetrics err = relativeRmse(total(sol.direct, sol.indirect), reference, area);
     std::printf("cornell n_C=%u: relative RMSE luminance %.4f (r %.4f g %.4f b %.4f)\n", rays,
       err.relRmseLuminance, err.relRmse.x, err.relRmse.y, err.relRmse.z);

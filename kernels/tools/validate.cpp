@@ -97,7 +97,8 @@ void validateFurnace(const Args& args)
   const Scene scene = makeStandardScene("furnace");
   SolverOptions o = args.options;
   o.bounces = 12; // residual rho^13 = 1e-4
-  const Solution& sol = Solver().update(scene, o);
+  Solver solver;
+  const Solution& sol = solver.update(scene, o);
   const std::vector<float> area = vertexAreas(scene);
   double worst = 0, mean = 0, total = 0;
   for (std::size_t v = 0; v < scene.vertexCount(); ++v)
