@@ -78,6 +78,10 @@ TEST(TestBadInput, DegenerateTrianglesAreRemoved)
   s.positions.push_back(s.positions[3]);                  // zero-area sliver
   s.normals.push_back(s.normals[3]);
   s.albedo.push_back(s.albedo[3]);
+  if (!s.emission.empty())
+  {
+    s.emission.push_back(s.emission[3]);
+  }
   s.triangles.push_back({ { 3, Index(s.vertexCount() - 1), 4 } });
   Solver solver;
   const Solution& sol = solver.update(s, fast());

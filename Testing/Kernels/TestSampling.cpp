@@ -19,7 +19,10 @@ TEST(TestSampling, DirectionSetIsCosineWeighted)
       mean += d / float(n);
     }
     // Under a cosine-weighted density E[cos theta] = 2/3 and the tangent components vanish.
-    EXPECT_NEAR(mean.z, 2.f / 3.f, 2.f / n + 1e-3f) << n;
+    // Cell centres stop short of the horizon, where z = sqrt(1 - r^2) has a square-root
+    // edge, so the midpoint rule converges as k^-1.5 (k = sqrt(n)).
+    const float k = std::sqrt(float(n));
+    EXPECT_NEAR(mean.z, 2.f / 3.f, 0.6f / (k * std::sqrt(k))) << n;
     EXPECT_NEAR(mean.x, 0.f, 1e-4f);
     EXPECT_NEAR(mean.y, 0.f, 1e-4f);
   }

@@ -55,14 +55,27 @@ DirectLightResult computeDirectLight(const Scene& scene, const Topology& topolog
   result.irradiance.assign(elements.count(), Vec3f(0.f));
   std::atomic<std::uint64_t> rays{ 0 };
   std::vector<Vec3f> unshadowed(nv);
+  // Progress runs once over all shadow-ray passes (lights x sides x vertex/edge samples).
+  const int sides = twoSided ? 2 : 1, samplesPerSide = oversampling ? 2 : 1;
+  const double passes = double(scene.lights.size() * sides * samplesPerSide);
+  int pass = 0;
+  const auto passProgress = [&]() -> ProgressCallback {
+    if (!progress)
+    {
+      return {};
+    }
+    const double lo = pass++ / passes;
+    return [&progress, lo, passes](const char* stage, double f) { return progress(stage, lo + f / passes); };
+  };
 
   for (const Light& light : scene.lights)
   {
     if (maxComponent(light.intensity) <= 0.f)
     {
+      pass += sides * samplesPerSide;
       continue;
     }
-    for (int side = 0; side < (twoSided ? 2 : 1); ++side)
+    for (int side = 0; side < sides; ++side)
     {
       const float sign = side == 0 ? 1.f : -1.f;
       parallelRanges(nv, 1024, [&](std::size_t begin, std::size_t end) {
@@ -79,7 +92,7 @@ DirectLightResult computeDirectLight(const Scene& scene, const Topology& topolog
           o = scene.positions[v] + scene.normals[v] * (sign * eps) + shifts[v];
           return lit(Index(v));
         },
-        tracer, rays, "light links", progress);
+        tracer, rays, "light links", passProgress());
       std::vector<float> edgeVisible;
       if (oversampling)
       {
@@ -95,7 +108,7 @@ DirectLightResult computeDirectLight(const Scene& scene, const Topology& topolog
               (shifts[a] + shifts[b]) * 0.5f;
             return lit(a) || lit(b);
           },
-          tracer, rays, "light links (one-ring)", progress);
+          tracer, rays, "light links (one-ring)", passProgress());
       }
       parallelRanges(nv, 1024, [&](std::size_t begin, std::size_t end) {
         for (std::size_t v = begin; v < end; ++v)
