@@ -1,8 +1,19 @@
 """LinkGI: per-vertex multi-bounce global illumination for VTK.
 
     import linkgi
+    from vtkmodules.vtkRenderingCore import vtkLight
+
     gi = linkgi.vtkGlobalIlluminationFilter()
+    gi.SetInputConnection(source.GetOutputPort())
+    gi.AddLight(vtkLight())
+    gi.Update()  # point arrays DirectIrradiance, IndirectIrradiance, Radiance
+
+Needs Debian's /usr/bin/python3 (the one with VTK 9.1) and PYTHONPATH=<build>/lib/python3/site-packages.
 """
-from vtkmodules import vtkCommonExecutionModel as _  # noqa: F401  (base classes first)
+# The wrapped classes derive from and take VTK classes of these modules: load them first.
+from vtkmodules import vtkCommonCore as _core  # noqa: F401
+from vtkmodules import vtkCommonDataModel as _data  # noqa: F401
+from vtkmodules import vtkCommonExecutionModel as _exec  # noqa: F401
+from vtkmodules import vtkRenderingCore as _rendering  # noqa: F401
 
 from .LinkGIFiltersGlobalIllumination import *  # noqa: F401,F403

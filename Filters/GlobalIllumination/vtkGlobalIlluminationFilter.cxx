@@ -1,0 +1,490 @@
+#include "vtkGlobalIlluminationFilter.h"
+
+#include "vtkGlobalIlluminationSceneBuilder.h"
+
+#include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+#include "vtkTypeUInt64Array.h"
+#include "vtkVersionMacros.h"
+
+#include "linkgi/Error.h"
+#include "linkgi/Solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+using Builder = vtkGlobalIlluminationSceneBuilder;
+
+namespace
+{
+bool AbortRequested(vtkAlgorithm* self)
+{
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 3, 0)
+  return self->CheckAbort();
+#else
+  return self->GetAbortExecute() != 0;
+#endif
+}
+
+linkgi::Vec3f ToVec3f(const double v[3])
+{
+  return { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
+}
+
+void AddValue(vtkFieldData* fd, const std::string& name, std::uint64_t value)
+{
+  vtkNew<vtkTypeUInt64Array> array;
+  array->SetName(("LinkGI." + name).c_str());
+  array->InsertNextValue(value);
+  fd->AddArray(array);
+}
+
+void AddValue(vtkFieldData* fd, const std::string& name, double value)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(("LinkGI." + name).c_str());
+  array->InsertNextValue(value);
+  fd->AddArray(array);
+}
+}
+
+//------------------------------------------------------------------------------
+struct vtkGlobalIlluminationFilter::vtkInternals
+{
+  linkgi::Solver Solver;
+  std::vector<vtkSmartPointer<vtkLight>> Lights;
+  vtkNew<vtkPolyData> LastOutput;
+  bool HasLastOutput = false;
+  std::vector<std::string> Warnings; // the filter's own, for this update
+
+  // The triangle mesh and what it was built from; rebuilt only when one of these changes,
+  // so a light-only update costs no triangulation.
+  Builder::Mesh Mesh;
+  bool MeshValid = false;
+  const vtkPolyData* MeshInput = nullptr;
+  vtkMTimeType MeshInputTime = 0;
+  bool MeshComputeNormals = false;
+  double MeshFeatureAngle = 0.0;
+
+  const linkgi::Scene& UpdateScene(vtkGlobalIlluminationFilter* self, vtkPolyData* input);
+  linkgi::SolverOptions Options(vtkGlobalIlluminationFilter* self);
+  linkgi::ProgressCallback Progress(vtkGlobalIlluminationFilter* self);
+  void AttachResults(vtkGlobalIlluminationFilter* self, vtkPolyData* output, double msFilter);
+
+  /// The filter's warnings of this update, then the engine's.
+  std::vector<std::string> AllWarnings() const
+  {
+    std::vector<std::string> all = this->Warnings;
+    const auto& engine = this->Solver.stats().warnings;
+    all.insert(all.end(), engine.begin(), engine.end());
+    return all;
+  }
+};
+
+//------------------------------------------------------------------------------
+const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
+  vtkGlobalIlluminationFilter* self, vtkPolyData* input)
+{
+  const bool computeNormals = self->ComputeNormals != 0;
+  const bool stale = !this->MeshValid || this->MeshInput != input ||
+    this->MeshInputTime != input->GetMTime() || this->MeshComputeNormals != computeNormals ||
+    (this->Mesh.NormalsComputed && this->MeshFeatureAngle != self->FeatureAngle);
+  if (stale)
+  {
+    this->MeshValid = false;
+    this->Mesh = Builder::BuildMesh(input, computeNormals, self->FeatureAngle);
+    this->MeshInput = input;
+    this->MeshInputTime = input->GetMTime();
+    this->MeshComputeNormals = computeNormals;
+    this->MeshFeatureAngle = self->FeatureAngle;
+    this->MeshValid = true;
+  }
+
+  linkgi::Scene& scene = this->Mesh.Scene;
+  scene.albedo = Builder::GatherColors(input, this->Mesh, self->AlbedoArrayName,
+    self->AlbedoArrayAssociation, ToVec3f(self->Albedo), "albedo");
+  scene.emission.clear();
+  if (self->EmissionArrayName && *self->EmissionArrayName)
+  {
+    scene.emission = Builder::GatherColors(input, this->Mesh, self->EmissionArrayName,
+      self->EmissionArrayAssociation, linkgi::Vec3f(0.f), "emission");
+  }
+  scene.lights.clear();
+  for (vtkLight* light : this->Lights)
+  {
+    linkgi::Light converted;
+    if (Builder::ConvertLight(light, self->LightIntensityScale, converted))
+    {
+      scene.lights.push_back(converted);
+    }
+  }
+  scene.environment = Builder::ConvertEnvironment(self->EnvironmentColor, self->EnvironmentTexture);
+  if (self->EnvironmentTexture && scene.environment.color == linkgi::Vec3f(0.f))
+  {
+    this->Warnings.emplace_back("EnvironmentTexture is set but EnvironmentColor is black, "
+                                "so the sky is black; set EnvironmentColor to 1,1,1.");
+  }
+  return scene;
+}
+
+//------------------------------------------------------------------------------
+linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
+  vtkGlobalIlluminationFilter* self)
+{
+  if (self->Backend == CUDA)
+  {
+    this->Warnings.emplace_back("CUDA backend not available in this build; using the CPU.");
+  }
+  linkgi::SolverOptions options;
+  options.raysPerVertex = static_cast<std::uint32_t>(self->RaysPerVertex);
+  options.bounces = static_cast<std::uint32_t>(self->NumberOfBounces);
+  options.smoothing = self->Smoothing != 0;
+  options.featureAngleDegrees = static_cast<float>(self->FeatureAngle);
+  options.twoSided = self->TwoSided != 0;
+  options.twist = self->Twist != 0;
+  options.seed = static_cast<std::uint32_t>(self->Seed);
+  options.lightOversampling = self->LightOversampling != 0;
+  options.albedoPolicy = self->ClampAlbedo ? linkgi::AlbedoPolicy::Clamp : linkgi::AlbedoPolicy::Reject;
+  return options;
+}
+
+//------------------------------------------------------------------------------
+linkgi::ProgressCallback vtkGlobalIlluminationFilter::vtkInternals::Progress(
+  vtkGlobalIlluminationFilter* self)
+{
+  struct State
+  {
+    std::string Stage;
+    double Last = 0.0;
+  };
+  auto state = std::make_shared<State>();
+  // The engine calls this on this thread between chunks of work (so VTK events may fire
+  // here) with the fraction of the whole update done.
+  return [self, state](const char* stage, double fraction) {
+    if (state->Stage != stage)
+    {
+      state->Stage = stage;
+      self->SetProgressText(stage);
+    }
+    if (fraction > state->Last)
+    {
+      state->Last = fraction;
+      self->UpdateProgress(std::min(fraction, 1.0));
+    }
+    return !AbortRequested(self);
+  };
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(
+  vtkGlobalIlluminationFilter* self, vtkPolyData* output, double msFilter)
+{
+  const linkgi::Solution& solution = this->Solver.solution();
+  const std::size_t elements = this->Mesh.ElementPoint.size();
+  vtkPointData* pd = output->GetPointData();
+  for (std::size_t side = 0; side < (self->TwoSided ? 2 : 1); ++side)
+  {
+    const std::string suffix = side ? "Back" : "";
+    const std::size_t offset = side * elements;
+    pd->AddArray(Builder::MapToPoints(this->Mesh, solution.direct, offset, ("DirectIrradiance" + suffix).c_str()));
+    pd->AddArray(Builder::MapToPoints(this->Mesh, solution.indirect, offset, ("IndirectIrradiance" + suffix).c_str()));
+    pd->AddArray(Builder::MapToPoints(this->Mesh, solution.radiance, offset, ("Radiance" + suffix).c_str()));
+  }
+
+  const linkgi::SolverStats& s = this->Solver.stats();
+  vtkFieldData* fd = output->GetFieldData();
+  const std::pair<const char*, std::uint64_t> counters[] = { { "BvhBuilds", s.bvhBuilds },
+    { "BvhRefits", s.bvhRefits }, { "LinkBuilds", s.linkBuilds },
+    { "LightLinkBuilds", s.lightLinkBuilds }, { "BounceRuns", s.bounceRuns },
+    { "Elements", s.elements }, { "Rays", s.rays }, { "LightRays", s.lightRays },
+    { "LinksRaw", s.linksRaw }, { "LinksCompressed", s.linksCompressed },
+    { "LinkBytes", s.linkBytes } };
+  for (const auto& c : counters)
+  {
+    AddValue(fd, c.first, c.second);
+  }
+  const std::pair<const char*, double> times[] = { { "MsBvh", s.msBvh }, { "MsLinks", s.msLinks },
+    { "MsCompress", s.msCompress }, { "MsLightLinks", s.msLightLinks },
+    { "MsBounces", s.msBounces }, { "MsSmoothing", s.msSmoothing }, { "MsTotal", s.msTotal },
+    { "MsFilter", msFilter } };
+  for (const auto& t : times)
+  {
+    AddValue(fd, t.first, t.second);
+  }
+  vtkNew<vtkStringArray> warnings;
+  warnings->SetName("LinkGI.Warnings");
+  for (const std::string& w : this->AllWarnings())
+  {
+    warnings->InsertNextValue(w);
+  }
+  fd->AddArray(warnings);
+}
+
+//------------------------------------------------------------------------------
+vtkStandardNewMacro(vtkGlobalIlluminationFilter);
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
+  : RaysPerVertex(256)
+  , NumberOfBounces(3)
+  , FeatureAngle(30.0)
+  , Smoothing(1)
+  , ComputeNormals(0)
+  , Backend(AUTO)
+  , AlbedoArrayName(nullptr)
+  , AlbedoArrayAssociation(vtkDataObject::FIELD_ASSOCIATION_POINTS)
+  , Albedo{ 0.7, 0.7, 0.7 }
+  , ClampAlbedo(1)
+  , EmissionArrayName(nullptr)
+  , EmissionArrayAssociation(vtkDataObject::FIELD_ASSOCIATION_POINTS)
+  , EnvironmentColor{ 0.0, 0.0, 0.0 }
+  , EnvironmentTexture(nullptr)
+  , TwoSided(0)
+  , Seed(0)
+  , LightOversampling(1)
+  , Twist(1)
+  , LightIntensityScale(1.0)
+  , Internals(new vtkInternals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationFilter::~vtkGlobalIlluminationFilter()
+{
+  this->SetAlbedoArrayName(nullptr);
+  this->SetEmissionArrayName(nullptr);
+  this->SetEnvironmentTexture(nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("No input: connect a vtkPolyData to input port 0.");
+    return 0;
+  }
+  if (input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
+  {
+    vtkWarningMacro("The input is empty; the output is empty too.");
+    output->ShallowCopy(input);
+    return 1;
+  }
+
+  vtkInternals& internals = *this->Internals;
+  internals.Warnings.clear();
+  try
+  {
+    const linkgi::Scene& scene = internals.UpdateScene(this, input);
+    internals.Solver.update(scene, internals.Options(this), internals.Progress(this));
+    output->ShallowCopy(input);
+    const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
+    internals.AttachResults(this, output, elapsed.count());
+    for (const std::string& warning : internals.AllWarnings())
+    {
+      vtkWarningMacro(<< warning);
+    }
+    internals.LastOutput->ShallowCopy(output);
+    internals.HasLastOutput = true;
+    return 1;
+  }
+  catch (const linkgi::Aborted& aborted)
+  {
+    vtkWarningMacro(<< aborted.what());
+    this->RestorePreviousOutput(output);
+    return 1;
+  }
+  catch (const linkgi::Error& error)
+  {
+    vtkErrorMacro(<< error.what());
+  }
+  catch (const std::exception& error)
+  {
+    vtkErrorMacro("Global illumination failed: " << error.what());
+  }
+  this->RestorePreviousOutput(output);
+  return 0;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::RestorePreviousOutput(vtkPolyData* output)
+{
+  if (this->Internals->HasLastOutput)
+  {
+    output->ShallowCopy(this->Internals->LastOutput);
+  }
+  else
+  {
+    output->Initialize();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::SetRaysPerVertex(int rays)
+{
+  const int root = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, rays)))));
+  const int square = std::min(root, 256) * std::min(root, 256);
+  if (square != rays)
+  {
+    vtkWarningMacro("RaysPerVertex must be a perfect square k*k in [1, 65536]; using "
+      << square << " instead of " << rays << ".");
+  }
+  if (this->RaysPerVertex != square)
+  {
+    this->RaysPerVertex = square;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+const char* vtkGlobalIlluminationFilter::GetBackendAsString()
+{
+  switch (this->Backend)
+  {
+    case CPU:
+      return "CPU";
+    case CUDA:
+      return "CUDA";
+    default:
+      return "Auto";
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::SetEnvironmentTexture(vtkImageData* texture)
+{
+  vtkSetObjectBodyMacro(EnvironmentTexture, vtkImageData, texture);
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::AddLight(vtkLight* light)
+{
+  auto& lights = this->Internals->Lights;
+  if (light && std::find(lights.begin(), lights.end(), light) == lights.end())
+  {
+    lights.emplace_back(light);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::RemoveLight(vtkLight* light)
+{
+  auto& lights = this->Internals->Lights;
+  auto it = std::find(lights.begin(), lights.end(), light);
+  if (it != lights.end())
+  {
+    lights.erase(it);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::RemoveAllLights()
+{
+  if (!this->Internals->Lights.empty())
+  {
+    this->Internals->Lights.clear();
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::SetLightsFromRenderer(vtkRenderer* renderer)
+{
+  std::vector<vtkSmartPointer<vtkLight>> lights;
+  if (renderer)
+  {
+    vtkLightCollection* collection = renderer->GetLights();
+    vtkCollectionSimpleIterator it;
+    collection->InitTraversal(it);
+    while (vtkLight* light = collection->GetNextLight(it))
+    {
+      lights.emplace_back(light);
+    }
+  }
+  if (lights != this->Internals->Lights)
+  {
+    this->Internals->Lights = std::move(lights);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationFilter::GetNumberOfLights()
+{
+  return static_cast<int>(this->Internals->Lights.size());
+}
+
+//------------------------------------------------------------------------------
+vtkLight* vtkGlobalIlluminationFilter::GetLight(int index)
+{
+  const auto& lights = this->Internals->Lights;
+  return index >= 0 && index < static_cast<int>(lights.size()) ? lights[index].Get() : nullptr;
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkGlobalIlluminationFilter::GetMTime()
+{
+  vtkMTimeType mtime = this->Superclass::GetMTime();
+  for (vtkLight* light : this->Internals->Lights)
+  {
+    mtime = std::max(mtime, light->GetMTime());
+  }
+  if (this->EnvironmentTexture)
+  {
+    mtime = std::max(mtime, this->EnvironmentTexture->GetMTime());
+  }
+  return mtime;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Rays Per Vertex: " << this->RaysPerVertex << "\n";
+  os << indent << "Number Of Bounces: " << this->NumberOfBounces << "\n";
+  os << indent << "Feature Angle: " << this->FeatureAngle << "\n";
+  os << indent << "Smoothing: " << (this->Smoothing ? "On" : "Off") << "\n";
+  os << indent << "Compute Normals: " << (this->ComputeNormals ? "On" : "Off") << "\n";
+  os << indent << "Backend: " << this->GetBackendAsString() << "\n";
+  os << indent << "Albedo Array Name: " << (this->AlbedoArrayName ? this->AlbedoArrayName : "(none)") << "\n";
+  os << indent << "Albedo Array Association: "
+     << (this->AlbedoArrayAssociation == vtkDataObject::FIELD_ASSOCIATION_CELLS ? "Cells" : "Points") << "\n";
+  os << indent << "Albedo: (" << this->Albedo[0] << ", " << this->Albedo[1] << ", " << this->Albedo[2] << ")\n";
+  os << indent << "Clamp Albedo: " << (this->ClampAlbedo ? "On" : "Off") << "\n";
+  os << indent << "Emission Array Name: " << (this->EmissionArrayName ? this->EmissionArrayName : "(none)") << "\n";
+  os << indent << "Emission Array Association: "
+     << (this->EmissionArrayAssociation == vtkDataObject::FIELD_ASSOCIATION_CELLS ? "Cells" : "Points") << "\n";
+  os << indent << "Environment Color: (" << this->EnvironmentColor[0] << ", "
+     << this->EnvironmentColor[1] << ", " << this->EnvironmentColor[2] << ")\n";
+  os << indent << "Environment Texture: " << this->EnvironmentTexture << "\n";
+  os << indent << "Two Sided: " << (this->TwoSided ? "On" : "Off") << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "Light Oversampling: " << (this->LightOversampling ? "On" : "Off") << "\n";
+  os << indent << "Twist: " << (this->Twist ? "On" : "Off") << "\n";
+  os << indent << "Light Intensity Scale: " << this->LightIntensityScale << "\n";
+  os << indent << "Number Of Lights: " << this->Internals->Lights.size() << "\n";
+}

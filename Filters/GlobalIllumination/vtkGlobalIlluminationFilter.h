@@ -1,0 +1,328 @@
+/**
+ * @class   vtkGlobalIlluminationFilter
+ * @brief   per-vertex multi-bounce diffuse global illumination of a surface
+ *
+ * vtkGlobalIlluminationFilter lights the polygons and triangle strips of a vtkPolyData with
+ * vtkLight objects, an environment (sky) and emissive surfaces, following Schmitz,
+ * Tavenrath & Kobbelt, "Interactive Global Illumination for Deformable Geometry in CUDA"
+ * (2008): every vertex traces RaysPerVertex cosine-distributed rays once, and the hits
+ * become links along which NumberOfBounces bounces of light are iterated.
+ *
+ * The output is the input geometry (a shallow copy: points, cells, point, cell and field
+ * data are kept; vertices and lines are passed through unlit, their points get 0) with three
+ * float point arrays of linear RGB:
+ * - `DirectIrradiance`: irradiance E_d from the lights, with shadows;
+ * - `IndirectIrradiance`: irradiance E_ind from bounced light, emissive surfaces and the
+ *   environment;
+ * - `Radiance`: outgoing radiance L = Le + albedo / pi * (E_d + E_ind).
+ * With TwoSided on, `DirectIrradianceBack`, `IndirectIrradianceBack` and `RadianceBack`
+ * hold the values of the back sides. Field data `LinkGI.*` holds the engine's counters
+ * (lifetime numbers of BVH builds and refits, link builds, light link builds and bounce
+ * runs; sizes of the link structure), the stage times of the last update in milliseconds
+ * (`LinkGI.MsFilter` is the whole RequestData) and `LinkGI.Warnings`.
+ *
+ * Units: linear RGB with no hidden factors. A point or spot vtkLight with Intensity 1 and a
+ * white DiffuseColor has a radiant intensity of 1 W/sr per channel (times
+ * LightIntensityScale), so a surface at distance r facing it receives 1/r^2; a directional
+ * light of intensity 1 gives irradiance 1 on a surface facing it. vtkLight's attenuation
+ * values are ignored (light falls off with 1/r^2). Switched-off lights are ignored.
+ * Positional lights with a cone angle below 90 degrees are spot lights (with the light's
+ * exponent); headlights and camera lights are used at their transformed positions, as last
+ * placed by a renderer.
+ *
+ * Surfaces: triangles are lit on the side their normal points to. Normals come from the
+ * input's point normals, or are computed with vtkPolyDataNormals (feature angle
+ * FeatureAngle, splitting on, consistent ordering) when the input has none or
+ * ComputeNormals is on. A point split at a sharp edge is solved once per side; its output
+ * value is the mean of its copies (by count). With TwoSided off, a ray that hits the back
+ * of a triangle is blocked and sees black.
+ *
+ * Updates are incremental: the filter keeps its solver between executions, so moving or
+ * recolouring a light recomputes only direct light and bounces, and changing albedo,
+ * emission or environment only the bounces. Moving a light re-executes the filter because
+ * GetMTime includes the lights' (and the environment texture's) modification times.
+ *
+ * Errors: invalid input (no polygons, NaN or infinite coordinates, missing arrays, negative
+ * albedo, ...) is reported with vtkErrorMacro and the previous output is handed out again.
+ * Degenerate triangles are dropped and albedo above 1 is clamped (unless ClampAlbedo is
+ * off), with a warning. An empty input gives an empty output and a warning. With no lights,
+ * the result comes from the environment and emission only (all zero, with a warning, if
+ * both are black). Setting AbortExecute (from a progress observer) stops the update and
+ * keeps the previous output; VTK before 9.3 does not re-execute an aborted filter by
+ * itself, so change a property or call Modified() to try again.
+ */
+
+#ifndef vtkGlobalIlluminationFilter_h
+#define vtkGlobalIlluminationFilter_h
+
+#include "LinkGIFiltersGlobalIlluminationModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <memory> // for std::unique_ptr
+
+class vtkImageData;
+class vtkLight;
+class vtkRenderer;
+
+class LINKGIFILTERSGLOBALILLUMINATION_EXPORT vtkGlobalIlluminationFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkGlobalIlluminationFilter* New();
+  vtkTypeMacro(vtkGlobalIlluminationFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Where the engine runs.
+  enum BackendType
+  {
+    AUTO = 0, ///< the fastest available: the CPU in this build
+    CPU = 1,
+    CUDA = 2 ///< not available in this build yet: falls back to the CPU with a warning
+  };
+
+  ///@{
+  /**
+   * Number of rays traced from each vertex (n_C), a perfect square k*k because the
+   * directions form a k x k stratified grid. Other values are rounded to the nearest perfect
+   * square (with a warning). Changing it rebuilds the links. The default value is 256.
+   */
+  virtual void SetRaysPerVertex(int rays);
+  vtkGetMacro(RaysPerVertex, int);
+  ///@}
+
+  ///@{
+  /**
+   * Number of bounces of indirect light (n_B). 0 gives only emission and environment light
+   * in IndirectIrradiance. The default value is 3.
+   */
+  vtkSetClampMacro(NumberOfBounces, int, 0, 1000);
+  vtkGetMacro(NumberOfBounces, int);
+  ///@}
+
+  ///@{
+  /**
+   * Feature angle in degrees: edges sharper than this split the vertex normals (when normals
+   * are computed), and smoothing does not average across them. The default value is 30.
+   */
+  vtkSetClampMacro(FeatureAngle, double, 0.0, 180.0);
+  vtkGetMacro(FeatureAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * Smooth the indirect irradiance over each vertex's one-ring, within the feature angle.
+   * The default value is on.
+   */
+  vtkSetMacro(Smoothing, vtkTypeBool);
+  vtkGetMacro(Smoothing, vtkTypeBool);
+  vtkBooleanMacro(Smoothing, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Always compute point normals (splitting at FeatureAngle), even when the input has
+   * point normals. When off, the input's normals are used if present. The default value is
+   * off.
+   */
+  vtkSetMacro(ComputeNormals, vtkTypeBool);
+  vtkGetMacro(ComputeNormals, vtkTypeBool);
+  vtkBooleanMacro(ComputeNormals, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Backend: AUTO, CPU or CUDA. CUDA is not available in this build and falls back to the
+   * CPU with a warning. The default value is AUTO.
+   */
+  vtkSetClampMacro(Backend, int, AUTO, CUDA);
+  vtkGetMacro(Backend, int);
+  void SetBackendToAuto() { this->SetBackend(AUTO); }
+  void SetBackendToCPU() { this->SetBackend(CPU); }
+  void SetBackendToCUDA() { this->SetBackend(CUDA); }
+  const char* GetBackendAsString();
+  ///@}
+
+  ///@{
+  /**
+   * Name of the array holding the diffuse albedo (reflectance in [0,1], linear RGB). Arrays
+   * with 1 or 2 components are grey, with 3 or more the first three are RGB; unsigned char
+   * arrays are divided by 255. When empty, Albedo is used. The default value is empty.
+   */
+  vtkSetStringMacro(AlbedoArrayName);
+  vtkGetStringMacro(AlbedoArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * Whether AlbedoArrayName names a point array (vtkDataObject::FIELD_ASSOCIATION_POINTS)
+   * or a cell array (FIELD_ASSOCIATION_CELLS; each vertex gets the mean of its cells, per
+   * side of a sharp edge). The default value is FIELD_ASSOCIATION_POINTS.
+   */
+  vtkSetClampMacro(AlbedoArrayAssociation, int, 0, 1);
+  vtkGetMacro(AlbedoArrayAssociation, int);
+  ///@}
+
+  ///@{
+  /**
+   * Constant albedo (linear RGB) used when AlbedoArrayName is empty. The default value is
+   * (0.7, 0.7, 0.7).
+   */
+  vtkSetVector3Macro(Albedo, double);
+  vtkGetVector3Macro(Albedo, double);
+  ///@}
+
+  ///@{
+  /**
+   * Albedo above 1 would create energy. On: clamp it to 1 with a warning. Off: report an
+   * error. The default value is on.
+   */
+  vtkSetMacro(ClampAlbedo, vtkTypeBool);
+  vtkGetMacro(ClampAlbedo, vtkTypeBool);
+  vtkBooleanMacro(ClampAlbedo, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Name of an array of emitted radiance Le (linear RGB, >= 0; area lights), read like the
+   * albedo array. When empty, nothing emits. The default value is empty.
+   */
+  vtkSetStringMacro(EmissionArrayName);
+  vtkGetStringMacro(EmissionArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * Point or cell association of EmissionArrayName, as for the albedo. The default value is
+   * FIELD_ASSOCIATION_POINTS.
+   */
+  vtkSetClampMacro(EmissionArrayAssociation, int, 0, 1);
+  vtkGetMacro(EmissionArrayAssociation, int);
+  ///@}
+
+  ///@{
+  /**
+   * Radiance of the sky seen by rays that hit nothing (linear RGB). A uniform sky of
+   * radiance L gives an unoccluded surface irradiance pi * L. The default value is
+   * (0, 0, 0).
+   */
+  vtkSetVector3Macro(EnvironmentColor, double);
+  vtkGetVector3Macro(EnvironmentColor, double);
+  ///@}
+
+  ///@{
+  /**
+   * Optional lat-long (equirectangular) map of the sky with +Y up, multiplied by
+   * EnvironmentColor (set the colour to 1,1,1 to use the map as is). Its point scalars are
+   * read like colour arrays; the image's last row (the top of a picture read by a VTK
+   * reader) looks up. The default value is nullptr.
+   */
+  virtual void SetEnvironmentTexture(vtkImageData* texture);
+  vtkGetObjectMacro(EnvironmentTexture, vtkImageData);
+  ///@}
+
+  ///@{
+  /**
+   * Give every vertex a back side (normal -n) with its own solution, for open surfaces.
+   * Adds the `...Back` arrays. The default value is off.
+   */
+  vtkSetMacro(TwoSided, vtkTypeBool);
+  vtkGetMacro(TwoSided, vtkTypeBool);
+  vtkBooleanMacro(TwoSided, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Seed of the per-vertex random rotation of the ray directions; results are deterministic
+   * for a given seed. The default value is 0.
+   */
+  vtkSetClampMacro(Seed, int, 0, VTK_INT_MAX);
+  vtkGetMacro(Seed, int);
+  ///@}
+
+  ///@{
+  /**
+   * Also trace shadow rays at the edge midpoints around each vertex, so that hard shadow
+   * edges do not alias onto vertices. The default value is on.
+   */
+  vtkSetMacro(LightOversampling, vtkTypeBool);
+  vtkGetMacro(LightOversampling, vtkTypeBool);
+  vtkBooleanMacro(LightOversampling, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Rotate the shared ray directions by a random angle about each vertex normal, which turns
+   * structured aliasing into noise. The default value is on.
+   */
+  vtkSetMacro(Twist, vtkTypeBool);
+  vtkGetMacro(Twist, vtkTypeBool);
+  vtkBooleanMacro(Twist, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Factor applied to every light's DiffuseColor * Intensity, e.g. to express the lights in
+   * other units than the scene's lengths. The default value is 1.
+   */
+  vtkSetClampMacro(LightIntensityScale, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(LightIntensityScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * The lights. The filter keeps references to the vtkLight objects themselves, so changing
+   * a light re-executes the filter. SetLightsFromRenderer replaces the lights with those of
+   * `renderer` (the same objects, so what the renderer shows and what the filter bounces
+   * agree); note that a renderer creates its automatic headlight only on its first render.
+   */
+  void AddLight(vtkLight* light);
+  void RemoveLight(vtkLight* light);
+  void RemoveAllLights();
+  void SetLightsFromRenderer(vtkRenderer* renderer);
+  int GetNumberOfLights();
+  vtkLight* GetLight(int index);
+  ///@}
+
+  /**
+   * Includes the modification times of the lights and the environment texture.
+   */
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkGlobalIlluminationFilter();
+  ~vtkGlobalIlluminationFilter() override;
+
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  int RaysPerVertex;
+  int NumberOfBounces;
+  double FeatureAngle;
+  vtkTypeBool Smoothing;
+  vtkTypeBool ComputeNormals;
+  int Backend;
+  char* AlbedoArrayName;
+  int AlbedoArrayAssociation;
+  double Albedo[3];
+  vtkTypeBool ClampAlbedo;
+  char* EmissionArrayName;
+  int EmissionArrayAssociation;
+  double EnvironmentColor[3];
+  vtkImageData* EnvironmentTexture;
+  vtkTypeBool TwoSided;
+  int Seed;
+  vtkTypeBool LightOversampling;
+  vtkTypeBool Twist;
+  double LightIntensityScale;
+
+private:
+  vtkGlobalIlluminationFilter(const vtkGlobalIlluminationFilter&) = delete;
+  void operator=(const vtkGlobalIlluminationFilter&) = delete;
+
+  /// Hands out the last good output again after an error or an abort.
+  void RestorePreviousOutput(vtkPolyData* output);
+
+  struct vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

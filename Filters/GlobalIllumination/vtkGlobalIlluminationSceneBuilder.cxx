@@ -1,0 +1,417 @@
+#include "vtkGlobalIlluminationSceneBuilder.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkTriangleFilter.h"
+
+#include "linkgi/Error.h"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace
+{
+// Names of the id arrays carried through triangulation and normal splitting.
+const char* const PointIdsName = "vtkGlobalIlluminationPointIds";
+const char* const CellIdsName = "vtkGlobalIlluminationCellIds";
+
+[[noreturn]] void Fail(const std::string& message)
+{
+  throw linkgi::Error(message);
+}
+
+vtkSmartPointer<vtkIdTypeArray> IdRange(const char* name, vtkIdType first, vtkIdType count)
+{
+  auto ids = vtkSmartPointer<vtkIdTypeArray>::New();
+  ids->SetName(name);
+  ids->SetNumberOfTuples(count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    ids->SetValue(i, first + i);
+  }
+  return ids;
+}
+
+// Marks the points used by the cells of `cells`.
+void MarkUsed(vtkCellArray* cells, std::vector<unsigned char>& used)
+{
+  if (!cells)
+  {
+    return;
+  }
+  auto it = vtk::TakeSmartPointer(cells->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* pts;
+    it->GetCurrentCell(n, pts);
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      used[pts[k]] = 1;
+    }
+  }
+}
+
+// NaN or infinite coordinates would poison the ray tracer and vtkPolyDataNormals alike.
+void CheckFinite(vtkPolyData* input)
+{
+  const vtkIdType n = input->GetNumberOfPoints();
+  std::vector<unsigned char> used(static_cast<std::size_t>(n), 0);
+  MarkUsed(input->GetPolys(), used);
+  MarkUsed(input->GetStrips(), used);
+  vtkIdType bad = 0, first = -1;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    input->GetPoint(i, p);
+    if (used[i] && !(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+    {
+      first = bad++ == 0 ? i : first;
+    }
+  }
+  if (bad > 0)
+  {
+    std::ostringstream msg;
+    msg << "The input has " << bad << " surface point(s) with NaN or infinite coordinates"
+        << " (the first is point " << first << "); remove or repair them before lighting.";
+    Fail(msg.str());
+  }
+}
+
+// Only points, surface cells and the two id arrays go through the VTK filters.
+vtkSmartPointer<vtkPolyData> SurfaceWithIds(vtkPolyData* input)
+{
+  auto surface = vtkSmartPointer<vtkPolyData>::New();
+  surface->SetPoints(input->GetPoints());
+  surface->SetPolys(input->GetPolys());
+  surface->SetStrips(input->GetStrips());
+  surface->GetPointData()->AddArray(IdRange(PointIdsName, 0, input->GetNumberOfPoints()));
+  // Cell ids of vtkPolyData run over verts, then lines, then polys, then strips.
+  const vtkIdType firstSurfaceCell = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  surface->GetCellData()->AddArray(IdRange(
+    CellIdsName, firstSurfaceCell, input->GetNumberOfPolys() + input->GetNumberOfStrips()));
+  return surface;
+}
+
+vtkSmartPointer<vtkPolyData> Triangulate(vtkPolyData* surface)
+{
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputData(surface);
+  triangles->PassVertsOff();
+  triangles->PassLinesOff();
+  triangles->Update();
+  return triangles->GetOutput();
+}
+
+vtkSmartPointer<vtkPolyData> SplitNormals(vtkPolyData* triangles, double featureAngle)
+{
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputData(triangles);
+  normals->SetFeatureAngle(featureAngle);
+  normals->SplittingOn();
+  normals->ConsistencyOn();
+  normals->NonManifoldTraversalOn();
+  normals->ComputePointNormalsOn();
+  normals->ComputeCellNormalsOff();
+  normals->Update();
+  return normals->GetOutput();
+}
+
+linkgi::Vec3f ToVec3f(const double v[3])
+{
+  return { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
+}
+}
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationSceneBuilder::Mesh vtkGlobalIlluminationSceneBuilder::BuildMesh(
+  vtkPolyData* input, bool computeNormals, double featureAngle)
+{
+  if (!input || input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
+  {
+    std::ostringstream msg;
+    msg << "The input has no polygons or triangle strips to illuminate";
+    if (input)
+    {
+      msg << " (it has " << input->GetNumberOfVerts() << " vertex and "
+          << input->GetNumberOfLines() << " line cells, which receive no light)";
+    }
+    msg << "; extract a surface first, e.g. with vtkDataSetSurfaceFilter.";
+    Fail(msg.str());
+  }
+  CheckFinite(input);
+
+  vtkDataArray* inputNormals = input->GetPointData()->GetNormals();
+  if (inputNormals && !computeNormals &&
+    inputNormals->GetNumberOfTuples() < input->GetNumberOfPoints())
+  {
+    std::ostringstream msg;
+    msg << "The input's point normals have " << inputNormals->GetNumberOfTuples()
+        << " tuples for " << input->GetNumberOfPoints()
+        << " points; fix them or turn ComputeNormals on.";
+    Fail(msg.str());
+  }
+  Mesh mesh;
+  mesh.InputPointCount = input->GetNumberOfPoints();
+  mesh.NormalsComputed = computeNormals || !inputNormals;
+  vtkSmartPointer<vtkPolyData> tri = Triangulate(SurfaceWithIds(input));
+  if (mesh.NormalsComputed)
+  {
+    tri = SplitNormals(tri, featureAngle);
+  }
+  auto* pointIds = vtkIdTypeArray::SafeDownCast(tri->GetPointData()->GetArray(PointIdsName));
+  auto* cellIds = vtkIdTypeArray::SafeDownCast(tri->GetCellData()->GetArray(CellIdsName));
+  vtkDataArray* normals = mesh.NormalsComputed ? tri->GetPointData()->GetNormals() : inputNormals;
+  if (!pointIds || !cellIds || !normals)
+  {
+    Fail("Triangulating the input lost its point or cell ids; this is a bug in LinkGI.");
+  }
+
+  // Elements: the points that triangles use, in point order.
+  const vtkIdType meshPoints = tri->GetNumberOfPoints();
+  std::vector<unsigned char> used(static_cast<std::size_t>(meshPoints), 0);
+  MarkUsed(tri->GetPolys(), used);
+  std::vector<linkgi::Index> element(static_cast<std::size_t>(meshPoints), linkgi::kInvalidIndex);
+  linkgi::Scene& scene = mesh.Scene;
+  for (vtkIdType p = 0; p < meshPoints; ++p)
+  {
+    if (!used[p])
+    {
+      continue;
+    }
+    element[p] = static_cast<linkgi::Index>(scene.positions.size());
+    const vtkIdType original = pointIds->GetValue(p);
+    double x[3], n[3];
+    tri->GetPoint(p, x);
+    normals->GetTuple(mesh.NormalsComputed ? p : original, n);
+    scene.positions.push_back(ToVec3f(x));
+    scene.normals.push_back(ToVec3f(n)); // the engine normalizes and repairs zero normals
+    mesh.ElementPoint.push_back(original);
+  }
+
+  auto it = vtk::TakeSmartPointer(tri->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* pts;
+    it->GetCurrentCell(n, pts);
+    if (n != 3)
+    {
+      continue; // vtkTriangleFilter emits only triangles; be safe anyway
+    }
+    scene.triangles.push_back({ { element[pts[0]], element[pts[1]], element[pts[2]] } });
+    mesh.TriangleCell.push_back(cellIds->GetValue(it->GetCurrentCellId()));
+  }
+  if (scene.triangles.empty())
+  {
+    Fail("The input's polygons and strips make no triangles (they have fewer than 3 points).");
+  }
+  return mesh;
+}
+
+//------------------------------------------------------------------------------
+linkgi::Vec3f vtkGlobalIlluminationSceneBuilder::ColorOf(vtkDataArray* array, vtkIdType tuple)
+{
+  const double scale = array->GetDataType() == VTK_UNSIGNED_CHAR ? 1.0 / 255.0 : 1.0;
+  double c[3];
+  if (array->GetNumberOfComponents() < 3)
+  {
+    c[0] = c[1] = c[2] = array->GetComponent(tuple, 0);
+  }
+  else
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      c[k] = array->GetComponent(tuple, k);
+    }
+  }
+  for (double& v : c)
+  {
+    v *= scale;
+  }
+  return ToVec3f(c);
+}
+
+//------------------------------------------------------------------------------
+std::vector<linkgi::Vec3f> vtkGlobalIlluminationSceneBuilder::GatherColors(vtkPolyData* input,
+  const Mesh& mesh, const char* arrayName, int association, const linkgi::Vec3f& fallback,
+  const char* role)
+{
+  const std::size_t elements = mesh.ElementPoint.size();
+  if (!arrayName || !*arrayName)
+  {
+    return std::vector<linkgi::Vec3f>(elements, fallback);
+  }
+  const bool onPoints = association == vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  if (!onPoints && association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  {
+    Fail(std::string("The ") + role + " array association must be points or cells.");
+  }
+  vtkDataArray* array = onPoints ? input->GetPointData()->GetArray(arrayName)
+                                 : input->GetCellData()->GetArray(arrayName);
+  if (!array)
+  {
+    Fail(std::string("The ") + role + " array '" + arrayName + "' is not a numeric array of the input's " +
+      (onPoints ? "point" : "cell") + " data; check the array name and association.");
+  }
+  const vtkIdType needed = onPoints ? input->GetNumberOfPoints() : input->GetNumberOfCells();
+  if (array->GetNumberOfTuples() < needed || array->GetNumberOfComponents() < 1)
+  {
+    std::ostringstream msg;
+    msg << "The " << role << " array '" << arrayName << "' has " << array->GetNumberOfTuples()
+        << " tuples, but the input has " << needed << (onPoints ? " points." : " cells.");
+    Fail(msg.str());
+  }
+
+  std::vector<linkgi::Vec3f> colors(elements);
+  if (onPoints)
+  {
+    for (std::size_t e = 0; e < elements; ++e)
+    {
+      colors[e] = ColorOf(array, mesh.ElementPoint[e]);
+    }
+    return colors;
+  }
+  // Cell colours: the mean over each element's triangles. Elements split at sharp edges
+  // see only the cells on their side.
+  std::vector<float> count(elements, 0.f);
+  const auto& triangles = mesh.Scene.triangles;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+  {
+    const linkgi::Vec3f c = ColorOf(array, mesh.TriangleCell[t]);
+    for (linkgi::Index v : triangles[t].v)
+    {
+      colors[v] += c;
+      count[v] += 1.f;
+    }
+  }
+  for (std::size_t e = 0; e < elements; ++e)
+  {
+    colors[e] = count[e] > 0.f ? colors[e] / count[e] : fallback;
+  }
+  return colors;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationSceneBuilder::ConvertLight(vtkLight* light, double scale, linkgi::Light& out)
+{
+  if (!light || !light->GetSwitch())
+  {
+    return false;
+  }
+  double position[3], focal[3], color[3];
+  light->GetTransformedPosition(position);
+  light->GetTransformedFocalPoint(focal);
+  light->GetDiffuseColor(color);
+  const double axis[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
+
+  linkgi::Light result;
+  result.position = ToVec3f(position);
+  result.direction = linkgi::normalize(ToVec3f(axis));
+  const double power = light->GetIntensity() * scale;
+  const double intensity[3] = { color[0] * power, color[1] * power, color[2] * power };
+  result.intensity = ToVec3f(intensity);
+  if (light->GetPositional())
+  {
+    const bool spot = light->GetConeAngle() < 90.0;
+    result.type = spot ? linkgi::LightType::Spot : linkgi::LightType::Point;
+    result.coneAngleDegrees = static_cast<float>(light->GetConeAngle());
+    result.spotExponent = static_cast<float>(light->GetExponent());
+  }
+  else
+  {
+    result.type = linkgi::LightType::Directional;
+  }
+  if (result.type != linkgi::LightType::Point && linkgi::length(result.direction) == 0.f)
+  {
+    Fail("A spot or directional light has its position equal to its focal point, so it has "
+         "no direction; move its focal point.");
+  }
+  out = result;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+linkgi::Environment vtkGlobalIlluminationSceneBuilder::ConvertEnvironment(
+  const double color[3], vtkImageData* texture)
+{
+  linkgi::Environment environment;
+  environment.color = ToVec3f(color);
+  if (!texture)
+  {
+    return environment;
+  }
+  int dims[3];
+  texture->GetDimensions(dims);
+  vtkDataArray* scalars = texture->GetPointData()->GetScalars();
+  if (!scalars || dims[0] < 1 || dims[1] < 1 || dims[2] != 1 ||
+    scalars->GetNumberOfTuples() < static_cast<vtkIdType>(dims[0]) * dims[1])
+  {
+    Fail("The environment texture must be a 2D image with point scalars (a lat-long map).");
+  }
+  environment.width = dims[0];
+  environment.height = dims[1];
+  environment.texels.resize(static_cast<std::size_t>(dims[0]) * dims[1]);
+  for (int row = 0; row < dims[1]; ++row)
+  {
+    const vtkIdType j = dims[1] - 1 - row; // engine row 0 looks up (+Y): the image's top
+    for (int col = 0; col < dims[0]; ++col)
+    {
+      const linkgi::Vec3f c = ColorOf(scalars, j * dims[0] + col);
+      if (!linkgi::isFinite(c) || c.x < 0.f || c.y < 0.f || c.z < 0.f)
+      {
+        Fail("The environment texture has negative, NaN or infinite values; it must hold "
+             "radiance (linear RGB >= 0).");
+      }
+      environment.texels[static_cast<std::size_t>(row) * dims[0] + col] = c;
+    }
+  }
+  return environment;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkFloatArray> vtkGlobalIlluminationSceneBuilder::MapToPoints(const Mesh& mesh,
+  const std::vector<linkgi::Vec3f>& values, std::size_t offset, const char* name)
+{
+  auto array = vtkSmartPointer<vtkFloatArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(3);
+  array->SetNumberOfTuples(mesh.InputPointCount);
+  array->Fill(0.0);
+  std::vector<float> copies(static_cast<std::size_t>(mesh.InputPointCount), 0.f);
+  float* out = array->GetPointer(0);
+  const std::size_t elements = mesh.ElementPoint.size();
+  for (std::size_t e = 0; e < elements && offset + e < values.size(); ++e)
+  {
+    const vtkIdType p = mesh.ElementPoint[e];
+    const linkgi::Vec3f& v = values[offset + e];
+    out[3 * p] += v.x;
+    out[3 * p + 1] += v.y;
+    out[3 * p + 2] += v.z;
+    copies[p] += 1.f;
+  }
+  for (vtkIdType p = 0; p < mesh.InputPointCount; ++p)
+  {
+    if (copies[p] > 1.f)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        out[3 * p + k] /= copies[p];
+      }
+    }
+  }
+  return array;
+}

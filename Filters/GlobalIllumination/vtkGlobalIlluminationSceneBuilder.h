@@ -1,0 +1,99 @@
+/**
+ * @class   vtkGlobalIlluminationSceneBuilder
+ * @brief   converts VTK data into the LinkGI engine's scene and maps results back
+ *
+ * vtkGlobalIlluminationFilter keeps its RequestData to plumbing; the conversions live here
+ * so that tests can call them without a pipeline. Not wrapped and not installed.
+ *
+ * Elements: the engine solves per vertex of a triangle mesh whose vertices are split at
+ * sharp edges. BuildMesh triangulates the input's polygons and strips, computes normals
+ * when asked (vtkPolyDataNormals with splitting, which appends the split copies after the
+ * original points) and keeps only the points that triangles use. Every element remembers
+ * its input point, every triangle its input cell, so that arrays can be read from the
+ * input and results written back onto it.
+ *
+ * Every function throws linkgi::Error with a sentence naming the problem.
+ */
+
+#ifndef vtkGlobalIlluminationSceneBuilder_h
+#define vtkGlobalIlluminationSceneBuilder_h
+
+#include "LinkGIFiltersGlobalIlluminationModule.h" // for export macro
+#include "vtkSmartPointer.h"                       // for vtkSmartPointer
+#include "vtkType.h"                               // for vtkIdType
+
+#include "linkgi/Scene.h" // for linkgi::Scene
+
+#include <cstddef>
+#include <vector>
+
+class vtkDataArray;
+class vtkFloatArray;
+class vtkImageData;
+class vtkLight;
+class vtkPolyData;
+
+class LINKGIFILTERSGLOBALILLUMINATION_EXPORT vtkGlobalIlluminationSceneBuilder
+{
+public:
+  /// The triangle mesh handed to the engine and the maps back to the input.
+  struct Mesh
+  {
+    /// positions, normals and triangles; the shading fields are left empty.
+    linkgi::Scene Scene;
+    std::vector<vtkIdType> ElementPoint; ///< input point id of each element
+    std::vector<vtkIdType> TriangleCell; ///< input cell id of each triangle
+    vtkIdType InputPointCount = 0;
+    bool NormalsComputed = false;
+  };
+
+  /**
+   * Triangulates the polygons and strips of `input` (vertices and lines are ignored), and
+   * takes normals from the input's point normals, or computes them with vtkPolyDataNormals
+   * (splitting at `featureAngle` degrees) when `computeNormals` is set or the input has
+   * none. Throws for an input without polygons or strips and for non-finite coordinates.
+   */
+  static Mesh BuildMesh(vtkPolyData* input, bool computeNormals, double featureAngle);
+
+  /**
+   * One linear RGB value per element, read from the array `arrayName` of the input's point
+   * data (`association` = vtkDataObject::FIELD_ASSOCIATION_POINTS) or cell data
+   * (FIELD_ASSOCIATION_CELLS; an element gets the mean of its triangles' cells). With no
+   * name every element gets `fallback`. Tuples with 1 or 2 components are grey (first
+   * component), with 3 or more the first three are RGB; unsigned char values are divided
+   * by 255. `role` names the array in error messages ("albedo").
+   */
+  static std::vector<linkgi::Vec3f> GatherColors(vtkPolyData* input, const Mesh& mesh,
+    const char* arrayName, int association, const linkgi::Vec3f& fallback, const char* role);
+
+  /// One tuple of a colour array as linear RGB, with the rules of GatherColors.
+  static linkgi::Vec3f ColorOf(vtkDataArray* array, vtkIdType tuple);
+
+  /**
+   * Converts a vtkLight. Returns false, leaving `out` alone, for a switched-off light.
+   * Positional lights become point lights (cone angle >= 90) or spot lights (cone angle,
+   * exponent); others are directional, travelling from the position to the focal point.
+   * The transformed position and focal point are used, so camera lights work. Intensity
+   * = DiffuseColor * Intensity * `scale`. Attenuation values are ignored: point and spot
+   * lights fall off physically, with 1/r^2.
+   */
+  static bool ConvertLight(vtkLight* light, double scale, linkgi::Light& out);
+
+  /**
+   * A constant sky `color`, multiplied by the lat-long `texture` when one is given (its
+   * point scalars, converted like colour arrays). The image's last row (largest j, the top
+   * of a picture read by VTK's image readers) looks along +Y.
+   */
+  static linkgi::Environment ConvertEnvironment(const double color[3], vtkImageData* texture);
+
+  /**
+   * Per input point, the mean of `values[offset + e]` over the elements e that are copies
+   * of it (one element, or several where normals were split). Points that no triangle uses
+   * (only in vertices and lines) get 0. Returns a 3-component float array named `name`.
+   */
+  static vtkSmartPointer<vtkFloatArray> MapToPoints(const Mesh& mesh,
+    const std::vector<linkgi::Vec3f>& values, std::size_t offset, const char* name);
+};
+
+#endif
+// VTK-HeaderTest-Exclude: vtkGlobalIlluminationSceneBuilder.h
