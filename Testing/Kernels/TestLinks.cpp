@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 using namespace linkgi;
 
 namespace
@@ -45,16 +47,16 @@ TEST(TestLinks, EveryRayCarriesPiOverN)
   EXPECT_GE(l.rawLinks, l.transport.nonZeros() + l.environment.nonZeros());
 }
 
-TEST(TestLinks, RowsAreSortedAndMerged)
+TEST(TestLinks, RowsAreMerged)
 {
   const Scene s = test::roomWithBlock();
   const LinkStructure l = linksOf(s, 256);
   for (std::size_t r = 0; r < l.transport.rows(); ++r)
   {
-    for (Index i = l.transport.rowOffsets[r] + 1; i < l.transport.rowOffsets[r + 1]; ++i)
-    {
-      ASSERT_LT(l.transport.columns[i - 1], l.transport.columns[i]);
-    }
+    std::vector<Index> cols(l.transport.columns.begin() + l.transport.rowOffsets[r],
+      l.transport.columns.begin() + l.transport.rowOffsets[r + 1]);
+    std::sort(cols.begin(), cols.end());
+    ASSERT_TRUE(std::adjacent_find(cols.begin(), cols.end()) == cols.end()) << "row " << r;
   }
   // Merging must remove links (the ratio itself depends on tessellation vs ray density and
   // is reported by linkgi-bench) and keep every row's total weight.

@@ -140,10 +140,11 @@ struct ScratchRow
     }
     value[column] += w;
   }
-  /// Appends the row in column order to (columns, weights) and clears the scratch.
+  /// Appends the row to (columns, weights) and clears the scratch. Columns stay in the
+  /// order rays first reached them: coherent enough for the gather, and sorting them
+  /// would cost more than the rest of the compression.
   std::size_t flush(std::vector<Index>& columns, std::vector<float>& weights)
   {
-    std::sort(touched.begin(), touched.end());
     for (Index c : touched)
     {
       columns.push_back(c);

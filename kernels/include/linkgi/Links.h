@@ -80,7 +80,8 @@ std::vector<Vec3f> frontFaceNormals(const Scene& scene);
 LinkHits traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
   const RayTracer& tracer, const LinkOptions& options, const ProgressCallback& progress = {});
 
-/// Stage 2: turns hits into links and merges links with the same (x, y) into CSR rows.
+/// Stage 2: turns hits into links and merges links with the same (x, y) into CSR rows
+/// (each column once per row; columns in first-hit order, not sorted).
 LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
   const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
   const ProgressCallback& progress = {});
