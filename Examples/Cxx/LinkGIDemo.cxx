@@ -131,10 +131,10 @@ int main(int argc, char* argv[])
   renderer->ResetCamera();
   if (scene->GetSceneName() == std::string("cornell"))
   {
-    // The camera of the published Cornell box data (millimetres).
+    // The camera of the published Cornell box data, in metres like the scene.
     vtkCamera* camera = renderer->GetActiveCamera();
-    camera->SetPosition(278, 273, -800);
-    camera->SetFocalPoint(278, 273, 0);
+    camera->SetPosition(0.278, 0.273, -0.8);
+    camera->SetFocalPoint(0.278, 0.273, 0);
     camera->SetViewUp(0, 1, 0);
     camera->SetViewAngle(39.3);
     renderer->ResetCameraClippingRange();
