@@ -3,6 +3,10 @@
 // so that every RayTracer call gets a batch.
 #include "linkgi/Reference.h"
 
+#include "linkgi/DirectLight.h"
+#include "linkgi/Links.h"
+#include "linkgi/Sampling.h"
+
 #include "linkgi/Error.h"
 
 #include <algorithm>
@@ -58,69 +62,17 @@ Pcg32 pathRng(std::uint32_t seed, std::size_t element, std::uint32_t path)
   return Pcg32(splitMix64(key + path));
 }
 
-/// Shirley-Chiu concentric map of the unit square to the disk, lifted to the hemisphere:
-/// the result is cosine-distributed around +z and keeps the square's strata compact.
-Vec3f cosineHemisphere(float u1, float u2)
+/// Unshadowed irradiance of one light at (p, n) and the shadow ray from `origin` that
+/// decides visibility. Returns false when the light cannot contribute.
+bool lightSample(const Light& light, const Vec3f& p, const Vec3f& n, const Vec3f& origin,
+  Vec3f& irradiance, Ray& shadow)
 {
-  const float a = 2.f * u1 - 1.f, b = 2.f * u2 - 1.f;
-  if (a == 0.f && b == 0.f)
-    return { 0.f, 0.f, 1.f };
-  float r, phi;
-  if (std::fabs(a) > std::fabs(b))
-  {
-    r = a;
-    phi = (kPi / 4.f) * (b / a);
-  }
-  else
-  {
-    r = b;
-    phi = (kPi / 2.f) - (kPi / 4.f) * (a / b);
-  }
-  const float x = r * std::cos(phi), y = r * std::sin(phi);
-  return { x, y, std::sqrt(std::max(0.f, 1.f - x * x - y * y)) };
-}
-
-/// Unshadowed irradiance of one light at (p, n) and the shadow ray that decides visibility.
-/// Returns false when the light cannot contribute (faces away, outside the cone, black).
-bool lightSample(const Light& light, const Vec3f& p, const Vec3f& n, float eps, Vec3f& irradiance,
-  Ray& shadow)
-{
-  shadow.origin = p + n * eps;
-  shadow.tnear = 0.f;
-  if (light.type == LightType::Directional)
-  {
-    const Vec3f toLight = -normalize(light.direction);
-    const float cosine = dot(n, toLight);
-    if (!(cosine > 0.f))
-      return false;
-    irradiance = light.intensity * cosine;
-    shadow.direction = toLight;
-    shadow.tfar = 3.0e38f;
-    return irradiance != Vec3f(0.f);
-  }
-  const Vec3f d = light.position - p;
-  const float r2 = dot(d, d);
-  if (!(r2 > 0.f))
+  Vec3f toLight;
+  irradiance = unshadowedIrradiance(light, p, n, toLight);
+  if (!(maxComponent(irradiance) > 0.f))
     return false;
-  const float r = std::sqrt(r2);
-  const float cosine = dot(n, d) / r;
-  if (!(cosine > 0.f))
-    return false;
-  float cone = 1.f;
-  if (light.type == LightType::Spot)
-  {
-    const float cosAxis = dot(normalize(light.direction), -d / r);
-    const float cosCone = std::cos(light.coneAngleDegrees * (kPi / 180.f));
-    if (cosAxis < cosCone)
-      return false;
-    cone = std::pow(std::max(0.f, cosAxis), light.spotExponent);
-  }
-  irradiance = light.intensity * (cone * cosine / r2);
-  // Direction spans origin -> light, so t = 1 is the light; stop eps short of it.
-  shadow.direction = light.position - shadow.origin;
-  const float span = length(shadow.direction);
-  shadow.tfar = span > eps ? 1.f - eps / span : 0.f;
-  return irradiance != Vec3f(0.f);
+  shadow = shadowRay(light, origin, directionToLight(light, origin));
+  return true;
 }
 
 /// Read-only data shared by all threads.
@@ -132,7 +84,7 @@ struct Context
   float eps = 0.f;
   bool hasEmission = false;
   bool environmentBlack = true;
-  std::vector<Vec3f> frontNormals; ///< per triangle, unnormalized, on the vertex normals' side
+  std::vector<Vec3f> frontNormals; ///< per triangle, unit, on the vertex normals' side (frontFaceNormals)
 };
 
 /// What a path needs from the surface it hit.
@@ -202,7 +154,8 @@ void gatherDirect(const Context& ctx, Wavefront& wf, std::size_t count, Vec3f& s
     for (std::size_t i = 0; i < count; ++i)
     {
       const SurfacePoint& s = wf.lit[i];
-      if (lightSample(light, s.position, s.normal, ctx.eps, wf.shadowIrradiance[m], wf.shadows[m]))
+      if (lightSample(light, s.position, s.normal, s.position + s.normal * ctx.eps,
+            wf.shadowIrradiance[m], wf.shadows[m]))
         wf.owner[m++] = static_cast<std::uint32_t>(i);
     }
     if (m == 0)
@@ -321,28 +274,14 @@ void checkScene(const Scene& scene, const ReferenceOptions& options)
     throw Error("The reference solver needs at least one path per vertex.");
 }
 
-/// Face normals oriented to agree with the sum of their vertex normals: the triangle's front.
-std::vector<Vec3f> frontNormals(const Scene& scene)
-{
-  std::vector<Vec3f> result(scene.triangleCount());
-  for (std::size_t t = 0; t < result.size(); ++t)
-  {
-    const Index* v = scene.triangles[t].v;
-    const Vec3f& a = scene.positions[v[0]];
-    Vec3f face = cross(scene.positions[v[1]] - a, scene.positions[v[2]] - a);
-    const Vec3f sum = scene.normals[v[0]] + scene.normals[v[1]] + scene.normals[v[2]];
-    result[t] = dot(face, sum) < 0.f ? -face : face;
-  }
-  return result;
-}
 }
 
 Vec3f lightIrradiance(const Light& light, const Vec3f& p, const Vec3f& n,
-  const RayTracer& tracer, float eps)
+  const RayTracer& tracer, float eps, const Vec3f& shift)
 {
   Vec3f irradiance;
   Ray shadow;
-  if (!lightSample(light, p, n, eps, irradiance, shadow))
+  if (!lightSample(light, p, n, p + n * eps + shift, irradiance, shadow))
     return Vec3f(0.f);
   std::uint8_t blocked = 0;
   tracer.occluded(&shadow, &blocked, 1);
@@ -350,11 +289,11 @@ Vec3f lightIrradiance(const Light& light, const Vec3f& p, const Vec3f& n,
 }
 
 Vec3f directIrradiance(const Scene& scene, const Vec3f& p, const Vec3f& n,
-  const RayTracer& tracer, float eps)
+  const RayTracer& tracer, float eps, const Vec3f& shift)
 {
   Vec3f sum(0.f);
   for (const Light& light : scene.lights)
-    sum += lightIrradiance(light, p, n, tracer, eps);
+    sum += lightIrradiance(light, p, n, tracer, eps, shift);
   return sum;
 }
 
@@ -375,10 +314,13 @@ ReferenceSolution solveReference(const Scene& scene, const RayTracer& tracer,
   ctx.eps = options.rayOffset > 0.f ? options.rayOffset : 1e-4f * boundingDiagonal(scene.positions);
   ctx.hasEmission = !scene.emission.empty();
   ctx.environmentBlack = scene.environment.isBlack();
-  ctx.frontNormals = frontNormals(scene);
+  ctx.frontNormals = frontFaceNormals(scene);
 
   const std::size_t vertices = scene.vertexCount();
   const std::size_t elements = options.twoSided ? 2 * vertices : vertices;
+  // The same in-surface shift of ray origins as the link solver: a vertex in a concave corner
+  // lies in the other surface's plane, and rays starting on that plane leak through it.
+  const std::vector<Vec3f> shifts = originShifts(scene, Topology::build(vertices, scene.triangles));
   ReferenceSolution result;
   result.direct.resize(elements);
   result.indirect.resize(elements);
@@ -391,9 +333,9 @@ ReferenceSolution solveReference(const Scene& scene, const RayTracer& tracer,
         const std::size_t v = e % vertices;
         const Vec3f n = e < vertices ? normalize(scene.normals[v]) : -normalize(scene.normals[v]);
         const Vec3f& p = scene.positions[v];
-        result.direct[e] = directIrradiance(scene, p, n, tracer, ctx.eps);
+        result.direct[e] = directIrradiance(scene, p, n, tracer, ctx.eps, shifts[v]);
         result.indirect[e] =
-          maxSegments(ctx) > 0 ? estimateIndirect(ctx, wf, p, n, e) : Vec3f(0.f);
+          maxSegments(ctx) > 0 ? estimateIndirect(ctx, wf, p + shifts[v], n, e) : Vec3f(0.f);
       }
     },
     progress);

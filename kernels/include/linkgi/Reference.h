@@ -43,14 +43,15 @@ struct ReferenceSolution
 ///   spot:        the same times cos(angle to axis)^spotExponent inside the cone of half
 ///                angle coneAngleDegrees, 0 outside
 ///   directional: V * intensity * max(0, dot(n, -direction))
-/// V comes from one shadow ray whose origin is p + eps * n; for point and spot lights the ray
-/// stops eps short of the light, so geometry touching the light does not shadow it.
+/// V comes from one shadow ray whose origin is p + eps * n + shift (`shift`: the in-surface
+/// origin shift of linkgi::originShifts for vertices, zero elsewhere); for point and spot
+/// lights the ray stops just short of the light (linkgi::shadowRay).
 Vec3f lightIrradiance(const Light& light, const Vec3f& p, const Vec3f& n,
-  const RayTracer& tracer, float eps);
+  const RayTracer& tracer, float eps, const Vec3f& shift = {});
 
 /// Sum of lightIrradiance over all lights of the scene.
 Vec3f directIrradiance(const Scene& scene, const Vec3f& p, const Vec3f& n,
-  const RayTracer& tracer, float eps);
+  const RayTracer& tracer, float eps, const Vec3f& shift = {});
 
 /// Direct and indirect irradiance at every vertex (with options.twoSided also at every back
 /// side). With B = options.bounces, the indirect part is
