@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 
@@ -51,6 +52,12 @@ void parallelFor(const char* stage, std::size_t n, std::size_t grain,
 
 int workerCount()
 {
-  return tbb::info::default_concurrency();
+  return tbb::this_task_arena::max_concurrency();
+}
+
+void runWithConcurrency(int threads, const std::function<void()>& f)
+{
+  tbb::task_arena arena(std::max(1, threads));
+  arena.execute(f);
 }
 }

@@ -22,4 +22,8 @@ void parallelFor(const char* stage, std::size_t n, std::size_t grain,
 
 /// Number of worker threads the loops use.
 int workerCount();
+
+/// Runs f() with the parallel loops inside it limited to `threads` workers (at least 1), so
+/// a background solve can leave cores to the render loop.
+void runWithConcurrency(int threads, const std::function<void()>& f);
 }
