@@ -1,0 +1,142 @@
+#include "SceneFixtures.h"
+
+#include "linkgi/AsyncSolver.h"
+#include "linkgi/Scenes.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+using namespace linkgi;
+
+namespace
+{
+SolverOptions options()
+{
+  SolverOptions o;
+  o.raysPerVertex = 64;
+  return o;
+}
+
+/// The room with its light scaled by k: direct irradiance is exactly linear in k.
+Scene roomWithLight(float k)
+{
+  Scene s = test::roomWithBlock();
+  s.lights[0].intensity = s.lights[0].intensity * k;
+  return s;
+}
+}
+
+TEST(TestAsyncSolver, ResultsBelongToOneRequest)
+{
+  // Requests with light scale k = 1..20 fired faster than they solve: every published
+  // result must be exactly one request's solution (direct = k * direct(1) everywhere for
+  // the k of its id), never a mix, and the last request must be the one that ends up shown.
+  Solver reference;
+  const Solution unit = reference.update(roomWithLight(1.f), options());
+  // Requests arrive four times faster than a full solve takes.
+  const auto spacing = std::chrono::duration<double, std::milli>(reference.stats().msTotal / 4);
+  AsyncSolver async(1);
+  std::atomic<int> published{ 0 };
+  async.setOnPublish([&](std::uint64_t) { ++published; });
+  std::uint64_t last = 0;
+  for (int k = 1; k <= 20; ++k)
+  {
+    last = async.request(roomWithLight(float(k)), options());
+    std::this_thread::sleep_for(spacing);
+    if (const auto r = async.latest())
+    {
+      const float scale = float(r->request); // request ids are 1..20, as k
+      for (std::size_t i = 0; i < unit.elementCount(); i += 7)
+      {
+        ASSERT_NEAR(r->solution.direct[i].x, scale * unit.direct[i].x, 1e-4f * scale * (1.f + unit.direct[i].x));
+      }
+    }
+  }
+  ASSERT_TRUE(async.wait(last, 60.0));
+  const auto final = async.latest();
+  EXPECT_EQ(final->request, last);
+  EXPECT_LT(published.load(), 20); // superseded requests were dropped, not queued
+  const Solution fresh = Solver().update(roomWithLight(20.f), options());
+  for (std::size_t i = 0; i < fresh.elementCount(); ++i)
+  {
+    ASSERT_EQ(final->solution.radiance[i], fresh.radiance[i]);
+  }
+}
+
+TEST(TestAsyncSolver, CancelKeepsTheLastResult)
+{
+  AsyncSolver async(1);
+  const std::uint64_t first = async.request(test::roomWithBlock(0.25f), options());
+  ASSERT_TRUE(async.wait(first, 60.0));
+  const auto before = async.latest();
+  // A much finer mesh takes a while; cancel it in flight.
+  SolverOptions slow = options();
+  slow.raysPerVertex = 1024;
+  async.request(test::roomWithBlock(0.05f), slow);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_TRUE(async.busy());
+  async.cancel();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (async.busy() && std::chrono::steady_clock::now() < deadline)
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  EXPECT_FALSE(async.busy());
+  EXPECT_EQ(async.latest(), before); // the same immutable result object
+  EXPECT_EQ(async.latest()->request, first);
+  // And the worker still serves new requests.
+  const std::uint64_t next = async.request(test::roomWithBlock(0.25f), options());
+  EXPECT_TRUE(async.wait(next, 60.0));
+}
+
+TEST(TestAsyncSolver, ErrorsAreReportedAndKeepTheLastResult)
+{
+  AsyncSolver async(1);
+  const std::uint64_t good = async.request(test::roomWithBlock(), options());
+  ASSERT_TRUE(async.wait(good, 60.0));
+  Scene bad = test::roomWithBlock();
+  bad.triangles.clear();
+  const std::uint64_t failed = async.request(bad, options());
+  EXPECT_FALSE(async.wait(failed, 60.0));
+  EXPECT_NE(async.lastError().find("no triangles"), std::string::npos);
+  EXPECT_EQ(async.latest()->request, good);
+}
+
+TEST(TestAsyncSolver, BlendingDampsIndirectOnly)
+{
+  AsyncSolver async(1);
+  async.setBlend(0.25f);
+  const Scene s = roomWithLight(1.f), t = roomWithLight(2.f);
+  ASSERT_TRUE(async.wait(async.request(s, options()), 60.0));
+  const Solution first = async.latest()->solution;
+  ASSERT_TRUE(async.wait(async.request(t, options()), 60.0));
+  const Solution& second = async.latest()->solution;
+  // Direct light follows at once (x2); indirect moves a quarter of the way (x1.25).
+  for (std::size_t i = 0; i < first.elementCount(); i += 5)
+  {
+    EXPECT_NEAR(second.direct[i].x, 2.f * first.direct[i].x, 1e-4f * (1.f + first.direct[i].x));
+    EXPECT_NEAR(second.indirect[i].x, 1.25f * first.indirect[i].x, 1e-4f * (1.f + first.indirect[i].x));
+  }
+}
+
+TEST(TestAsyncSolver, DeformingTorsoRefitsAndMatchesAFreshSolve)
+{
+  // The paper's deforming TORSO: a position-only change takes the refit path and gives the
+  // same result as solving the deformed mesh from scratch.
+  Solver solver;
+  solver.update(makeStandardScene("torso", { 0.f }), options());
+  SceneParams bent;
+  bent.deformation = 0.6f;
+  const Scene deformed = makeStandardScene("torso", bent);
+  const Solution& refit = solver.update(deformed, options());
+  EXPECT_TRUE(solver.stats().refitBvh);
+  EXPECT_FALSE(solver.stats().builtBvh);
+  const Solution fresh = Solver().update(deformed, options());
+  for (std::size_t i = 0; i < fresh.elementCount(); ++i)
+  {
+    ASSERT_EQ(refit.radiance[i], fresh.radiance[i]) << i;
+  }
+}

@@ -1,0 +1,65 @@
+// Background updates: a worker thread solves while the caller keeps drawing the last result.
+#pragma once
+
+#include "linkgi/Solver.h"
+
+#include <functional>
+#include <memory>
+
+namespace linkgi
+{
+/// One finished update, immutable once published.
+struct AsyncResult
+{
+  std::uint64_t request = 0; ///< the id request() returned for the scene this solves
+  Solution solution;
+  SolverStats stats;
+};
+
+/// Owns a Solver and a worker thread. request() hands the worker a new scene and returns at
+/// once; the worker publishes each finished solution as a new immutable AsyncResult, swapped
+/// in atomically, so latest() never waits for a computation and never sees a mix of two
+/// requests. A request that arrives while another is being solved supersedes it: the running
+/// update is aborted (the Solver keeps its caches) and the newest request is solved next;
+/// requests never queue up.
+///
+/// Temporal blending (optional): with blend factor a in (0, 1], the indirect irradiance is
+/// published as a * new + (1 - a) * previous per element when the element count is
+/// unchanged (radiance follows), which damps frame-to-frame flicker of the sampled indirect
+/// light under a moving light or mesh at the cost of a short lag. Direct light is exact and
+/// never blended, so shadows follow a moving light at once.
+class AsyncSolver
+{
+public:
+  /// `workerThreads` caps the threads the solve uses (0 = all cores but one), leaving the
+  /// remaining core to the render loop.
+  explicit AsyncSolver(int workerThreads = 0);
+  ~AsyncSolver(); ///< cancels the running update and joins the worker
+  AsyncSolver(const AsyncSolver&) = delete;
+  AsyncSolver& operator=(const AsyncSolver&) = delete;
+
+  /// Asks for `scene` to be solved; returns the request's id (1, 2, ...).
+  std::uint64_t request(Scene scene, const SolverOptions& options = {});
+  /// The newest published result, or null before the first one. Never blocks on the worker.
+  std::shared_ptr<const AsyncResult> latest() const;
+  /// Aborts the running update and drops a pending request; latest() is unchanged.
+  void cancel();
+  /// True while a request is pending or being solved.
+  bool busy() const;
+  /// Blocks until `request` (or a newer request) has been published, the worker went idle
+  /// without publishing it (superseded, cancelled or failed), or `timeoutSeconds` passed.
+  /// Returns true if a result for `request` or newer is available.
+  bool wait(std::uint64_t request, double timeoutSeconds = 1e9) const;
+  /// Error message of the newest request that failed (empty if none).
+  std::string lastError() const;
+
+  /// Blend factor for temporal stability, in (0, 1]; 1 (default) publishes results as they are.
+  void setBlend(float factor);
+  /// Called on the worker thread after each publish (e.g. to wake a render loop).
+  void setOnPublish(std::function<void(std::uint64_t request)> callback);
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+};
+}

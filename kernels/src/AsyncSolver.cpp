@@ -1,0 +1,219 @@
+#include "linkgi/AsyncSolver.h"
+
+#include "linkgi/Error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+namespace linkgi
+{
+struct AsyncSolver::Impl
+{
+  struct Request
+  {
+    std::uint64_t id;
+    Scene scene;
+    SolverOptions options;
+  };
+
+  Solver solver; // touched by the worker only
+  int threads = 1;
+
+  mutable std::mutex mutex;
+  mutable std::condition_variable changed;
+  std::optional<Request> pending;
+  std::uint64_t nextId = 1;
+  std::uint64_t running = 0; // id being solved, 0 when idle
+  bool stopping = false;
+  std::shared_ptr<const AsyncResult> published;
+  std::string error;
+  float blend = 1.f;
+  std::function<void(std::uint64_t)> onPublish;
+  std::thread worker;
+
+  void run();
+  void solve(Request& request);
+  std::shared_ptr<AsyncResult> blended(const Request& request, const Solution& s, const SolverStats& st);
+};
+
+AsyncSolver::AsyncSolver(int workerThreads) : impl(std::make_unique<Impl>())
+{
+  impl->threads = workerThreads > 0
+    ? workerThreads
+    : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) - 1);
+  impl->worker = std::thread([this] { impl->run(); });
+}
+
+AsyncSolver::~AsyncSolver()
+{
+  {
+    std::lock_guard<std::mutex> lock(impl->mutex);
+    impl->stopping = true;
+    impl->pending.reset();
+  }
+  impl->changed.notify_all();
+  impl->worker.join();
+}
+
+std::uint64_t AsyncSolver::request(Scene scene, const SolverOptions& options)
+{
+  std::uint64_t id;
+  {
+    std::lock_guard<std::mutex> lock(impl->mutex);
+    id = impl->nextId++;
+    impl->pending = Impl::Request{ id, std::move(scene), options };
+  }
+  impl->changed.notify_all();
+  return id;
+}
+
+std::shared_ptr<const AsyncResult> AsyncSolver::latest() const
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  return impl->published;
+}
+
+void AsyncSolver::cancel()
+{
+  {
+    std::lock_guard<std::mutex> lock(impl->mutex);
+    impl->pending.reset();
+    impl->running = impl->running ? ~std::uint64_t(0) : 0; // marks the running one superseded
+  }
+  impl->changed.notify_all();
+}
+
+bool AsyncSolver::busy() const
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  return impl->pending.has_value() || impl->running != 0;
+}
+
+bool AsyncSolver::wait(std::uint64_t request, double timeoutSeconds) const
+{
+  std::unique_lock<std::mutex> lock(impl->mutex);
+  const auto done = [&] {
+    const bool published = impl->published && impl->published->request >= request;
+    const bool idle = !impl->pending && impl->running == 0;
+    return published || idle;
+  };
+  impl->changed.wait_for(lock, std::chrono::duration<double>(timeoutSeconds), done);
+  return impl->published && impl->published->request >= request;
+}
+
+std::string AsyncSolver::lastError() const
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  return impl->error;
+}
+
+void AsyncSolver::setBlend(float factor)
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  impl->blend = std::clamp(factor, 1e-3f, 1.f);
+}
+
+void AsyncSolver::setOnPublish(std::function<void(std::uint64_t)> callback)
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  impl->onPublish = std::move(callback);
+}
+
+void AsyncSolver::Impl::run()
+{
+  for (;;)
+  {
+    Request request;
+    {
+      std::unique_lock<std::mutex> lock(mutex);
+      changed.wait(lock, [this] { return stopping || pending.has_value(); });
+      if (stopping)
+      {
+        return;
+      }
+      request = std::move(*pending);
+      pending.reset();
+      running = request.id;
+    }
+    solve(request);
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      running = 0;
+    }
+    changed.notify_all();
+  }
+}
+
+void AsyncSolver::Impl::solve(Request& request)
+{
+  // The update stops at its next progress check once a newer request (or cancel, or the
+  // destructor) has replaced the one it is solving.
+  const ProgressCallback stillWanted = [this, id = request.id](const char*, double) {
+    std::lock_guard<std::mutex> lock(mutex);
+    return !stopping && !pending.has_value() && running == id;
+  };
+  try
+  {
+    runWithConcurrency(threads, [&] { solver.update(request.scene, request.options, stillWanted); });
+  }
+  catch (const Aborted&)
+  {
+    return;
+  }
+  catch (const std::exception& e)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    error = e.what();
+    return;
+  }
+  std::shared_ptr<AsyncResult> result = blended(request, solver.solution(), solver.stats());
+  std::function<void(std::uint64_t)> callback;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    published = std::move(result);
+    error.clear();
+    callback = onPublish;
+  }
+  changed.notify_all();
+  if (callback)
+  {
+    callback(request.id);
+  }
+}
+
+std::shared_ptr<AsyncResult> AsyncSolver::Impl::blended(
+  const Request& request, const Solution& s, const SolverStats& st)
+{
+  auto result = std::make_shared<AsyncResult>();
+  result->request = request.id;
+  result->solution = s;
+  result->stats = st;
+  std::shared_ptr<const AsyncResult> previous;
+  float a;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    previous = published;
+    a = blend;
+  }
+  if (a >= 1.f || !previous || previous->solution.elementCount() != s.elementCount())
+  {
+    return result;
+  }
+  // Only the indirect light is blended: it carries the sampling noise, while direct light is
+  // exact and must follow a moving light without lag. Radiance follows the blended value.
+  const std::size_t nv = request.scene.vertexCount();
+  Solution& out = result->solution;
+  for (std::size_t e = 0; e < out.elementCount(); ++e)
+  {
+    const Vec3f before = previous->solution.indirect[e];
+    const Vec3f mixed = out.indirect[e] * a + before * (1.f - a);
+    out.radiance[e] += request.scene.albedo[e % nv] * (mixed - out.indirect[e]) * (1.f / kPi);
+    out.indirect[e] = mixed;
+  }
+  return result;
+}
+}
