@@ -66,6 +66,19 @@ TEST(TestAsyncSolver, ResultsBelongToOneRequest)
   }
 }
 
+TEST(TestAsyncSolver, RepeatedRequestsAreNotNewWork)
+{
+  AsyncSolver async(1);
+  const Scene s = test::roomWithBlock();
+  const std::uint64_t id = async.request(s, options());
+  EXPECT_EQ(async.request(s, options()), id); // pending or running
+  ASSERT_TRUE(async.wait(id, 60.0));
+  EXPECT_EQ(async.request(s, options()), id); // published
+  Scene moved = s;
+  moved.lights[0].position.x += 0.1f;
+  EXPECT_GT(async.request(moved, options()), id);
+}
+
 TEST(TestAsyncSolver, CancelKeepsTheLastResult)
 {
   AsyncSolver async(1);

@@ -11,6 +11,17 @@
 
 namespace linkgi
 {
+namespace
+{
+bool sameOptions(const SolverOptions& a, const SolverOptions& b)
+{
+  return a.raysPerVertex == b.raysPerVertex && a.bounces == b.bounces &&
+    a.smoothing == b.smoothing && a.featureAngleDegrees == b.featureAngleDegrees &&
+    a.twoSided == b.twoSided && a.twist == b.twist && a.seed == b.seed &&
+    a.lightOversampling == b.lightOversampling && a.albedoPolicy == b.albedoPolicy;
+}
+}
+
 struct AsyncSolver::Impl
 {
   struct Request
@@ -22,6 +33,7 @@ struct AsyncSolver::Impl
 
   Solver solver; // touched by the worker only
   int threads = 1;
+  std::optional<Request> lastAccepted; // for repeated identical requests
 
   mutable std::mutex mutex;
   mutable std::condition_variable changed;
@@ -64,7 +76,17 @@ std::uint64_t AsyncSolver::request(Scene scene, const SolverOptions& options)
   std::uint64_t id;
   {
     std::lock_guard<std::mutex> lock(impl->mutex);
+    // Asking again for what is already pending, running or published is not new work: a
+    // render loop may re-request the same scene every frame.
+    const auto& last = impl->lastAccepted;
+    if (last && sameOptions(last->options, options) && sameScene(last->scene, scene) &&
+      (impl->pending || impl->running == last->id ||
+        (impl->published && impl->published->request == last->id)))
+    {
+      return last->id;
+    }
     id = impl->nextId++;
+    impl->lastAccepted = Impl::Request{ id, scene, options };
     impl->pending = Impl::Request{ id, std::move(scene), options };
   }
   impl->changed.notify_all();

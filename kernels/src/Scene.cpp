@@ -3,6 +3,7 @@
 #include "linkgi/Error.h"
 
 #include <algorithm>
+#include <cstring>
 #include <sstream>
 
 namespace linkgi
@@ -28,6 +29,24 @@ Index Environment::texelIndex(const Vec3f& d) const
 Vec3f Environment::radiance(const Vec3f& d) const
 {
   return hasTexture() ? color * texels[texelIndex(d)] : color;
+}
+
+namespace
+{
+template <typename T>
+bool sameBits(const std::vector<T>& a, const std::vector<T>& b)
+{
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), sizeof(T) * a.size()) == 0);
+}
+}
+
+bool sameScene(const Scene& a, const Scene& b)
+{
+  return sameBits(a.positions, b.positions) && sameBits(a.normals, b.normals) &&
+    sameBits(a.albedo, b.albedo) && sameBits(a.emission, b.emission) &&
+    sameBits(a.triangles, b.triangles) && sameBits(a.lights, b.lights) &&
+    a.environment.color == b.environment.color && a.environment.width == b.environment.width &&
+    a.environment.height == b.environment.height && sameBits(a.environment.texels, b.environment.texels);
 }
 
 float boundingDiagonal(const std::vector<Vec3f>& positions)

@@ -38,7 +38,9 @@ public:
   AsyncSolver(const AsyncSolver&) = delete;
   AsyncSolver& operator=(const AsyncSolver&) = delete;
 
-  /// Asks for `scene` to be solved; returns the request's id (1, 2, ...).
+  /// Asks for `scene` to be solved; returns the request's id (1, 2, ...). Asking again for
+  /// the same scene and options as the last request, while that one is pending, running or
+  /// published, returns its id and starts nothing.
   std::uint64_t request(Scene scene, const SolverOptions& options = {});
   /// The newest published result, or null before the first one. Never blocks on the worker.
   std::shared_ptr<const AsyncResult> latest() const;

@@ -89,6 +89,9 @@ enum class AlbedoPolicy
 /// environment and no emission is valid: its solution is all zero (warned).
 std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp);
 
+/// True if every array, light and the environment of `a` and `b` are bitwise equal.
+bool sameScene(const Scene& a, const Scene& b);
+
 /// Axis-aligned bounding box diagonal length (used to scale ray offsets).
 float boundingDiagonal(const std::vector<Vec3f>& positions);
 }
