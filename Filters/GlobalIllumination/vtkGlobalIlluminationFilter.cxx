@@ -12,15 +12,19 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkTypeUInt64Array.h"
 #include "vtkVersionMacros.h"
 
+#include "linkgi/AsyncSolver.h"
 #include "linkgi/Error.h"
 #include "linkgi/Solver.h"
 
@@ -87,7 +91,13 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   const linkgi::Scene& UpdateScene(vtkGlobalIlluminationFilter* self, vtkPolyData* input);
   linkgi::SolverOptions Options(vtkGlobalIlluminationFilter* self);
   linkgi::ProgressCallback Progress(vtkGlobalIlluminationFilter* self);
-  void AttachResults(vtkGlobalIlluminationFilter* self, vtkPolyData* output, double msFilter);
+  void AttachResults(vtkGlobalIlluminationFilter* self, vtkPolyData* output, double msFilter,
+    const linkgi::Solution& solution, const linkgi::SolverStats& stats);
+
+  // Asynchronous mode: the worker, and the request whose result the output shows.
+  std::unique_ptr<linkgi::AsyncSolver> Async;
+  std::uint64_t ShownRequest = 0;
+  bool SolveAsynchronously(vtkGlobalIlluminationFilter* self, vtkPolyData* input, vtkPolyData* output);
 
   /// The filter's warnings of this update, then the engine's.
   std::vector<std::string> AllWarnings() const
@@ -194,10 +204,10 @@ linkgi::ProgressCallback vtkGlobalIlluminationFilter::vtkInternals::Progress(
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(
-  vtkGlobalIlluminationFilter* self, vtkPolyData* output, double msFilter)
+void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(vtkGlobalIlluminationFilter* self,
+  vtkPolyData* output, double msFilter, const linkgi::Solution& solution,
+  const linkgi::SolverStats& s)
 {
-  const linkgi::Solution& solution = this->Solver.solution();
   const std::size_t elements = this->Mesh.ElementPoint.size();
   vtkPointData* pd = output->GetPointData();
   for (std::size_t side = 0; side < (self->TwoSided ? 2 : 1); ++side)
@@ -209,7 +219,6 @@ void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(
     pd->AddArray(Builder::MapToPoints(this->Mesh, solution.radiance, offset, ("Radiance" + suffix).c_str()));
   }
 
-  const linkgi::SolverStats& s = this->Solver.stats();
   vtkFieldData* fd = output->GetFieldData();
   const std::pair<const char*, std::uint64_t> counters[] = { { "BvhBuilds", s.bvhBuilds },
     { "BvhRefits", s.bvhRefits }, { "LinkBuilds", s.linkBuilds },
@@ -231,11 +240,90 @@ void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(
   }
   vtkNew<vtkStringArray> warnings;
   warnings->SetName("LinkGI.Warnings");
-  for (const std::string& w : this->AllWarnings())
+  const std::vector<std::string>* lists[] = { &this->Warnings, &s.warnings };
+  for (const std::vector<std::string>* list : lists)
   {
-    warnings->InsertNextValue(w);
+    for (const std::string& w : *list)
+    {
+      warnings->InsertNextValue(w);
+    }
   }
   fd->AddArray(warnings);
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
+  vtkGlobalIlluminationFilter* self, vtkPolyData* input, vtkPolyData* output)
+{
+  const auto start = std::chrono::steady_clock::now();
+  if (!this->Async)
+  {
+    this->Async = std::make_unique<linkgi::AsyncSolver>();
+  }
+  this->Async->setBlend(static_cast<float>(self->TemporalBlend));
+  // Returns at once; repeating the request of the scene already solved starts nothing.
+  this->Async->request(this->UpdateScene(self, input), this->Options(self));
+  output->ShallowCopy(input);
+  const std::string error = this->Async->lastError();
+  if (!error.empty())
+  {
+    this->Warnings.push_back("The last asynchronous update failed: " + error);
+  }
+  const std::shared_ptr<const linkgi::AsyncResult> latest = this->Async->latest();
+  const std::size_t elements = this->Mesh.ElementPoint.size() * (self->TwoSided ? 2 : 1);
+  linkgi::Solution shown;
+  linkgi::SolverStats stats;
+  if (latest && latest->solution.elementCount() == elements)
+  {
+    // The newest finished result for a mesh of this size: possibly one update behind.
+    shown = latest->solution;
+    stats = latest->stats;
+    this->ShownRequest = latest->request;
+  }
+  else
+  {
+    // Nothing solved for this mesh yet: black, until the worker delivers.
+    shown.direct.assign(elements, linkgi::Vec3f(0.f));
+    shown.indirect = shown.radiance = shown.direct;
+  }
+  const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
+  this->AttachResults(self, output, elapsed.count(), shown, stats);
+  AddValue(output->GetFieldData(), "Pending", std::uint64_t(this->Async->busy() ? 1 : 0));
+  AddValue(output->GetFieldData(), "ShownRequest", std::uint64_t(this->ShownRequest));
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationFilter::PollAsynchronousResult()
+{
+  const auto& async = this->Internals->Async;
+  const auto latest = async ? async->latest() : nullptr;
+  if (!latest || latest->request == this->Internals->ShownRequest)
+  {
+    return false;
+  }
+  this->Modified();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::WatchAsynchronousResults(
+  vtkRenderWindowInteractor* interactor, int milliseconds)
+{
+  if (!interactor)
+  {
+    return;
+  }
+  vtkNew<vtkCallbackCommand> poll;
+  poll->SetClientData(this);
+  poll->SetCallback([](vtkObject* caller, unsigned long, void* self, void*) {
+    if (static_cast<vtkGlobalIlluminationFilter*>(self)->PollAsynchronousResult())
+    {
+      static_cast<vtkRenderWindowInteractor*>(caller)->Render();
+    }
+  });
+  interactor->AddObserver(vtkCommand::TimerEvent, poll);
+  interactor->CreateRepeatingTimer(static_cast<unsigned long>(std::max(1, milliseconds)));
 }
 
 //------------------------------------------------------------------------------
@@ -262,6 +350,8 @@ vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
   , LightOversampling(1)
   , Twist(1)
   , LightIntensityScale(1.0)
+  , Asynchronous(0)
+  , TemporalBlend(1.0)
   , Internals(new vtkInternals)
 {
 }
@@ -297,11 +387,17 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
   internals.Warnings.clear();
   try
   {
+    if (this->Asynchronous)
+    {
+      return internals.SolveAsynchronously(this, input, output) ? 1 : 0;
+    }
+    internals.Async.reset();
     const linkgi::Scene& scene = internals.UpdateScene(this, input);
     internals.Solver.update(scene, internals.Options(this), internals.Progress(this));
     output->ShallowCopy(input);
     const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
-    internals.AttachResults(this, output, elapsed.count());
+    internals.AttachResults(
+      this, output, elapsed.count(), internals.Solver.solution(), internals.Solver.stats());
     for (const std::string& warning : internals.AllWarnings())
     {
       vtkWarningMacro(<< warning);
@@ -486,5 +582,7 @@ void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Light Oversampling: " << (this->LightOversampling ? "On" : "Off") << "\n";
   os << indent << "Twist: " << (this->Twist ? "On" : "Off") << "\n";
   os << indent << "Light Intensity Scale: " << this->LightIntensityScale << "\n";
+  os << indent << "Asynchronous: " << (this->Asynchronous ? "On" : "Off") << "\n";
+  os << indent << "Temporal Blend: " << this->TemporalBlend << "\n";
   os << indent << "Number Of Lights: " << this->Internals->Lights.size() << "\n";
 }

@@ -63,6 +63,7 @@
 class vtkImageData;
 class vtkLight;
 class vtkRenderer;
+class vtkRenderWindowInteractor;
 
 class LINKGIFILTERSGLOBALILLUMINATION_EXPORT vtkGlobalIlluminationFilter : public vtkPolyDataAlgorithm
 {
@@ -282,6 +283,45 @@ public:
   vtkLight* GetLight(int index);
   ///@}
 
+  ///@{
+  /**
+   * Asynchronous updates, for interactive use: RequestData hands the scene to a background
+   * worker and returns at once with the newest finished result, which may belong to an
+   * earlier request (the field data's LinkGI.ShownRequest says which; LinkGI.Pending = 1
+   * while the worker is busy), or with zero arrays before the first result for this mesh.
+   * A newer request supersedes a running one instead of queueing. The render loop calls
+   * PollAsynchronousResult(), or lets WatchAsynchronousResults() do it on a timer, so the
+   * filter re-executes when a newer result is ready. Solver errors surface as warnings in
+   * LinkGI.Warnings. The default value is off.
+   */
+  vtkSetMacro(Asynchronous, vtkTypeBool);
+  vtkGetMacro(Asynchronous, vtkTypeBool);
+  vtkBooleanMacro(Asynchronous, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Temporal stability in asynchronous mode: each new indirect irradiance is blended as
+   * TemporalBlend * new + (1 - TemporalBlend) * previous, damping flicker of the sampled
+   * indirect light under a moving light or mesh (direct light is exact and never blended).
+   * 1 shows each result as it is. The default value is 1.
+   */
+  vtkSetClampMacro(TemporalBlend, double, 0.001, 1.0);
+  vtkGetMacro(TemporalBlend, double);
+  ///@}
+
+  /**
+   * In asynchronous mode: if a result newer than the one in the output is ready, marks the
+   * filter modified (so the next render re-executes it) and returns true.
+   */
+  bool PollAsynchronousResult();
+
+  /**
+   * Adds a repeating timer of `milliseconds` to `interactor` that polls for asynchronous
+   * results and renders the interactor's window when one arrived.
+   */
+  void WatchAsynchronousResults(vtkRenderWindowInteractor* interactor, int milliseconds = 30);
+
   /**
    * Includes the modification times of the lights and the environment texture.
    */
@@ -313,6 +353,8 @@ protected:
   vtkTypeBool LightOversampling;
   vtkTypeBool Twist;
   double LightIntensityScale;
+  vtkTypeBool Asynchronous;
+  double TemporalBlend;
 
 private:
   vtkGlobalIlluminationFilter(const vtkGlobalIlluminationFilter&) = delete;

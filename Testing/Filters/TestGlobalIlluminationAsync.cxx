@@ -1,0 +1,104 @@
+// vtkGlobalIlluminationFilter in asynchronous mode: RequestData never waits for the solver.
+#include "FilterTestUtilities.h"
+
+#include "vtkGlobalIlluminationFilter.h"
+#include "vtkGlobalIlluminationSceneSource.h"
+#include "vtkLightCollection.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+using namespace linkgi_test;
+
+namespace
+{
+struct CornellPipeline
+{
+  vtkNew<vtkGlobalIlluminationSceneSource> source;
+  vtkNew<vtkLightCollection> lights;
+  vtkNew<vtkGlobalIlluminationFilter> filter;
+
+  explicit CornellPipeline(bool asynchronous)
+  {
+    this->source->CreateLights(this->lights);
+    this->filter->SetInputConnection(this->source->GetOutputPort());
+    this->filter->SetAlbedoArrayName("Albedo");
+    this->filter->SetRaysPerVertex(64);
+    this->filter->SetAsynchronous(asynchronous);
+    this->lights->InitTraversal();
+    this->filter->AddLight(this->lights->GetNextItem());
+  }
+
+  /// Polls like a render loop until a new result is shown (or 60 s pass).
+  bool WaitForResult()
+  {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline)
+    {
+      if (this->filter->PollAsynchronousResult())
+      {
+        this->filter->Update();
+        return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return false;
+  }
+};
+
+void ExpectSameArray(vtkPolyData* a, vtkPolyData* b, const char* name)
+{
+  vtkDataArray* x = PointArray(a, name);
+  vtkDataArray* y = PointArray(b, name);
+  ASSERT_TRUE(x && y);
+  ASSERT_EQ(x->GetNumberOfTuples(), y->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      ASSERT_EQ(x->GetComponent(i, c), y->GetComponent(i, c)) << name << " " << i;
+    }
+  }
+}
+}
+
+TEST(GlobalIlluminationAsync, ReturnsAtOnceThenDeliversTheSynchronousResult)
+{
+  CornellPipeline async(true), sync(false);
+  async.filter->Update();
+  vtkPolyData* first = async.filter->GetOutput();
+  // Nothing solved yet: the arrays exist and are black, and the worker is busy.
+  ASSERT_NE(PointArray(first, "Radiance"), nullptr);
+  EXPECT_EQ(Stat(first, "ShownRequest"), 0.0);
+  EXPECT_EQ(Stat(first, "Pending"), 1.0);
+  EXPECT_EQ(PointArray(first, "Radiance")->GetRange(0)[1], 0.0);
+
+  ASSERT_TRUE(async.WaitForResult());
+  sync.filter->Update();
+  ExpectSameArray(async.filter->GetOutput(), sync.filter->GetOutput(), "DirectIrradiance");
+  ExpectSameArray(async.filter->GetOutput(), sync.filter->GetOutput(), "IndirectIrradiance");
+  EXPECT_EQ(Stat(async.filter->GetOutput(), "ShownRequest"), 1.0);
+  // Polling again finds nothing new: no endless re-execution.
+  EXPECT_FALSE(async.filter->PollAsynchronousResult());
+  async.filter->Update();
+  EXPECT_FALSE(async.filter->PollAsynchronousResult());
+}
+
+TEST(GlobalIlluminationAsync, MovingALightShowsTheOldResultUntilTheNewOneArrives)
+{
+  CornellPipeline async(true);
+  async.filter->Update();
+  ASSERT_TRUE(async.WaitForResult());
+  const double before = Stat(async.filter->GetOutput(), "LinkBuilds");
+  vtkLight* light = async.filter->GetLight(0);
+  double p[3];
+  light->GetPosition(p);
+  light->SetPosition(p[0] + 0.1, p[1] - 0.1, p[2]);
+  async.filter->Update(); // returns at once with the previous, complete result
+  EXPECT_EQ(Stat(async.filter->GetOutput(), "ShownRequest"), 1.0);
+  ASSERT_TRUE(async.WaitForResult());
+  EXPECT_EQ(Stat(async.filter->GetOutput(), "ShownRequest"), 2.0);
+  EXPECT_EQ(Stat(async.filter->GetOutput(), "LinkBuilds"), before); // light only: no relink
+}
