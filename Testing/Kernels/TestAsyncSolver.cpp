@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <mutex>
 #include <chrono>
 #include <thread>
 
@@ -58,11 +59,43 @@ TEST(TestAsyncSolver, ResultsBelongToOneRequest)
   ASSERT_TRUE(async.wait(last, 60.0));
   const auto final = async.latest();
   EXPECT_EQ(final->request, last);
-  EXPECT_LT(published.load(), 20); // superseded requests were dropped, not queued
+  EXPECT_LT(published.load(), 20); // replaced requests were dropped, not queued
   const Solution fresh = Solver().update(roomWithLight(20.f), options());
   for (std::size_t i = 0; i < fresh.elementCount(); ++i)
   {
     ASSERT_EQ(final->solution.radiance[i], fresh.radiance[i]);
+  }
+}
+
+TEST(TestAsyncSolver, AbortRunningPolicy)
+{
+  // A slow update followed at once by a quick one: by default the slow one is finished and
+  // published first; with setAbortRunning(true) it is abandoned for the newer request.
+  for (const bool abort : { false, true })
+  {
+    AsyncSolver async(1);
+    async.setAbortRunning(abort);
+    std::vector<std::uint64_t> shown;
+    std::mutex m;
+    async.setOnPublish([&](std::uint64_t id) {
+      std::lock_guard<std::mutex> lock(m);
+      shown.push_back(id);
+    });
+    SolverOptions slow = options();
+    slow.raysPerVertex = 1024;
+    const std::uint64_t first = async.request(test::roomWithBlock(0.1f), slow);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const std::uint64_t second = async.request(test::roomWithBlock(0.25f), options());
+    ASSERT_TRUE(async.wait(second, 60.0));
+    std::lock_guard<std::mutex> lock(m);
+    if (abort)
+    {
+      EXPECT_EQ(shown, std::vector<std::uint64_t>({ second }));
+    }
+    else
+    {
+      EXPECT_EQ(shown, std::vector<std::uint64_t>({ first, second }));
+    }
   }
 }
 

@@ -44,6 +44,7 @@ struct AsyncSolver::Impl
   std::shared_ptr<const AsyncResult> published;
   std::string error;
   float blend = 1.f;
+  bool abortRunning = false;
   std::function<void(std::uint64_t)> onPublish;
   std::thread worker;
 
@@ -139,6 +140,12 @@ void AsyncSolver::setBlend(float factor)
   impl->blend = std::clamp(factor, 1e-3f, 1.f);
 }
 
+void AsyncSolver::setAbortRunning(bool abort)
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  impl->abortRunning = abort;
+}
+
 void AsyncSolver::setOnPublish(std::function<void(std::uint64_t)> callback)
 {
   std::lock_guard<std::mutex> lock(impl->mutex);
@@ -172,11 +179,11 @@ void AsyncSolver::Impl::run()
 
 void AsyncSolver::Impl::solve(Request& request)
 {
-  // The update stops at its next progress check once a newer request (or cancel, or the
-  // destructor) has replaced the one it is solving.
+  // The update stops at its next progress check after cancel() or the destructor, and, with
+  // setAbortRunning(true), once a newer request is waiting.
   const ProgressCallback stillWanted = [this, id = request.id](const char*, double) {
     std::lock_guard<std::mutex> lock(mutex);
-    return !stopping && !pending.has_value() && running == id;
+    return !stopping && running == id && !(abortRunning && pending.has_value());
   };
   try
   {
