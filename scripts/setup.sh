@@ -2,6 +2,9 @@
 # Installs the Debian 12 packages LinkGI needs, only those that are missing, and unpacks
 # python3-paraview into a build-local prefix (it conflicts with python3-vtk9 system-wide).
 # Usage: scripts/setup.sh [--paraview-python]      (run as root, or with sudo available)
+# The unpacking always happens now (--paraview-python is kept for old callers): the
+# ParaView plugin's build needs the wrapping files in it, and a build configured without
+# it would leave the plugin out.
 set -euo pipefail
 
 packages=(
@@ -29,16 +32,15 @@ else
   echo "setup: all ${#packages[@]} packages present"
 fi
 
-# pvbatch needs ParaView's Python modules; python3-paraview cannot be installed next to
-# python3-vtk9, so unpack its .deb into build/python3-paraview instead.
-if [ "${1:-}" = "--paraview-python" ]; then
-  top=$(cd "$(dirname "$0")/.." && pwd)
-  prefix="$top/build/python3-paraview"
-  if [ ! -d "$prefix/usr/lib/python3/dist-packages/paraview" ]; then
-    mkdir -p "$prefix" && cd "$prefix"
-    rm -f python3-paraview_*.deb
-    apt-get download python3-paraview >/dev/null 2>&1 || { "${sudo_cmd[@]}" apt-get update -qq && apt-get download python3-paraview; }
-    dpkg -x python3-paraview_*.deb "$prefix" && rm -f python3-paraview_*.deb
-    echo "setup: unpacked python3-paraview into $prefix"
-  fi
+# pvbatch needs ParaView's Python modules, and the plugin build ParaView's wrapping
+# hierarchy files, both in python3-paraview, which cannot be installed next to
+# python3-vtk9: unpack its .deb into build/python3-paraview instead.
+top=$(cd "$(dirname "$0")/.." && pwd)
+prefix="$top/build/python3-paraview"
+if [ ! -d "$prefix/usr/lib/python3/dist-packages/paraview" ]; then
+  mkdir -p "$prefix" && cd "$prefix"
+  rm -f python3-paraview_*.deb
+  apt-get download python3-paraview >/dev/null 2>&1 || { "${sudo_cmd[@]}" apt-get update -qq && apt-get download python3-paraview; }
+  dpkg -x python3-paraview_*.deb "$prefix" && rm -f python3-paraview_*.deb
+  echo "setup: unpacked python3-paraview into $prefix"
 fi
