@@ -183,7 +183,7 @@ int main(int argc, char* argv[])
   {
     // The torso deforms; every other scene stays still while its light moves.
     const bool deform = scene == "torso";
-    return linkgi_live::Benchmark(live.window, live.gi,
+    return linkgi_live::Benchmark(live.window, live.gi, live.toneMap,
       [&](double t, bool light) { live.SetTime(t, light, deform); }, scene.c_str(), !deform);
   }
   if (!record.empty())

@@ -9,6 +9,12 @@
 #include <optional>
 #include <thread>
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 namespace linkgi
 {
 namespace
@@ -154,6 +160,11 @@ void AsyncSolver::setOnPublish(std::function<void(std::uint64_t)> callback)
 
 void AsyncSolver::Impl::run()
 {
+#ifdef __linux__
+  // The worker yields to the render loop: a lower priority (nice 10) for this thread, which
+  // runs the whole solve when threads == 1.
+  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
+#endif
   for (;;)
   {
     Request request;
