@@ -17,3 +17,4 @@ from vtkmodules import vtkCommonExecutionModel as _exec  # noqa: F401
 from vtkmodules import vtkRenderingCore as _rendering  # noqa: F401
 
 from .LinkGIFiltersGlobalIllumination import *  # noqa: F401,F403
+from .LinkGIRenderingGlobalIllumination import *  # noqa: F401,F403

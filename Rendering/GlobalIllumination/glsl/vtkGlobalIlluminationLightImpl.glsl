@@ -1,0 +1,22 @@
+  // LinkGI: outgoing radiance L = Le + albedo / pi (E_d + E_ind) + glossy, tone mapped.
+  vec3 giPosition = (giViewToWorld * vec4(vertexVC.xyz, 1.0)).xyz;
+  vec3 giNormal = normalize(mat3(giViewToWorld) * normalVCVSOutput);
+#if GI_HAS_ALBEDO
+  vec3 giAlbedo = mix(diffuseColor, giAlbedoVSOutput.rgb, giAlbedoVSOutput.a);
+#else
+  vec3 giAlbedo = diffuseColor;
+#endif
+  vec3 giRadiance = vec3(0.0);
+#if GI_MODE != 2
+  vec3 giEye = giCamera.w > 0.5 ? giCamera.xyz : normalize(giCamera.xyz - giPosition);
+  vec3 giGlossy;
+  vec3 giDirect = giDirectIrradiance(giPosition, giNormal, giEye, specularPower, giGlossy);
+  giRadiance += giAlbedo * (1.0 / GI_PI) * giDirect + specularColor * giGlossy;
+#if GI_HAS_EMISSION
+  giRadiance += giEmissionVSOutput;
+#endif
+#endif
+#if GI_MODE != 1 && GI_HAS_INDIRECT
+  giRadiance += giAlbedo * (1.0 / GI_PI) * giIndirectVSOutput;
+#endif
+  fragOutput0 = vec4(giToneMap(giRadiance), opacity);

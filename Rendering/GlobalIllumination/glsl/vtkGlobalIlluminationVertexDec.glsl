@@ -1,0 +1,14 @@
+// LinkGI (vtkGlobalIlluminationMapper): per-vertex shading attributes, declarations.
+// GI_HAS_ALBEDO, GI_HAS_INDIRECT and GI_HAS_EMISSION are #defined before this text.
+#if GI_HAS_ALBEDO
+in vec4 giAlbedoMC; // rgb = albedo, a = 1 where the albedo array gives it
+out vec4 giAlbedoVSOutput;
+#endif
+#if GI_HAS_INDIRECT
+in vec3 giIndirectMC; // indirect irradiance E_ind
+out vec3 giIndirectVSOutput;
+#endif
+#if GI_HAS_EMISSION
+in vec3 giEmissionMC; // emitted radiance Le
+out vec3 giEmissionVSOutput;
+#endif

@@ -1,0 +1,166 @@
+#include "vtkGlobalIlluminationMapper.h"
+
+#include "vtkGlobalIlluminationMapperCore.h"
+#include "vtkGlobalIlluminationShading.h"
+
+#include "vtkActor.h"
+#include "vtkFloatArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLVertexBufferObjectGroup.h"
+#include "vtkPolyData.h"
+#include "vtkRenderer.h"
+
+vtkStandardNewMacro(vtkGlobalIlluminationMapper);
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationMapper::vtkGlobalIlluminationMapper()
+  : Core(new vtkGlobalIlluminationMapperCore(this))
+{
+  this->SetShading(nullptr);
+}
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationMapper::~vtkGlobalIlluminationMapper()
+{
+  if (this->Shading)
+  {
+    this->Shading->Delete();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapper::SetShading(vtkGlobalIlluminationShading* shading)
+{
+  if (shading && shading == this->Shading)
+  {
+    return;
+  }
+  if (this->Shading)
+  {
+    this->Shading->Delete();
+  }
+  this->Shading = shading ? shading : vtkGlobalIlluminationShading::New();
+  if (shading)
+  {
+    shading->Register(this);
+  }
+  this->Core->SetShading(this->Shading);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationMapper::GetShadowMapRenderCount()
+{
+  return this->Core->GetShadowMapRenderCount();
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Core->ReleaseGraphicsResources(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationMapper::Shades(const vtkOpenGLHelper* cellBO, vtkActor* act)
+{
+  const std::ptrdiff_t type = cellBO - this->Primitives;
+  if (type < PrimitiveStart || type >= PrimitiveEnd)
+  {
+    return false;
+  }
+  return vtkGlobalIlluminationMapperCore::Shades(
+    static_cast<int>(type), this->PrimitiveInfo[cellBO].LastLightComplexity, act);
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
+{
+  if (!ren->GetSelector())
+  {
+    this->Core->Prepare(ren, act,
+      vtkGlobalIlluminationMapperCore::MakeCasters(
+        this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()));
+  }
+  this->Superclass::RenderPieceDraw(ren, act);
+  this->Core->FinishDraw();
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationMapper::GetNeedToRebuildShaders(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  bool rebuild = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act);
+  const std::string key = this->Shades(&cellBO, act) ? this->Core->ShaderKey(act) : "VTK";
+  std::string& last = this->ShaderKeys[&cellBO];
+  if (key != last)
+  {
+    last = key;
+    rebuild = true;
+  }
+  return rebuild;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapper::ReplaceShaderLight(
+  std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act)
+{
+  if (this->Shades(this->LastBoundBO, act))
+  {
+    this->Core->ReplaceShaderLight(shaders, act);
+  }
+  else
+  {
+    this->Superclass::ReplaceShaderLight(shaders, ren, act);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapper::SetLightingShaderParameters(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  if (this->Shades(&cellBO, act))
+  {
+    this->Core->SetShaderParameters(cellBO.Program, ren);
+  }
+  else
+  {
+    this->Superclass::SetLightingShaderParameters(cellBO, ren, act);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationMapper::GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act)
+{
+  const bool rebuild = this->Superclass::GetNeedToRebuildBufferObjects(ren, act);
+  return rebuild || this->Core->BufferKey() != this->BufferKey;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
+{
+  // The shading attributes get VBOs of their own next to VTK's; the superclass builds them
+  // all together.
+  const auto attributes = this->Core->MakeAttributes(this->CurrentInput, false);
+  auto* cache = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())->GetVBOCache();
+  this->VBOs->CacheDataArray("giAlbedoMC", attributes.Albedo, cache, VTK_FLOAT);
+  this->VBOs->CacheDataArray("giIndirectMC", attributes.Indirect, cache, VTK_FLOAT);
+  this->VBOs->CacheDataArray("giEmissionMC", attributes.Emission, cache, VTK_FLOAT);
+  this->Superclass::BuildBufferObjects(ren, act);
+  this->Core->SetLayout(attributes.Albedo != nullptr, attributes.Indirect != nullptr,
+    attributes.Emission != nullptr);
+  this->BufferKey = this->Core->BufferKey();
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Shading: " << this->Shading << "\n";
+  if (this->Shading)
+  {
+    this->Shading->PrintSelf(os, indent.GetNextIndent());
+  }
+  os << indent << "Shadow Map Render Count: " << this->Core->GetShadowMapRenderCount() << "\n";
+}

@@ -1,0 +1,362 @@
+#include "vtkGlobalIlluminationMapperCore.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkGlobalIlluminationShading.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMatrix4x4.h"
+#include "vtkOpenGLHelper.h"
+#include "vtkOpenGLIndexBufferObject.h"
+#include "vtkOpenGLPolyDataMapper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkOpenGLVertexBufferObject.h"
+#include "vtkOpenGLVertexBufferObjectGroup.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtk_glew.h"
+
+#include "vtkGlobalIlluminationLightDec.h"
+#include "vtkGlobalIlluminationLightImpl.h"
+#include "vtkGlobalIlluminationVertexDec.h"
+#include "vtkGlobalIlluminationVertexImpl.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace
+{
+using ShadowMaps = vtkGlobalIlluminationShadowMaps;
+
+/// `components` float components per point of the named point array, or null if the
+/// input has no numeric point array of that name with a tuple for every point. Colours
+/// follow vtkGlobalIlluminationFilter: 1 or 2 components are grey, unsigned char / 255.
+vtkSmartPointer<vtkFloatArray> ReadColors(vtkPolyData* poly, const char* name, bool albedo)
+{
+  vtkDataArray* array = (name && *name) ? poly->GetPointData()->GetArray(name) : nullptr;
+  const vtkIdType n = poly->GetNumberOfPoints();
+  if (!array || array->GetNumberOfTuples() < n || array->GetNumberOfComponents() < 1)
+  {
+    return nullptr;
+  }
+  const double scale = array->GetDataType() == VTK_UNSIGNED_CHAR ? 1.0 / 255.0 : 1.0;
+  const bool grey = array->GetNumberOfComponents() < 3;
+  auto out = vtkSmartPointer<vtkFloatArray>::New();
+  out->SetNumberOfComponents(albedo ? 4 : 3);
+  out->SetNumberOfTuples(n);
+  float* values = out->GetPointer(0);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double v = array->GetComponent(i, grey ? 0 : k) * scale;
+      *values++ = static_cast<float>(albedo ? std::min(std::max(v, 0.0), 1.0) : v);
+    }
+    if (albedo)
+    {
+      *values++ = 1.f;
+    }
+  }
+  return out;
+}
+
+vtkSmartPointer<vtkFloatArray> Zeros(vtkIdType tuples, int components)
+{
+  auto out = vtkSmartPointer<vtkFloatArray>::New();
+  out->SetNumberOfComponents(components);
+  out->SetNumberOfTuples(tuples);
+  out->Fill(0.0);
+  return out;
+}
+
+void ToColumnMajor(vtkMatrix4x4* m, float out[16])
+{
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      out[c * 4 + r] = static_cast<float>(m->GetElement(r, c));
+    }
+  }
+}
+
+/// The positions as the VBO holds them (possibly shifted and scaled) to world coordinates.
+std::array<double, 16> ModelToWorld(vtkOpenGLVertexBufferObject* positions, vtkActor* actor)
+{
+  vtkNew<vtkMatrix4x4> unshift;
+  if (positions->GetCoordShiftAndScaleEnabled())
+  {
+    const std::vector<double>& shift = positions->GetShift();
+    const std::vector<double>& scale = positions->GetScale();
+    for (int k = 0; k < 3; ++k)
+    {
+      unshift->SetElement(k, k, 1.0 / scale[k]);
+      unshift->SetElement(k, 3, shift[k]);
+    }
+  }
+  vtkNew<vtkMatrix4x4> result;
+  vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), unshift, result);
+  std::array<double, 16> m;
+  std::copy(&result->Element[0][0], &result->Element[0][0] + 16, m.begin());
+  return m;
+}
+}
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationMapperCore::vtkGlobalIlluminationMapperCore(vtkObject* owner)
+  : Owner(owner)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationMapperCore::~vtkGlobalIlluminationMapperCore() = default;
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationMapperCore::Shades(int primitiveType, int lightComplexity, vtkActor* actor)
+{
+  const bool surface = primitiveType == vtkOpenGLPolyDataMapper::PrimitiveTris ||
+    primitiveType == vtkOpenGLPolyDataMapper::PrimitiveTriStrips;
+  return surface && lightComplexity > 0 && actor &&
+    actor->GetProperty()->GetInterpolation() != VTK_PBR;
+}
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationMapperCore::Attributes vtkGlobalIlluminationMapperCore::MakeAttributes(
+  vtkPolyData* poly, bool fill) const
+{
+  Attributes a;
+  if (!poly || !this->Shading)
+  {
+    return a;
+  }
+  a.Albedo = ReadColors(poly, this->Shading->GetAlbedoArrayName(), true);
+  a.Indirect = ReadColors(poly, this->Shading->GetIndirectIrradianceArrayName(), false);
+  a.Emission = ReadColors(poly, this->Shading->GetEmissionArrayName(), false);
+  if (fill)
+  {
+    const vtkIdType n = poly->GetNumberOfPoints();
+    a.Albedo = a.Albedo ? a.Albedo : Zeros(n, 4);
+    a.Indirect = a.Indirect ? a.Indirect : Zeros(n, 3);
+    a.Emission = a.Emission ? a.Emission : Zeros(n, 3);
+  }
+  return a;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::SetLayout(bool albedo, bool indirect, bool emission)
+{
+  this->HasAlbedo = albedo;
+  this->HasIndirect = indirect;
+  this->HasEmission = emission;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGlobalIlluminationMapperCore::BufferKey() const
+{
+  const auto name = [](const char* s) { return std::string(s ? s : ""); };
+  vtkGlobalIlluminationShading* s = this->Shading;
+  return s ? name(s->GetAlbedoArrayName()) + '\n' + name(s->GetIndirectIrradianceArrayName()) +
+      '\n' + name(s->GetEmissionArrayName())
+           : std::string();
+}
+
+//------------------------------------------------------------------------------
+ShadowMaps::Casters vtkGlobalIlluminationMapperCore::MakeCasters(
+  vtkOpenGLVertexBufferObjectGroup* vbos, vtkOpenGLHelper* primitives, vtkActor* actor,
+  vtkMTimeType version)
+{
+  ShadowMaps::Casters casters;
+  vtkOpenGLVertexBufferObject* positions = vbos->GetVBO("vertexMC");
+  // Wireframe and point representations draw no surfaces and cast no shadows.
+  if (!positions || actor->GetProperty()->GetRepresentation() != VTK_SURFACE)
+  {
+    return casters;
+  }
+  casters.ModelToWorld = ModelToWorld(positions, actor);
+  actor->GetBounds(casters.WorldBounds.data());
+  casters.Version = version;
+  casters.Draw = [vbos, primitives](vtkShaderProgram* program, vtkOpenGLVertexArrayObject* vao)
+  {
+    vtkOpenGLVertexBufferObject* vbo = vbos->GetVBO("vertexMC");
+    vao->AddAttributeArray(program, vbo, "vertexMC", 0, false);
+    const GLuint last = static_cast<GLuint>(std::max(vbo->GetNumberOfTuples(), 1u) - 1);
+    for (int type : { vtkOpenGLPolyDataMapper::PrimitiveTris, vtkOpenGLPolyDataMapper::PrimitiveTriStrips })
+    {
+      vtkOpenGLIndexBufferObject* ibo = primitives[type].IBO;
+      if (ibo->IndexCount == 0)
+      {
+        continue;
+      }
+      ibo->Bind();
+      glDrawRangeElements(GL_TRIANGLES, 0, last, static_cast<GLsizei>(ibo->IndexCount),
+        GL_UNSIGNED_INT, nullptr);
+      ibo->Release();
+    }
+  };
+  return casters;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::Prepare(
+  vtkRenderer* renderer, vtkActor*, const ShadowMaps::Casters& casters)
+{
+  const double scale = this->Shading ? this->Shading->GetLightIntensityScale() : 1.0;
+  const int maximum = vtkGlobalIlluminationShading::GetMaximumNumberOfLights();
+  this->Lights.clear();
+  int ignored = 0;
+  vtkLightCollection* lights = renderer->GetLights();
+  vtkCollectionSimpleIterator it;
+  lights->InitTraversal(it);
+  while (vtkLight* light = lights->GetNextLight(it))
+  {
+    ShadowMaps::Light converted;
+    if (ShadowMaps::ConvertLight(light, scale, converted))
+    {
+      if (static_cast<int>(this->Lights.size()) < maximum)
+      {
+        this->Lights.push_back(converted);
+      }
+      else
+      {
+        ++ignored;
+      }
+    }
+  }
+  if (ignored > 0 && ignored != this->IgnoredLightsWarned)
+  {
+    vtkWarningWithObjectMacro(this->Owner, << "The renderer has " << ignored
+      << " more switched-on lights than the " << maximum
+      << " a global illumination mapper shades; they are ignored.");
+  }
+  this->IgnoredLightsWarned = ignored;
+  auto* window = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
+  const bool shadows = this->Shading && this->Shading->GetShadows();
+  const int resolution = this->Shading ? this->Shading->GetShadowMapResolution() : 1024;
+  this->ShadowMaps.Update(window, this->Lights, shadows, casters, resolution);
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGlobalIlluminationMapperCore::ShaderKey(vtkActor* actor) const
+{
+  std::ostringstream key;
+  key << this->Lights.size() << ' ' << this->HasAlbedo << this->HasIndirect << this->HasEmission;
+  if (this->Shading)
+  {
+    key << ' ' << this->Shading->GetDisplayMode() << ' ' << this->Shading->GetToneMapping();
+  }
+  key << ' ' << (actor && actor->GetProperty()->GetSpecular() > 0.0);
+  return key.str();
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::ReplaceShaderLight(
+  std::map<vtkShader::Type, vtkShader*> shaders, vtkActor* actor) const
+{
+  std::ostringstream defines;
+  defines << "#define GI_LIGHT_COUNT " << this->Lights.size() << "\n"
+          << "#define GI_HAS_ALBEDO " << this->HasAlbedo << "\n"
+          << "#define GI_HAS_INDIRECT " << this->HasIndirect << "\n"
+          << "#define GI_HAS_EMISSION " << this->HasEmission << "\n"
+          << "#define GI_GLOSSY " << (actor->GetProperty()->GetSpecular() > 0.0) << "\n"
+          << "#define GI_MODE " << (this->Shading ? this->Shading->GetDisplayMode() : 0) << "\n"
+          << "#define GI_TONE_MAPPING " << (this->Shading ? this->Shading->GetToneMapping() : 1)
+          << "\n";
+  std::string vs = shaders[vtkShader::Vertex]->GetSource();
+  std::string fs = shaders[vtkShader::Fragment]->GetSource();
+  vtkShaderProgram::Substitute(vs, "//VTK::Light::Dec",
+    defines.str() + vtkGlobalIlluminationVertexDec + "//VTK::Light::Dec", false);
+  vtkShaderProgram::Substitute(
+    vs, "//VTK::Light::Impl", std::string(vtkGlobalIlluminationVertexImpl) + "  //VTK::Light::Impl", false);
+  vtkShaderProgram::Substitute(fs, "//VTK::Light::Dec",
+    defines.str() + vtkGlobalIlluminationLightDec + "//VTK::Light::Dec", false);
+  vtkShaderProgram::Substitute(
+    fs, "//VTK::Light::Impl", std::string(vtkGlobalIlluminationLightImpl) + "  //VTK::Light::Impl", false);
+  shaders[vtkShader::Vertex]->SetSource(vs);
+  shaders[vtkShader::Fragment]->SetSource(fs);
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::SetShaderParameters(vtkShaderProgram* program, vtkRenderer* renderer)
+{
+  vtkGlobalIlluminationShading* s = this->Shading;
+  program->SetUniformf("giExposure", static_cast<float>(s ? s->GetExposure() : 1.0));
+  program->SetUniformf("giInvGamma", static_cast<float>(1.0 / (s ? s->GetGamma() : 2.2)));
+
+  vtkCamera* camera = renderer->GetActiveCamera();
+  vtkNew<vtkMatrix4x4> viewToWorld;
+  vtkMatrix4x4::Invert(camera->GetModelViewTransformMatrix(), viewToWorld);
+  float matrix[16];
+  ToColumnMajor(viewToWorld, matrix);
+  program->SetUniformMatrix4x4("giViewToWorld", matrix);
+  float eye[4] = { 0.f, 0.f, 0.f, 0.f };
+  double v[3];
+  if (camera->GetParallelProjection())
+  {
+    camera->GetDirectionOfProjection(v);
+    eye[3] = 1.f;
+    for (double& x : v)
+    {
+      x = -x;
+    }
+  }
+  else
+  {
+    camera->GetPosition(v);
+  }
+  std::copy(v, v + 3, eye);
+  program->SetUniform4fv("giCamera", 1, eye);
+
+  const int n = static_cast<int>(this->Lights.size());
+  std::vector<int> types(n);
+  std::vector<float> positions(3 * n), directions(3 * n), intensities(3 * n), cones(2 * n);
+  for (int i = 0; i < n; ++i)
+  {
+    const ShadowMaps::Light& l = this->Lights[i];
+    types[i] = l.Type;
+    for (int k = 0; k < 3; ++k)
+    {
+      positions[3 * i + k] = static_cast<float>(l.Position[k]);
+      directions[3 * i + k] = static_cast<float>(l.Direction[k]);
+      intensities[3 * i + k] = static_cast<float>(l.Intensity[k]);
+    }
+    cones[2 * i] = static_cast<float>(l.CosCone);
+    cones[2 * i + 1] = static_cast<float>(l.Exponent);
+  }
+  if (n > 0)
+  {
+    program->SetUniform1iv("giLightType", n, types.data());
+    program->SetUniform3fv("giLightPosition", n, positions.data());
+    program->SetUniform3fv("giLightDirection", n, directions.data());
+    program->SetUniform3fv("giLightIntensity", n, intensities.data());
+    program->SetUniform2fv("giLightCone", n, cones.data());
+  }
+  if (!this->TextureActive)
+  {
+    this->TextureActive = this->ShadowMaps.Activate();
+  }
+  this->ShadowMaps.SetUniforms(
+    program, n, s ? s->GetShadowFilterRadius() : 1.5, s ? s->GetShadowBias() : 1.0);
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::FinishDraw()
+{
+  if (this->TextureActive)
+  {
+    this->ShadowMaps.Deactivate();
+    this->TextureActive = false;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->FinishDraw();
+  this->ShadowMaps.ReleaseGraphicsResources(window);
+}

@@ -1,0 +1,116 @@
+/**
+ * @class   vtkGlobalIlluminationMapperCore
+ * @brief   the rendering logic shared by vtkGlobalIlluminationMapper and the helper of
+ *          vtkGlobalIlluminationCompositeMapper
+ *
+ * Those two classes derive from different VTK mappers, so they forward the handful of
+ * vtkOpenGLPolyDataMapper overrides that matter here to one object of this class: the
+ * per-vertex attributes (albedo, indirect irradiance, emission as float arrays), the
+ * renderer's lights, the shadow maps, the GLSL replacements of the `//VTK::Light::*` tags
+ * and the uniforms.
+ *
+ * The replacement keeps every VTK shader tag: the lighting code goes before
+ * `//VTK::Light::Impl` and writes `fragOutput0`, and `vertexVC` and `normalVCVSOutput` stay
+ * as VTK declares them, so render passes that hook in after lighting (vtkSSAOPass) or
+ * process the image (vtkToneMappingPass) still compose.
+ *
+ * Not wrapped, not installed.
+ */
+#ifndef vtkGlobalIlluminationMapperCore_h
+#define vtkGlobalIlluminationMapperCore_h
+
+#include "vtkGlobalIlluminationShadowMaps.h" // for vtkGlobalIlluminationShadowMaps
+#include "vtkShader.h"                       // for vtkShader::Type
+#include "vtkSmartPointer.h"                 // for vtkSmartPointer
+
+#include <map>    // for std::map
+#include <string> // for std::string
+#include <vector> // for std::vector
+
+class vtkActor;
+class vtkFloatArray;
+class vtkGlobalIlluminationShading;
+class vtkObject;
+class vtkOpenGLHelper;
+class vtkOpenGLVertexBufferObjectGroup;
+class vtkPolyData;
+class vtkRenderer;
+class vtkShaderProgram;
+class vtkWindow;
+
+class vtkGlobalIlluminationMapperCore
+{
+public:
+  /// `owner` receives the warnings.
+  explicit vtkGlobalIlluminationMapperCore(vtkObject* owner);
+  ~vtkGlobalIlluminationMapperCore();
+  vtkGlobalIlluminationMapperCore(const vtkGlobalIlluminationMapperCore&) = delete;
+  vtkGlobalIlluminationMapperCore& operator=(const vtkGlobalIlluminationMapperCore&) = delete;
+
+  /// The settings; the owner keeps the reference.
+  void SetShading(vtkGlobalIlluminationShading* shading) { this->Shading = shading; }
+
+  /**
+   * Whether the global illumination shader draws primitives of this type
+   * (vtkOpenGLPolyDataMapper::PrimitiveTypes): triangles and strips of a lit actor
+   * (lightComplexity > 0) that is not PBR-shaded. Everything else is drawn by VTK.
+   */
+  static bool Shades(int primitiveType, int lightComplexity, vtkActor* actor);
+
+  /// Float copies of the shading arrays of one polydata; null where the input has none.
+  struct Attributes
+  {
+    vtkSmartPointer<vtkFloatArray> Albedo;   ///< RGBA: albedo in [0,1], A = 1
+    vtkSmartPointer<vtkFloatArray> Indirect; ///< RGB irradiance
+    vtkSmartPointer<vtkFloatArray> Emission; ///< RGB radiance
+  };
+
+  /**
+   * The attributes of `poly`. With `fill`, missing ones become zeros (albedo with A = 0,
+   * meaning "use the actor's colour"), so that blocks of a composite dataset line up.
+   */
+  Attributes MakeAttributes(vtkPolyData* poly, bool fill) const;
+
+  /// Which attributes the shaders read; set when the vertex buffers are built.
+  void SetLayout(bool albedo, bool indirect, bool emission);
+
+  /// A key of the names of the shading arrays: a change rebuilds the vertex buffers.
+  std::string BufferKey() const;
+
+  /// The shadow casters drawn from a mapper's buffers (its triangles and strips).
+  static vtkGlobalIlluminationShadowMaps::Casters MakeCasters(vtkOpenGLVertexBufferObjectGroup* vbos,
+    vtkOpenGLHelper* primitives, vtkActor* actor, vtkMTimeType version);
+
+  /// Takes the renderer's lights and brings the shadow maps up to date. Call before drawing.
+  void Prepare(vtkRenderer* renderer, vtkActor* actor,
+    const vtkGlobalIlluminationShadowMaps::Casters& casters);
+
+  /// A key of everything the shader source depends on: a change rebuilds the shaders.
+  std::string ShaderKey(vtkActor* actor) const;
+
+  /// Replaces the `//VTK::Light::*` tags of the vertex and fragment shaders.
+  void ReplaceShaderLight(std::map<vtkShader::Type, vtkShader*> shaders, vtkActor* actor) const;
+
+  /// Sets the uniforms (lights, shadow maps, camera, exposure) of a bound program.
+  void SetShaderParameters(vtkShaderProgram* program, vtkRenderer* renderer);
+
+  /// Releases the texture unit taken by SetShaderParameters. Call after drawing.
+  void FinishDraw();
+
+  int GetShadowMapRenderCount() const { return this->ShadowMaps.GetRenderCount(); }
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+private:
+  vtkObject* Owner;
+  vtkGlobalIlluminationShading* Shading = nullptr;
+  std::vector<vtkGlobalIlluminationShadowMaps::Light> Lights;
+  vtkGlobalIlluminationShadowMaps ShadowMaps;
+  bool HasAlbedo = false;
+  bool HasIndirect = false;
+  bool HasEmission = false;
+  bool TextureActive = false;
+  int IgnoredLightsWarned = 0;
+};
+
+#endif
+// VTK-HeaderTest-Exclude: vtkGlobalIlluminationMapperCore.h

@@ -1,0 +1,197 @@
+/**
+ * @class   vtkGlobalIlluminationShading
+ * @brief   settings of vtkGlobalIlluminationMapper and vtkGlobalIlluminationCompositeMapper
+ *
+ * What the global illumination mappers draw and how: the display mode (the paper's
+ * Figure 4: direct, indirect, or both), where the per-vertex albedo, indirect irradiance
+ * and emission come from, the exposure and tone curve that turn HDR radiance into display
+ * values, and the shadow-map settings. One object can be shared by several mappers (e.g.
+ * a representation's full-resolution and LOD mappers) so that they always agree.
+ *
+ * Outgoing radiance per pixel, in linear RGB (the radiometry of vtkGlobalIlluminationFilter):
+ * - direct:   L = Le + albedo / pi * E_d + glossy,  E_d from the renderer's lights with shadows;
+ * - indirect: L = albedo / pi * E_ind,  E_ind from the IndirectIrradiance point array;
+ * - combined: the sum, which is the filter's `Radiance` up to shadow filtering.
+ * The displayed value is (ToneCurve(Exposure * L))^(1/Gamma).
+ *
+ * Changing the array names, the display mode or the tone curve rebuilds shaders and
+ * buffers at the next render; Exposure, Gamma and the shadow filtering are uniforms and
+ * cost nothing to change.
+ */
+#ifndef vtkGlobalIlluminationShading_h
+#define vtkGlobalIlluminationShading_h
+
+#include "LinkGIRenderingGlobalIlluminationModule.h" // for export macro
+#include "vtkObject.h"
+
+class LINKGIRENDERINGGLOBALILLUMINATION_EXPORT vtkGlobalIlluminationShading : public vtkObject
+{
+public:
+  static vtkGlobalIlluminationShading* New();
+  vtkTypeMacro(vtkGlobalIlluminationShading, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Which part of the light is drawn.
+  enum DisplayModes
+  {
+    COMBINED = 0, ///< direct + indirect light (the final image)
+    DIRECT = 1,   ///< direct light with shadows, and emission
+    INDIRECT = 2  ///< per-vertex indirect light only
+  };
+
+  /// Tone curve applied to Exposure * radiance, before the 1/Gamma encoding.
+  enum ToneMappingTypes
+  {
+    LINEAR = 0,      ///< none: values above 1 clip in an 8-bit framebuffer, stay in a float one
+    EXPONENTIAL = 1, ///< 1 - exp(-x), as vtkToneMappingPass's Exponential
+    REINHARD = 2     ///< x / (1 + x)
+  };
+
+  ///@{
+  /**
+   * COMBINED, DIRECT or INDIRECT. The default value is COMBINED.
+   */
+  vtkSetClampMacro(DisplayMode, int, COMBINED, INDIRECT);
+  vtkGetMacro(DisplayMode, int);
+  void SetDisplayModeToCombined() { this->SetDisplayMode(COMBINED); }
+  void SetDisplayModeToDirect() { this->SetDisplayMode(DIRECT); }
+  void SetDisplayModeToIndirect() { this->SetDisplayMode(INDIRECT); }
+  const char* GetDisplayModeAsString();
+  ///@}
+
+  ///@{
+  /**
+   * Point array holding the diffuse albedo (linear RGB in [0,1]; 1 or 2 components are
+   * grey, unsigned char is divided by 255, values above 1 are clamped, as in
+   * vtkGlobalIlluminationFilter). Where the input has no such array, the actor's diffuse
+   * colour (or the mapped scalar colour) times its Diffuse coefficient is the albedo.
+   * The default value is "Albedo".
+   */
+  vtkSetStringMacro(AlbedoArrayName);
+  vtkGetStringMacro(AlbedoArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * Point array holding the indirect irradiance E_ind (float RGB), as written by
+   * vtkGlobalIlluminationFilter. Without it the indirect light is black. The default value
+   * is "IndirectIrradiance".
+   */
+  vtkSetStringMacro(IndirectIrradianceArrayName);
+  vtkGetStringMacro(IndirectIrradianceArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * Point array holding emitted radiance Le (linear RGB), drawn as part of the direct
+   * light. Without it nothing emits. The default value is "Emission".
+   */
+  vtkSetStringMacro(EmissionArrayName);
+  vtkGetStringMacro(EmissionArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * Factor applied to every light's DiffuseColor * Intensity; use the value given to
+   * vtkGlobalIlluminationFilter::SetLightIntensityScale. The default value is 1.
+   */
+  vtkSetClampMacro(LightIntensityScale, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(LightIntensityScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * Multiplies the radiance before the tone curve. The default value is 1.
+   */
+  vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Exposure, double);
+  ///@}
+
+  ///@{
+  /**
+   * LINEAR, EXPONENTIAL or REINHARD. To tone map with vtkToneMappingPass instead, choose
+   * LINEAR with Gamma 2.2 (the encoding that pass expects). The default value is EXPONENTIAL.
+   */
+  vtkSetClampMacro(ToneMapping, int, LINEAR, REINHARD);
+  vtkGetMacro(ToneMapping, int);
+  void SetToneMappingToLinear() { this->SetToneMapping(LINEAR); }
+  void SetToneMappingToExponential() { this->SetToneMapping(EXPONENTIAL); }
+  void SetToneMappingToReinhard() { this->SetToneMapping(REINHARD); }
+  ///@}
+
+  ///@{
+  /**
+   * Display gamma: the output is the tone-mapped value to the power 1/Gamma. 1 writes
+   * linear values. The default value is 2.2.
+   */
+  vtkSetClampMacro(Gamma, double, 0.1, 10.0);
+  vtkGetMacro(Gamma, double);
+  ///@}
+
+  ///@{
+  /**
+   * Shadow-map the lights. Off, every light reaches every surface facing it. The default
+   * value is on.
+   */
+  vtkSetMacro(Shadows, vtkTypeBool);
+  vtkGetMacro(Shadows, vtkTypeBool);
+  vtkBooleanMacro(Shadows, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Width and height in texels of every shadow map layer (a point light uses six, one per
+   * cube face; a spot or directional light one). Memory: 4 bytes per texel and layer.
+   * The default value is 1024.
+   */
+  vtkSetClampMacro(ShadowMapResolution, int, 16, 8192);
+  vtkGetMacro(ShadowMapResolution, int);
+  ///@}
+
+  ///@{
+  /**
+   * Radius of the percentage-closer filter in shadow-map texels: larger values give
+   * softer shadow edges. 0 gives the hardware's 2x2 filter only. The default value is 1.5.
+   */
+  vtkSetClampMacro(ShadowFilterRadius, double, 0.0, 16.0);
+  vtkGetMacro(ShadowFilterRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * Shadow bias in shadow-map texels at the receiver: the lookup point moves this far
+   * along the surface normal (more at grazing light), which removes shadow acne without
+   * detaching shadows from their casters. The default value is 1.
+   */
+  vtkSetClampMacro(ShadowBias, double, 0.0, 64.0);
+  vtkGetMacro(ShadowBias, double);
+  ///@}
+
+  /**
+   * The most lights a mapper shades; further lights are ignored with a warning.
+   */
+  static int GetMaximumNumberOfLights() { return 16; }
+
+protected:
+  vtkGlobalIlluminationShading();
+  ~vtkGlobalIlluminationShading() override;
+
+  int DisplayMode = COMBINED;
+  char* AlbedoArrayName = nullptr;
+  char* IndirectIrradianceArrayName = nullptr;
+  char* EmissionArrayName = nullptr;
+  double LightIntensityScale = 1.0;
+  double Exposure = 1.0;
+  int ToneMapping = EXPONENTIAL;
+  double Gamma = 2.2;
+  vtkTypeBool Shadows = 1;
+  int ShadowMapResolution = 1024;
+  double ShadowFilterRadius = 1.5;
+  double ShadowBias = 1.0;
+
+private:
+  vtkGlobalIlluminationShading(const vtkGlobalIlluminationShading&) = delete;
+  void operator=(const vtkGlobalIlluminationShading&) = delete;
+};
+
+#endif

@@ -1,0 +1,134 @@
+/**
+ * @class   vtkGlobalIlluminationShadowMaps
+ * @brief   shadow maps of the global illumination mappers: cube maps for point lights,
+ *          2D maps for spot and directional lights, all layers of one depth texture array
+ *
+ * Owned by one mapper (or composite helper), which hands it the renderer's lights and a
+ * callback that draws its triangles. Update() re-renders the maps only when a light's
+ * placement, the geometry, its placement or the resolution changed: colour and intensity
+ * changes, camera moves and ordinary frames reuse them.
+ *
+ * Every layer stores linear depth: the distance to the light (point and spot lights) or
+ * along the light's direction (directional lights), scaled to [0,1]. A point light takes
+ * six layers in the face order +X -X +Y -Y +Z -Z; spot lights with cone angles above 60
+ * degrees are shadowed like point lights (a single perspective map would waste its texels
+ * at the rim). The layout of the uniforms matches glsl/vtkGlobalIlluminationLightDec.glsl.
+ *
+ * Not wrapped, not installed.
+ */
+#ifndef vtkGlobalIlluminationShadowMaps_h
+#define vtkGlobalIlluminationShadowMaps_h
+
+#include "vtkNew.h"  // for vtkNew
+#include "vtkType.h" // for vtkMTimeType
+
+#include <array>      // for std::array
+#include <functional> // for std::function
+#include <vector>     // for std::vector
+
+class vtkLight;
+class vtkOpenGLRenderWindow;
+class vtkOpenGLVertexArrayObject;
+class vtkRenderer;
+class vtkShaderProgram;
+class vtkTextureObject;
+class vtkWindow;
+
+class vtkGlobalIlluminationShadowMaps
+{
+public:
+  /// A light as the shaders see it: world coordinates, linear RGB.
+  struct Light
+  {
+    enum Types
+    {
+      POINT = 0,
+      SPOT = 1,
+      DIRECTIONAL = 2
+    };
+    int Type = POINT;
+    std::array<double, 3> Position{ { 0.0, 0.0, 0.0 } };
+    std::array<double, 3> Direction{ { 0.0, 0.0, -1.0 } }; ///< unit, direction of travel
+    std::array<double, 3> Intensity{ { 1.0, 1.0, 1.0 } };  ///< W/sr, or W/m^2 if directional
+    double CosCone = -1.0;                                 ///< spot only
+    double Exponent = 0.0;                                 ///< spot only
+  };
+
+  /**
+   * Converts a vtkLight like vtkGlobalIlluminationFilter does: transformed position and
+   * focal point, Intensity * DiffuseColor * scale, positional lights with a cone angle
+   * below 90 degrees are spots, vtkLight's attenuation values are ignored (1/r^2).
+   * Returns false for a switched-off light and for a spot or directional light without a
+   * direction (focal point = position).
+   */
+  static bool ConvertLight(vtkLight* light, double scale, Light& out);
+
+  /// What casts shadows.
+  struct Casters
+  {
+    /// Binds the caster positions to the program's `vertexMC` in the bound VAO and draws
+    /// triangles.
+    std::function<void(vtkShaderProgram*, vtkOpenGLVertexArrayObject*)> Draw;
+    std::array<double, 16> ModelToWorld{}; ///< row-major, from the positions as drawn
+    std::array<double, 6> WorldBounds{};
+    vtkMTimeType Version = 0; ///< changes whenever the drawn geometry changes
+  };
+
+  vtkGlobalIlluminationShadowMaps();
+  ~vtkGlobalIlluminationShadowMaps();
+  vtkGlobalIlluminationShadowMaps(const vtkGlobalIlluminationShadowMaps&) = delete;
+  vtkGlobalIlluminationShadowMaps& operator=(const vtkGlobalIlluminationShadowMaps&) = delete;
+
+  /**
+   * Makes the maps match `lights` (shadowed if `shadows`) and `casters`, re-rendering them
+   * only if something they depend on changed. Returns true if it rendered.
+   */
+  bool Update(vtkOpenGLRenderWindow* window, const std::vector<Light>& lights, bool shadows,
+    const Casters& casters, int resolution);
+
+  ///@{
+  /// Binds the depth texture array to a free texture unit for the lighting shader;
+  /// false (and nothing bound) before the first Update.
+  bool Activate();
+  void Deactivate();
+  ///@}
+
+  /**
+   * Sets the giShadow* uniforms of the `lightCount` lights of the last Update, the filter
+   * radius and the bias (in texels) and the texture unit. Call after Activate().
+   */
+  void SetUniforms(vtkShaderProgram* program, int lightCount, double filterRadius, double bias);
+
+  /// How many times the maps were rendered (tests check that frames reuse them).
+  int GetRenderCount() const { return this->RenderCount; }
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+  /// Per light: how its layers were rendered.
+  struct Map
+  {
+    int Kind = 0; ///< 0 none, 1 cube, 2 perspective (spot), 3 orthographic (directional)
+    int Layer = 0;
+    std::array<double, 16> WorldToClip{}; ///< row-major; kinds 2 and 3
+    std::array<double, 2> DepthMap{ { 1.0, 0.0 } }; ///< stored depth = x * [0] + [1]
+    std::array<double, 2> Texel{ { 0.0, 0.0 } };    ///< texel size = [0] * distance + [1]
+  };
+
+private:
+  std::vector<Map> Plan(const std::vector<Light>& lights, const double bounds[6], int resolution) const;
+  void Allocate(vtkOpenGLRenderWindow* window, int layers, int resolution);
+  void Render(vtkOpenGLRenderWindow* window, const std::vector<Light>& lights, const Casters& casters);
+
+  std::vector<Map> Maps;
+  std::vector<double> Signature;
+  vtkNew<vtkTextureObject> Texture; // wraps the GL texture array for texture unit management
+  vtkOpenGLRenderWindow* Context = nullptr;
+  unsigned int TextureHandle = 0;
+  unsigned int Framebuffer = 0;
+  int Layers = 0;
+  int Resolution = 0;
+  int RenderCount = 0;
+};
+
+#endif
+// VTK-HeaderTest-Exclude: vtkGlobalIlluminationShadowMaps.h
