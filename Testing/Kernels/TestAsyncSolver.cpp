@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <mutex>
 #include <chrono>
 #include <thread>
@@ -185,4 +186,31 @@ TEST(TestAsyncSolver, DeformingTorsoRefitsAndMatchesAFreshSolve)
   {
     ASSERT_EQ(refit.radiance[i], fresh.radiance[i]) << i;
   }
+}
+
+TEST(TestAsyncSolver, DirectionSetDoesNotCrawlUnderDeformation)
+{
+  // The twist angle belongs to the vertex and its frame to the vertex normal, so a small
+  // deformation moves each vertex's rays with it: frame-to-frame, the 256-ray solution must
+  // change like a 1024-ray one (its noise pattern stays put) instead of re-rolling its noise.
+  SceneParams p0, p1;
+  p0.deformation = 0.30f;
+  p1.deformation = 0.31f;
+  const Scene a = makeStandardScene("torso", p0), b = makeStandardScene("torso", p1);
+  const auto indirect = [](const Scene& s, std::uint32_t rays) {
+    SolverOptions o;
+    o.raysPerVertex = rays;
+    return Solver().update(s, o).indirect;
+  };
+  const std::vector<Vec3f> xa = indirect(a, 256), xb = indirect(b, 256);
+  const std::vector<Vec3f> ta = indirect(a, 1024), tb = indirect(b, 1024);
+  double change = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < xa.size(); ++i)
+  {
+    const double d = luminance(xb[i] - xa[i]) - luminance(tb[i] - ta[i]);
+    change += d * d;
+    scale += luminance(ta[i]) * luminance(ta[i]);
+  }
+  // Measured 0.13%; with the twist re-rolled between the two frames (another seed) 1.2%.
+  EXPECT_LT(std::sqrt(change / scale), 0.005);
 }
