@@ -84,13 +84,8 @@ endmacro()
 # `prefix` (python3-paraview unpacked by scripts/setup.sh) where the installed one is
 # missing.
 function(linkgi_use_unpacked_hierarchies prefix)
-  set(modules)
-  foreach(component IN LISTS VTK_AVAILABLE_COMPONENTS)
-    list(APPEND modules "VTK::${component}")
-  endforeach()
-  foreach(component IN LISTS ParaView_AVAILABLE_COMPONENTS)
-    list(APPEND modules "ParaView::${component}")
-  endforeach()
+  # Every module that find_package imported into this directory (VTK:: and ParaView::).
+  get_property(modules DIRECTORY "${CMAKE_CURRENT_SOURCE_DIR}" PROPERTY IMPORTED_TARGETS)
   set(moved 0)
   foreach(module IN LISTS modules)
     if(NOT TARGET "${module}")
