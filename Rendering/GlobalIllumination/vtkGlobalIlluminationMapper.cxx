@@ -143,6 +143,8 @@ void vtkGlobalIlluminationMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*
   // The shading attributes get VBOs of their own next to VTK's; the superclass builds them
   // all together.
   const auto attributes = this->Core->MakeAttributes(this->CurrentInput, false);
+  this->Core->ClearKept();
+  this->Core->Keep(attributes);
   auto* cache = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())->GetVBOCache();
   this->VBOs->CacheDataArray("giAlbedoMC", attributes.Albedo, cache, VTK_FLOAT);
   this->VBOs->CacheDataArray("giIndirectMC", attributes.Indirect, cache, VTK_FLOAT);

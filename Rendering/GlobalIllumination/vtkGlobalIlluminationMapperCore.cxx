@@ -149,6 +149,33 @@ vtkGlobalIlluminationMapperCore::Attributes vtkGlobalIlluminationMapperCore::Mak
 }
 
 //------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::GetPresence(
+  vtkPolyData* poly, bool& albedo, bool& indirect, bool& emission) const
+{
+  const auto has = [poly](const char* name)
+  {
+    vtkDataArray* array = (poly && name && *name) ? poly->GetPointData()->GetArray(name) : nullptr;
+    return array && array->GetNumberOfTuples() >= poly->GetNumberOfPoints() &&
+      array->GetNumberOfComponents() > 0;
+  };
+  albedo = this->Shading && has(this->Shading->GetAlbedoArrayName());
+  indirect = this->Shading && has(this->Shading->GetIndirectIrradianceArrayName());
+  emission = this->Shading && has(this->Shading->GetEmissionArrayName());
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::Keep(const Attributes& attributes)
+{
+  for (const auto& array : { attributes.Albedo, attributes.Indirect, attributes.Emission })
+  {
+    if (array)
+    {
+      this->Kept.push_back(array);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkGlobalIlluminationMapperCore::SetLayout(bool albedo, bool indirect, bool emission)
 {
   this->HasAlbedo = albedo;

@@ -71,8 +71,21 @@ public:
    */
   Attributes MakeAttributes(vtkPolyData* poly, bool fill) const;
 
+  /// Which of the attributes `poly` has.
+  void GetPresence(vtkPolyData* poly, bool& albedo, bool& indirect, bool& emission) const;
+
   /// Which attributes the shaders read; set when the vertex buffers are built.
   void SetLayout(bool albedo, bool indirect, bool emission);
+  bool GetHasAlbedo() const { return this->HasAlbedo; }
+  bool GetHasIndirect() const { return this->HasIndirect; }
+  bool GetHasEmission() const { return this->HasEmission; }
+
+  ///@{
+  /// Keeps arrays handed to a VBO group alive until its next build (the group keeps only
+  /// raw pointers until it uploads them).
+  void Keep(const Attributes& attributes);
+  void ClearKept() { this->Kept.clear(); }
+  ///@}
 
   /// A key of the names of the shading arrays: a change rebuilds the vertex buffers.
   std::string BufferKey() const;
@@ -104,6 +117,7 @@ private:
   vtkObject* Owner;
   vtkGlobalIlluminationShading* Shading = nullptr;
   std::vector<vtkGlobalIlluminationShadowMaps::Light> Lights;
+  std::vector<vtkSmartPointer<vtkFloatArray>> Kept;
   vtkGlobalIlluminationShadowMaps ShadowMaps;
   bool HasAlbedo = false;
   bool HasIndirect = false;

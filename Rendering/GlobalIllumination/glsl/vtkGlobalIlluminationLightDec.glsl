@@ -108,16 +108,20 @@ float giImageShadow(float layer, vec2 uv, float depth)
 }
 
 // Fraction of light i that reaches p (unit normal n facing the light at cosSurface, at
-// distance dist). The lookup point moves along the normal by the bias, more at grazing
-// light where the depth changes fastest across the filter: the offset over cos(theta)
-// covers the depth slope tan(theta) of the filter's footprint, so the default bias is free
-// of acne without pushing shadows away from their casters (no peter-panning).
+// distance dist). Normal-offset bias: the lookup point moves along the normal by
+// bias * (0.5 + (radius / 2 + 0.75) sin(theta)) texels. Across the filter's inner taps
+// (radius / 2 texels, plus the hardware's bilinear texel) the stored depth of a surface
+// lit at angle theta changes by that many texels times tan(theta), and an offset along the
+// normal buys 1 / cos(theta) of depth margin per unit, so the default bias of 1 keeps lit
+// surfaces free of acne at any angle while a shadow starts right at its caster's base (the
+// offset moves the lookup sideways by at most ~2 texels, not away from the contact).
 float giShadowFactor(int i, vec3 p, vec3 n, float cosSurface, float dist)
 {
   vec4 sd = giShadowDepth[i];
   float texel = sd.z * dist + sd.w;
   float sinSurface = sqrt(max(1.0 - cosSurface * cosSurface, 0.0));
-  vec3 q = p + n * (texel * giShadowFilter.z * (1.0 + (giShadowFilter.y + 1.0) * sinSurface));
+  float offset = 0.5 + (0.5 * giShadowFilter.y + 0.75) * sinSurface;
+  vec3 q = p + n * (texel * giShadowFilter.z * offset);
   float layer = float(giShadowLayer[i]);
   if (giShadowKind[i] == 1)
   {

@@ -1,0 +1,158 @@
+#include "vtkGlobalIlluminationCompositeMapperHelper.h"
+
+#include "vtkGlobalIlluminationMapperCore.h"
+
+#include "vtkFloatArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLVertexBufferObjectGroup.h"
+#include "vtkPolyData.h"
+#include "vtkRenderer.h"
+
+vtkStandardNewMacro(vtkGlobalIlluminationCompositeMapperHelper);
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationCompositeMapperHelper::vtkGlobalIlluminationCompositeMapperHelper()
+  : Core(new vtkGlobalIlluminationMapperCore(this))
+{
+}
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationCompositeMapperHelper::~vtkGlobalIlluminationCompositeMapperHelper() = default;
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationCompositeMapperHelper::SetShading(vtkGlobalIlluminationShading* shading)
+{
+  this->Core->SetShading(shading);
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationCompositeMapperHelper::GetShadowMapRenderCount()
+{
+  return this->Core->GetShadowMapRenderCount();
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationCompositeMapperHelper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Core->ReleaseGraphicsResources(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationCompositeMapperHelper::Shades(const vtkOpenGLHelper* cellBO, vtkActor* act)
+{
+  const std::ptrdiff_t type = cellBO - this->Primitives;
+  if (type < PrimitiveStart || type >= PrimitiveEnd)
+  {
+    return false;
+  }
+  return vtkGlobalIlluminationMapperCore::Shades(
+    static_cast<int>(type), this->PrimitiveInfo[cellBO].LastLightComplexity, act);
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationCompositeMapperHelper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
+{
+  if (!ren->GetSelector())
+  {
+    this->Core->Prepare(ren, act,
+      vtkGlobalIlluminationMapperCore::MakeCasters(
+        this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()));
+  }
+  this->Superclass::RenderPieceDraw(ren, act);
+  this->Core->FinishDraw();
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildShaders(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  bool rebuild = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act);
+  const std::string key = this->Shades(&cellBO, act) ? this->Core->ShaderKey(act) : "VTK";
+  std::string& last = this->ShaderKeys[&cellBO];
+  if (key != last)
+  {
+    last = key;
+    rebuild = true;
+  }
+  return rebuild;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationCompositeMapperHelper::ReplaceShaderLight(
+  std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act)
+{
+  if (this->Shades(this->LastBoundBO, act))
+  {
+    this->Core->ReplaceShaderLight(shaders, act);
+  }
+  else
+  {
+    this->Superclass::ReplaceShaderLight(shaders, ren, act);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationCompositeMapperHelper::SetLightingShaderParameters(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  if (this->Shades(&cellBO, act))
+  {
+    this->Core->SetShaderParameters(cellBO.Program, ren);
+  }
+  else
+  {
+    this->Superclass::SetLightingShaderParameters(cellBO, ren, act);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildBufferObjects(
+  vtkRenderer* ren, vtkActor* act)
+{
+  const bool rebuild = this->Superclass::GetNeedToRebuildBufferObjects(ren, act);
+  return rebuild || this->Core->BufferKey() != this->BufferKey;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationCompositeMapperHelper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
+{
+  // An attribute is in the buffer if any block has it; AppendOneBufferObject fills the
+  // blocks that lack it.
+  bool albedo = false, indirect = false, emission = false;
+  for (const auto& entry : this->Data)
+  {
+    bool a, i, e;
+    this->Core->GetPresence(entry.first, a, i, e);
+    albedo = albedo || a;
+    indirect = indirect || i;
+    emission = emission || e;
+  }
+  this->Core->SetLayout(albedo, indirect, emission);
+  this->Core->ClearKept();
+  this->Superclass::BuildBufferObjects(ren, act);
+  this->Core->ClearKept();
+  this->BufferKey = this->Core->BufferKey();
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationCompositeMapperHelper::AppendOneBufferObject(vtkRenderer* ren,
+  vtkActor* act, vtkCompositeMapperHelperData* hdata, vtkIdType& flatIndex,
+  std::vector<unsigned char>& colors, std::vector<float>& norms)
+{
+  this->Superclass::AppendOneBufferObject(ren, act, hdata, flatIndex, colors, norms);
+  const auto attributes = this->Core->MakeAttributes(hdata->Data, true);
+  this->Core->Keep(attributes);
+  if (this->Core->GetHasAlbedo())
+  {
+    this->VBOs->AppendDataArray("giAlbedoMC", attributes.Albedo, VTK_FLOAT);
+  }
+  if (this->Core->GetHasIndirect())
+  {
+    this->VBOs->AppendDataArray("giIndirectMC", attributes.Indirect, VTK_FLOAT);
+  }
+  if (this->Core->GetHasEmission())
+  {
+    this->VBOs->AppendDataArray("giEmissionMC", attributes.Emission, VTK_FLOAT);
+  }
+}
