@@ -68,6 +68,27 @@ void AddValue(vtkFieldData* fd, const std::string& name, double value)
   array->InsertNextValue(value);
   fd->AddArray(array);
 }
+
+void AddValue(vtkFieldData* fd, const std::string& name, const std::string& value)
+{
+  vtkNew<vtkStringArray> array;
+  array->SetName(("LinkGI." + name).c_str());
+  array->InsertNextValue(value);
+  fd->AddArray(array);
+}
+
+linkgi::Backend ToEngineBackend(int backend)
+{
+  switch (backend)
+  {
+    case vtkGlobalIlluminationFilter::CPU:
+      return linkgi::Backend::Cpu;
+    case vtkGlobalIlluminationFilter::CUDA:
+      return linkgi::Backend::Cuda;
+    default:
+      return linkgi::Backend::Auto;
+  }
+}
 }
 
 //------------------------------------------------------------------------------
@@ -159,11 +180,10 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
 linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
   vtkGlobalIlluminationFilter* self)
 {
-  if (self->Backend == CUDA)
-  {
-    this->Warnings.emplace_back("CUDA backend not available in this build; using the CPU.");
-  }
+  // The engine decides CPU or GPU (Auto: the GPU when a CUDA device exists) and reports the
+  // choice in its stats; a CUDA request it cannot honour comes back as a warning.
   linkgi::SolverOptions options;
+  options.backend = ToEngineBackend(self->Backend);
   options.raysPerVertex = static_cast<std::uint32_t>(self->RaysPerVertex);
   options.bounces = static_cast<std::uint32_t>(self->NumberOfBounces);
   options.smoothing = self->Smoothing != 0;
@@ -238,6 +258,11 @@ void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(vtkGlobalIlluminat
   {
     AddValue(fd, t.first, t.second);
   }
+  // Which backend ran ("cpu" or "cuda"), on what, and why (Auto's choice or a fallback).
+  AddValue(fd, "Backend", s.backend);
+  AddValue(fd, "Device", s.device);
+  AddValue(fd, "BackendNote", s.backendNote);
+  AddValue(fd, "Gpus", static_cast<std::uint64_t>(s.devices));
   vtkNew<vtkStringArray> warnings;
   warnings->SetName("LinkGI.Warnings");
   const std::vector<std::string>* lists[] = { &this->Warnings, &s.warnings };

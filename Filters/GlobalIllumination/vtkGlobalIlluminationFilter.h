@@ -75,9 +75,9 @@ public:
   /// Where the engine runs.
   enum BackendType
   {
-    AUTO = 0, ///< the fastest available: the CPU in this build
-    CPU = 1,
-    CUDA = 2 ///< not available in this build yet: falls back to the CPU with a warning
+    AUTO = 0, ///< CUDA when the build has it and a CUDA device exists, else the CPU
+    CPU = 1,  ///< Embree on all cores
+    CUDA = 2  ///< the GPU(s); without a device (or out of GPU memory) the CPU, with a warning
   };
 
   ///@{
@@ -131,8 +131,11 @@ public:
 
   ///@{
   /**
-   * Backend: AUTO, CPU or CUDA. CUDA is not available in this build and falls back to the
-   * CPU with a warning. The default value is AUTO.
+   * Backend: AUTO, CPU or CUDA. AUTO runs on the GPU when this build has the CUDA backend
+   * and the machine a CUDA device, else on the CPU; CUDA falls back to the CPU with a
+   * warning when it cannot run (no device, GPU out of memory). The backend that ran, the
+   * device and the reason are in the output's field data (LinkGI.Backend, LinkGI.Device,
+   * LinkGI.BackendNote). The default value is AUTO.
    */
   vtkSetClampMacro(Backend, int, AUTO, CUDA);
   vtkGetMacro(Backend, int);

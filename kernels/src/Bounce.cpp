@@ -33,11 +33,8 @@ std::vector<Vec3f> iterateBounces(const SparseMatrix& transport, const BounceInp
     parallelRanges(n, 4096, [&](std::size_t begin, std::size_t end) {
       for (std::size_t e = begin; e < end; ++e)
       {
-        radiance[e] = inputs.albedo[e] * (inputs.fixedIrradiance[e] + indirect[e]) * (1.f / kPi);
-        if (!inputs.emission.empty())
-        {
-          radiance[e] += inputs.emission[e];
-        }
+        radiance[e] = outgoingRadiance(inputs.albedo[e], inputs.fixedIrradiance[e], indirect[e],
+          inputs.emission.empty() ? Vec3f(0.f) : inputs.emission[e]);
       }
     });
     gatherRgb(transport, radiance.data(), indirect.data());
@@ -52,21 +49,9 @@ std::vector<Vec3f> smoothFeatureAware(const std::vector<Vec3f>& values, const To
   parallelRanges(values.size(), 1024, [&](std::size_t begin, std::size_t end) {
     for (std::size_t e = begin; e < end; ++e)
     {
-      const Index v = elements.vertexOf(e);
-      const std::size_t sideOffset = e - v; // 0 for fronts, nv for backs
-      Vec3f sum = values[e];
-      float count = 1.f;
-      for (Index i = topology.neighbourOffsets[v]; i < topology.neighbourOffsets[v + 1]; ++i)
-      {
-        const Index u = topology.neighbours[i];
-        // Both sides of a two-sided pair negate both normals, so the test is the same.
-        if (dot(normals[v], normals[u]) > cosFeatureAngle)
-        {
-          sum += values[u + sideOffset];
-          count += 1.f;
-        }
-      }
-      out[e] = sum / count;
+      out[e] = smoothElement([&values](std::size_t i) { return values[i]; }, e,
+        elements.vertexOf(e), topology.neighbourOffsets.data(), topology.neighbours.data(),
+        normals.data(), cosFeatureAngle);
     }
   });
   return out;

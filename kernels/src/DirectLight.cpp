@@ -89,7 +89,7 @@ DirectLightResult computeDirectLight(const Scene& scene, const Topology& topolog
       const auto lit = [&unshadowed](Index v) { return maxComponent(unshadowed[v]) > 0.f; };
       const std::vector<float> vertexVisible = sampleVisibility(light, nv,
         [&](std::size_t v, Vec3f& o) {
-          o = scene.positions[v] + scene.normals[v] * (sign * eps) + shifts[v];
+          o = vertexLightOrigin(scene.positions[v], scene.normals[v], shifts[v], sign, eps);
           return lit(Index(v));
         },
         tracer, rays, "light links", passProgress());
@@ -99,13 +99,8 @@ DirectLightResult computeDirectLight(const Scene& scene, const Topology& topolog
         edgeVisible = sampleVisibility(light, topology.edges.size(),
           [&](std::size_t e, Vec3f& o) {
             const auto [a, b] = topology.edges[e];
-            Vec3f n = normalize(scene.normals[a] + scene.normals[b]);
-            if (dot(n, n) == 0.f)
-            {
-              n = scene.normals[a];
-            }
-            o = (scene.positions[a] + scene.positions[b]) * 0.5f + n * (sign * eps) +
-              (shifts[a] + shifts[b]) * 0.5f;
+            o = edgeLightOrigin(scene.positions[a], scene.positions[b], scene.normals[a],
+              scene.normals[b], shifts[a], shifts[b], sign, eps);
             return lit(a) || lit(b);
           },
           tracer, rays, "light links (one-ring)", passProgress());
@@ -117,16 +112,10 @@ DirectLightResult computeDirectLight(const Scene& scene, const Topology& topolog
           {
             continue;
           }
-          float visible = vertexVisible[v], weight = 1.f;
-          if (oversampling)
-          {
-            for (Index i = topology.neighbourOffsets[v]; i < topology.neighbourOffsets[v + 1]; ++i)
-            {
-              visible += 0.5f * edgeVisible[topology.vertexEdges[i]];
-              weight += 0.5f;
-            }
-          }
-          result.irradiance[v + side * nv] += unshadowed[v] * (visible / weight);
+          const float visible = oversampledVisibility(Index(v), vertexVisible.data(),
+            edgeVisible.data(), topology.neighbourOffsets.data(), topology.vertexEdges.data(),
+            oversampling);
+          result.irradiance[v + side * nv] += unshadowed[v] * visible;
         }
       });
     }

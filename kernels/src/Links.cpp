@@ -103,7 +103,7 @@ LinkHits traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
         const Index v = elements.vertexOf(x);
         const Vec3f normal = scene.normals[v] * elements.sideSign(x);
         const Frame frame = vertexFrame(normal, options.twist, options.seed, Index(x));
-        const Vec3f origin = scene.positions[v] + normal * eps + shifts[v];
+        const Vec3f origin = elementRayOrigin(scene.positions[v], normal, shifts[v], eps);
         for (std::size_t k = 0; k < n; ++k)
         {
           rays[k].origin = origin;
@@ -189,7 +189,12 @@ LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
   const std::size_t rows = elements.count(), n = dirs.size();
   const Environment& env = scene.environment;
   const std::size_t texels = env.hasTexture() ? env.texels.size() : 1;
-  const float w0 = kPi / float(n);
+  LinkParams params;
+  params.vertexCount = Index(elements.vertexCount);
+  params.twoSided = options.twoSided;
+  params.weight = kPi / float(n);
+  params.envWidth = env.hasTexture() ? env.width : 0;
+  params.envHeight = env.hasTexture() ? env.height : 0;
 
   constexpr std::size_t kChunkRows = 64;
   std::vector<RowChunk> chunks((rows + kChunkRows - 1) / kChunkRows);
@@ -217,30 +222,13 @@ LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
             scene.normals[v] * elements.sideSign(x), options.twist, options.seed, Index(x));
           for (std::size_t k = 0; k < n; ++k)
           {
-            const Hit& h = hits.hits[x * n + k];
-            if (h.triangle == kInvalidIndex)
+            const RayLinks links = linksOfRay(hits.hits[x * n + k], frame.toWorld(dirs[k]),
+              scene.triangles.data(), faceNormals.data(), params);
+            for (int j = 0; j < links.count; ++j)
             {
-              envRow.add(env.texelIndex(frame.toWorld(dirs[k])), w0);
-              ++chunk.rawLinks;
-              continue;
+              (links.environment ? envRow : row).add(links.column[j], links.weight[j]);
             }
-            // A back-face hit is blocked; it sees the back side, black unless two-sided.
-            const bool back = dot(frame.toWorld(dirs[k]), faceNormals[h.triangle]) > 0.f;
-            if (back && !options.twoSided)
-            {
-              continue;
-            }
-            const Index offset = back ? Index(elements.vertexCount) : 0;
-            const Index* tri = scene.triangles[h.triangle].v;
-            const float bary[3] = { 1.f - h.u - h.v, h.u, h.v };
-            for (int j = 0; j < 3; ++j)
-            {
-              if (bary[j] > 0.f)
-              {
-                row.add(tri[j] + offset, w0 * bary[j]);
-                ++chunk.rawLinks;
-              }
-            }
+            chunk.rawLinks += links.count;
           }
           rowCounts[x] = Index(row.flush(chunk.columns, chunk.weights));
           envRowCounts[x] = Index(envRow.flush(chunk.envColumns, chunk.envWeights));

@@ -2,15 +2,23 @@
 
 #include "linkgi/Error.h"
 
+#if LINKGI_HAVE_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#else
+#include <atomic>
+#include <exception>
+#include <thread>
+#include <vector>
+#endif
 
 #include <algorithm>
 
 namespace linkgi
 {
+#if LINKGI_HAVE_TBB
 void parallelRanges(std::size_t n, std::size_t grain,
   const std::function<void(std::size_t begin, std::size_t end)>& body)
 {
@@ -21,6 +29,65 @@ void parallelRanges(std::size_t n, std::size_t grain,
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, std::max<std::size_t>(grain, 1)),
     [&body](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
 }
+#else
+namespace
+{
+// Without TBB (the GPU machine): plain threads taking grain-sized ranges from a counter.
+thread_local int concurrencyLimit = 0;
+thread_local bool insideLoop = false;
+}
+
+void parallelRanges(std::size_t n, std::size_t grain,
+  const std::function<void(std::size_t begin, std::size_t end)>& body)
+{
+  grain = std::max<std::size_t>(grain, 1);
+  const std::size_t chunks = (n + grain - 1) / grain;
+  const std::size_t threads = insideLoop ? 1 : std::min<std::size_t>(chunks, workerCount());
+  if (threads <= 1)
+  {
+    if (n)
+    {
+      body(0, n);
+    }
+    return;
+  }
+  std::atomic<std::size_t> next{ 0 };
+  std::vector<std::exception_ptr> errors(threads);
+  const auto run = [&](std::size_t t) {
+    insideLoop = true; // nested loops run serially on this worker
+    try
+    {
+      for (std::size_t c = next++; c < chunks; c = next++)
+      {
+        body(c * grain, std::min(n, (c + 1) * grain));
+      }
+    }
+    catch (...)
+    {
+      errors[t] = std::current_exception();
+      next = chunks;
+    }
+    insideLoop = false;
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < threads; ++t)
+  {
+    pool.emplace_back(run, t);
+  }
+  run(0);
+  for (std::thread& th : pool)
+  {
+    th.join();
+  }
+  for (const std::exception_ptr& e : errors)
+  {
+    if (e)
+    {
+      std::rethrow_exception(e);
+    }
+  }
+}
+#endif
 
 void parallelFor(const char* stage, std::size_t n, std::size_t grain,
   const std::function<void(std::size_t begin, std::size_t end)>& body,
@@ -50,6 +117,7 @@ void parallelFor(const char* stage, std::size_t n, std::size_t grain,
   }
 }
 
+#if LINKGI_HAVE_TBB
 int workerCount()
 {
   return tbb::this_task_arena::max_concurrency();
@@ -60,4 +128,27 @@ void runWithConcurrency(int threads, const std::function<void()>& f)
   tbb::task_arena arena(std::max(1, threads));
   arena.execute(f);
 }
+#else
+int workerCount()
+{
+  const int hardware = std::max(1, int(std::thread::hardware_concurrency()));
+  return concurrencyLimit > 0 ? std::min(concurrencyLimit, hardware) : hardware;
+}
+
+void runWithConcurrency(int threads, const std::function<void()>& f)
+{
+  const int previous = concurrencyLimit;
+  concurrencyLimit = std::max(1, threads);
+  try
+  {
+    f();
+  }
+  catch (...)
+  {
+    concurrencyLimit = previous;
+    throw;
+  }
+  concurrencyLimit = previous;
+}
+#endif
 }

@@ -301,7 +301,7 @@ ReferenceSolution solveReference(const Scene& scene, const ReferenceOptions& opt
   const ProgressCallback& progress)
 {
   checkScene(scene, options);
-  auto tracer = createEmbreeRayTracer();
+  auto tracer = createCpuRayTracer();
   tracer->build(scene.positions, scene.triangles);
   return solveReference(scene, *tracer, options, progress);
 }

@@ -19,11 +19,7 @@ Index Environment::texelIndex(const Vec3f& d) const
   {
     return 0;
   }
-  const float u = std::atan2(d.x, -d.z) * (0.5f / kPi) + 0.5f;
-  const float v = std::acos(std::clamp(d.y, -1.f, 1.f)) / kPi;
-  const int col = std::min(width - 1, std::max(0, static_cast<int>(u * width)));
-  const int row = std::min(height - 1, std::max(0, static_cast<int>(v * height)));
-  return Index(row) * Index(width) + Index(col);
+  return environmentTexel(width, height, d);
 }
 
 Vec3f Environment::radiance(const Vec3f& d) const

@@ -1,10 +1,15 @@
 #include "linkgi/Solver.h"
 
 #include "linkgi/Bounce.h"
+#include "linkgi/Cuda.h"
 #include "linkgi/DirectLight.h"
 #include "linkgi/Error.h"
 #include "linkgi/Links.h"
 #include "linkgi/Sampling.h"
+
+#if LINKGI_HAVE_CUDA
+#include "cuda/CudaEngine.h"
+#endif
 
 #include <chrono>
 #include <cmath>
@@ -65,6 +70,21 @@ std::vector<Vec3f> environmentIrradiance(const SparseMatrix& wenv, const Environ
   gatherRgb(wenv, texelRadiance.data(), irradiance.data());
   return irradiance;
 }
+
+/// What an update must redo, relative to the last successful one.
+struct Changes
+{
+  bool topology = true, positions = true, geometry = true, relink = true, relight = true,
+       rebounce = true;
+};
+
+/// The host-side geometry data both backends read: new where the geometry changed.
+struct HostGeometry
+{
+  const Topology* topology = nullptr;
+  const std::vector<Vec3f>* shifts = nullptr;
+  const std::vector<Vec3f>* faceNormals = nullptr;
+};
 }
 
 struct Solver::Impl
@@ -73,16 +93,32 @@ struct Solver::Impl
   bool valid = false;
   Scene scene; // validated copy
   SolverOptions options;
-  std::unique_ptr<RayTracer> tracer;
-  bool tracerMatchesScene = false;
   Topology topology;
   std::vector<Vec3f> shifts, faceNormals;
-  LinkStructure links;
-  DirectLightResult direct;
   Solution solution;
   SolverStats stats;
 
+  // CPU backend caches; valid for `scene` only if cpuValid.
+  bool cpuValid = false;
+  std::unique_ptr<RayTracer> tracer;
+  bool tracerMatchesScene = false;
+  LinkStructure links;
+  DirectLightResult direct;
+
+#if LINKGI_HAVE_CUDA
+  // CUDA backend; its device caches are valid for `scene` only if cudaValid.
+  std::unique_ptr<cuda::Engine> engine;
+  int engineDevices = -1;
+  bool cudaValid = false;
+#endif
+
   void solve(Scene scene, const SolverOptions& options, const ProgressCallback& progress);
+  Changes detect(const Scene& s, const SolverOptions& opt) const;
+  Backend choose(const SolverOptions& opt, SolverStats& st);
+  void solveCpu(const Scene& s, const SolverOptions& opt, Changes c, const HostGeometry& g,
+    Solution& sol, SolverStats& st, const ProgressCallback& progress);
+  bool solveCuda(const Scene& s, const SolverOptions& opt, const Changes& c,
+    const HostGeometry& g, Solution& sol, SolverStats& st, const ProgressCallback& progress);
 };
 
 Solver::Solver() : impl(std::make_unique<Impl>()) {}
@@ -101,7 +137,11 @@ const SolverStats& Solver::stats() const
 void Solver::reset()
 {
   impl->valid = false;
+  impl->cpuValid = false;
   impl->tracerMatchesScene = false;
+#if LINKGI_HAVE_CUDA
+  impl->cudaValid = false;
+#endif
 }
 
 const Solution& Solver::update(const Scene& scene, const SolverOptions& options, const ProgressCallback& progress)
@@ -123,98 +163,218 @@ const Solution& Solver::update(const Scene& scene, const SolverOptions& options,
   return impl->solution;
 }
 
+Changes Solver::Impl::detect(const Scene& s, const SolverOptions& opt) const
+{
+  Changes c;
+  c.topology = !valid || s.vertexCount() != scene.vertexCount() || !sameArray(s.triangles, scene.triangles);
+  c.positions = c.topology || !sameArray(s.positions, scene.positions);
+  c.geometry = c.positions || !sameArray(s.normals, scene.normals);
+  c.relink = c.geometry || opt.raysPerVertex != options.raysPerVertex ||
+    opt.twoSided != options.twoSided || opt.twist != options.twist || opt.seed != options.seed ||
+    !sameEnvironmentLayout(s.environment, scene.environment);
+  c.relight = c.relink || !sameArray(s.lights, scene.lights) ||
+    opt.lightOversampling != options.lightOversampling;
+  c.rebounce = c.relight || !sameArray(s.albedo, scene.albedo) ||
+    !sameArray(s.emission, scene.emission) || !sameEnvironment(s.environment, scene.environment) ||
+    opt.bounces != options.bounces || opt.smoothing != options.smoothing ||
+    opt.featureAngleDegrees != options.featureAngleDegrees;
+  return c;
+}
+
+Backend Solver::Impl::choose(const SolverOptions& opt, SolverStats& st)
+{
+  if (opt.backend == Backend::Cpu)
+  {
+    st.backendNote = "CPU requested.";
+    return Backend::Cpu;
+  }
+  std::string why;
+  const std::vector<cuda::DeviceInfo> gpus = cuda::devices(&why);
+  if (gpus.empty())
+  {
+    if (opt.backend == Backend::Cuda)
+    {
+      st.warnings.push_back("CUDA backend not available in this build; using the CPU (" + why + ").");
+    }
+    st.backendNote = std::string(opt.backend == Backend::Auto ? "Auto" : "CUDA requested") +
+      ": " + why + "; using the CPU.";
+    return Backend::Cpu;
+  }
+  st.backendNote = std::string(opt.backend == Backend::Auto ? "Auto: " : "CUDA requested: ") +
+    std::to_string(gpus.size()) + " CUDA device(s) found; using the GPU.";
+  return Backend::Cuda;
+}
+
 void Solver::Impl::solve(Scene s, const SolverOptions& opt, const ProgressCallback& progress)
 {
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
+  const auto start = std::chrono::steady_clock::now();
   SolverStats st = stats; // lifetime counters carry over; per-update fields reset below
   st.builtBvh = st.refitBvh = st.builtLinks = st.builtLightLinks = st.ranBounces = false;
   st.msBvh = st.msLinks = st.msCompress = st.msLightLinks = st.msBounces = st.msSmoothing = 0;
   st.warnings = validateScene(s, opt.albedoPolicy);
 
-  const bool topologyChanged = !valid || s.vertexCount() != scene.vertexCount() ||
-    !sameArray(s.triangles, scene.triangles);
-  const bool positionsChanged = topologyChanged || !sameArray(s.positions, scene.positions);
-  const bool geometryChanged = positionsChanged || !sameArray(s.normals, scene.normals);
-  const bool relink = geometryChanged || opt.raysPerVertex != options.raysPerVertex ||
-    opt.twoSided != options.twoSided || opt.twist != options.twist || opt.seed != options.seed ||
-    !sameEnvironmentLayout(s.environment, scene.environment);
-  const bool relight = relink || !sameArray(s.lights, scene.lights) ||
-    opt.lightOversampling != options.lightOversampling;
-  const bool rebounce = relight || !sameArray(s.albedo, scene.albedo) ||
-    !sameArray(s.emission, scene.emission) || !sameEnvironment(s.environment, scene.environment) ||
-    opt.bounces != options.bounces || opt.smoothing != options.smoothing ||
-    opt.featureAngleDegrees != options.featureAngleDegrees;
-  if (!rebounce)
+  const Changes c = detect(s, opt);
+  if (!c.rebounce && opt.backend == options.backend && opt.cudaDevices == options.cudaDevices)
   {
     st.msTotal = msSince(start);
     stats = std::move(st);
     return;
   }
 
-  // New stage results go into locals and replace the cached ones only when the whole
-  // update succeeded, so an abort or error leaves the previous solution and caches intact.
+  // New results go into locals and replace the cached ones only when the whole update
+  // succeeded, so an abort or error leaves the previous solution and caches intact.
+  auto t = std::chrono::steady_clock::now();
+  Topology newTopology;
+  std::vector<Vec3f> newShifts, newFaceNormals;
+  if (c.topology)
+  {
+    newTopology = Topology::build(s.vertexCount(), s.triangles);
+  }
+  const Topology& topo = c.topology ? newTopology : topology;
+  if (c.geometry)
+  {
+    newShifts = originShifts(s, topo);
+    newFaceNormals = frontFaceNormals(s);
+  }
+  const HostGeometry g{ &topo, c.geometry ? &newShifts : &shifts,
+    c.geometry ? &newFaceNormals : &faceNormals };
+  const double msHost = msSince(t);
+
+  Solution sol;
+  const Backend backend = choose(opt, st);
+  if (backend != Backend::Cuda || !solveCuda(s, opt, c, g, sol, st, progress))
+  {
+    solveCpu(s, opt, c, g, sol, st, progress);
+  }
+  st.msBvh += msHost;
+
+  // Commit: nothing below can fail.
+  if (c.topology)
+  {
+    topology = std::move(newTopology);
+  }
+  if (c.geometry)
+  {
+    shifts = std::move(newShifts);
+    faceNormals = std::move(newFaceNormals);
+  }
+  scene = std::move(s);
+  options = opt;
+  solution = std::move(sol);
+  valid = true;
+  st.elements = solution.elementCount();
+  st.msTotal = msSince(start);
+  stats = std::move(st);
+}
+
+bool Solver::Impl::solveCuda(const Scene& s, const SolverOptions& opt, const Changes& c,
+  const HostGeometry& g, Solution& sol, SolverStats& st, const ProgressCallback& progress)
+{
+#if LINKGI_HAVE_CUDA
+  try
+  {
+    if (opt.raysPerVertex > cuda::kMaxCompressRays)
+    {
+      throw CudaError("the CUDA backend merges at most " + std::to_string(cuda::kMaxCompressRays) +
+          " rays per vertex",
+        false);
+    }
+    if (!engine || engineDevices != opt.cudaDevices)
+    {
+      engine.reset();
+      cudaValid = false;
+      engine = std::make_unique<cuda::Engine>(opt.cudaDevices);
+      engineDevices = opt.cudaDevices;
+    }
+    const bool all = !cudaValid;
+    cuda::StageMask mask;
+    mask.topology = all || c.topology;
+    mask.positions = all || c.positions;
+    mask.geometry = all || c.geometry;
+    mask.relink = all || c.relink;
+    mask.relight = all || c.relight;
+    cudaValid = false; // until this update has succeeded
+    engine->update(cuda::HostInputs{ s, *g.topology, *g.shifts, *g.faceNormals }, opt, mask, sol,
+      st, progress);
+    cudaValid = true;
+    cpuValid = false; // the CPU's caches no longer follow the scene
+    tracerMatchesScene = false;
+    st.backend = "cuda";
+    st.device = engine->description();
+    st.devices = engine->deviceCount();
+    st.linkedPerDevice.assign(engine->linkedElements().begin(), engine->linkedElements().end());
+    st.gpuPeakBytes = engine->peakBytes();
+    return true;
+  }
+  catch (const CudaError& e)
+  {
+    // Out of memory, a device that vanished, a kernel fault: the CPU takes over.
+    engine.reset();
+    st.warnings.push_back(std::string("The CUDA backend failed (") + e.what() + "); using the CPU.");
+    st.backendNote = "CUDA failed; using the CPU.";
+    return false;
+  }
+#else
+  (void)s, (void)opt, (void)c, (void)g, (void)sol, (void)st, (void)progress;
+  return false;
+#endif
+}
+
+void Solver::Impl::solveCpu(const Scene& s, const SolverOptions& opt, Changes c,
+  const HostGeometry& g, Solution& sol, SolverStats& st, const ProgressCallback& progress)
+{
+  using clock = std::chrono::steady_clock;
+  if (!cpuValid)
+  {
+    c.relink = c.relight = true; // the caches belong to an older scene (the GPU ran since)
+  }
   auto t = clock::now();
   if (!tracer)
   {
-    tracer = createEmbreeRayTracer();
+    tracer = createCpuRayTracer();
   }
-  if (topologyChanged || !tracerMatchesScene)
+  if (c.topology || !tracerMatchesScene)
   {
     tracerMatchesScene = false;
     tracer->build(s.positions, s.triangles);
     st.builtBvh = true;
     ++st.bvhBuilds;
   }
-  else if (positionsChanged)
+  else if (c.positions)
   {
     tracerMatchesScene = false;
     tracer->refit(s.positions);
     st.refitBvh = true;
     ++st.bvhRefits;
   }
-  Topology newTopology;
-  std::vector<Vec3f> newShifts, newFaceNormals;
-  if (topologyChanged)
-  {
-    newTopology = Topology::build(s.vertexCount(), s.triangles);
-  }
-  const Topology& topo = topologyChanged ? newTopology : topology;
-  if (geometryChanged)
-  {
-    newShifts = originShifts(s, topo);
-    newFaceNormals = frontFaceNormals(s);
-  }
-  const auto& shiftsNow = geometryChanged ? newShifts : shifts;
-  const auto& faceNormalsNow = geometryChanged ? newFaceNormals : faceNormals;
   st.msBvh = msSince(t);
 
   LinkStructure newLinks;
-  if (relink)
+  if (c.relink)
   {
     const LinkOptions linkOptions{ opt.raysPerVertex, opt.twoSided, opt.twist, opt.seed };
     t = clock::now();
-    LinkHits hits = traceLinkRays(s, shiftsNow, *tracer, linkOptions, stageProgress(progress, 0.0, 0.75));
+    LinkHits hits = traceLinkRays(s, *g.shifts, *tracer, linkOptions, stageProgress(progress, 0.0, 0.75));
     st.msLinks = msSince(t);
     t = clock::now();
-    newLinks = compressLinks(s, hits, faceNormalsNow, linkOptions, stageProgress(progress, 0.75, 0.85));
+    newLinks = compressLinks(s, hits, *g.faceNormals, linkOptions, stageProgress(progress, 0.75, 0.85));
     st.msCompress = msSince(t);
     st.builtLinks = true;
     ++st.linkBuilds;
   }
-  const LinkStructure& linksNow = relink ? newLinks : links;
+  const LinkStructure& linksNow = c.relink ? newLinks : links;
 
   DirectLightResult newDirect;
-  if (relight)
+  if (c.relight)
   {
     t = clock::now();
-    newDirect = computeDirectLight(s, topo, shiftsNow, *tracer, opt.twoSided, opt.lightOversampling,
-      stageProgress(progress, 0.85, 0.95));
+    newDirect = computeDirectLight(s, *g.topology, *g.shifts, *tracer, opt.twoSided,
+      opt.lightOversampling, stageProgress(progress, 0.85, 0.95));
     st.msLightLinks = msSince(t);
     st.builtLightLinks = true;
     ++st.lightLinkBuilds;
   }
-  const DirectLightResult& directNow = relight ? newDirect : direct;
+  const DirectLightResult& directNow = c.relight ? newDirect : direct;
 
   t = clock::now();
   const Elements elements{ s.vertexCount(), opt.twoSided };
@@ -247,50 +407,42 @@ void Solver::Impl::solve(Scene s, const SolverOptions& opt, const ProgressCallba
   {
     t = clock::now();
     const float cosFeature = std::cos(opt.featureAngleDegrees * (kPi / 180.f));
-    indirect = smoothFeatureAware(indirect, topo, s.normals, elements, cosFeature);
+    indirect = smoothFeatureAware(indirect, *g.topology, s.normals, elements, cosFeature);
     st.msSmoothing = msSince(t);
   }
 
-  Solution sol;
   sol.direct = directNow.irradiance;
   sol.radiance.resize(ne);
   for (std::size_t e = 0; e < ne; ++e)
   {
     const Vec3f le = (e < nv && !s.emission.empty()) ? s.emission[e] : Vec3f(0.f);
-    sol.radiance[e] = le + inputs.albedo[e] * (sol.direct[e] + indirect[e]) * (1.f / kPi);
+    sol.radiance[e] = outgoingRadiance(inputs.albedo[e], sol.direct[e], indirect[e], le);
   }
   sol.indirect = std::move(indirect);
 
-  // Commit: nothing below can fail.
-  if (topologyChanged)
-  {
-    topology = std::move(newTopology);
-  }
-  if (geometryChanged)
-  {
-    shifts = std::move(newShifts);
-    faceNormals = std::move(newFaceNormals);
-  }
-  if (relink)
+  // Commit the CPU caches (the update cannot fail after this point).
+  if (c.relink)
   {
     links = std::move(newLinks);
   }
-  if (relight)
+  if (c.relight)
   {
     direct = std::move(newDirect);
   }
   tracerMatchesScene = true;
-  scene = std::move(s);
-  options = opt;
-  solution = std::move(sol);
-  valid = true;
-  st.elements = ne;
+  cpuValid = true;
+#if LINKGI_HAVE_CUDA
+  cudaValid = false; // the GPU's caches no longer follow `scene`
+#endif
+  st.backend = "cpu";
+  st.device = tracer->name();
+  st.devices = 0;
+  st.linkedPerDevice.clear();
+  st.gpuPeakBytes = 0;
   st.rays = links.rays;
   st.linksRaw = links.rawLinks;
   st.linksCompressed = links.transport.nonZeros();
   st.linkBytes = links.transport.bytes() + links.environment.bytes();
   st.lightRays = direct.shadowRays;
-  st.msTotal = msSince(start);
-  stats = std::move(st);
 }
 }

@@ -1,21 +1,32 @@
 // linkgi-bench: one JSON object per line per scene and backend, with stage timings, ray
-// rates, link counts, and a plain Embree rtcIntersect1 loop over the same rays measured in
-// the same run, so the engine's overhead shows as a ratio.
+// rates, link counts and memory. On the CPU also a plain Embree rtcIntersect1 loop over the
+// same rays (the engine's overhead as a ratio); on the GPU our bounce gather against
+// cuSPARSE on the same matrix. --dump / --compare store and check solutions across backends.
+#include "BenchScenes.h"
+
+#include "linkgi/Cuda.h"
 #include "linkgi/Error.h"
-#include "linkgi/Links.h"
-#include "linkgi/Sampling.h"
+#include "linkgi/Metrics.h"
+#include "linkgi/Parallel.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 
-#include <embree3/rtcore.h>
-#include <tbb/parallel_for.h>
+#if LINKGI_HAVE_CUDA
+#include "BenchCuda.h"
+#endif
+
+#include <sys/resource.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <cstring>
+#include <fstream>
 #include <sstream>
 #include <string>
+
+namespace linkgi::bench
+{
+double bareEmbreeRaysPerSecond(const Scene& scene, const SolverOptions& options);
+}
 
 namespace
 {
@@ -24,9 +35,10 @@ using namespace linkgi;
 struct Args
 {
   std::vector<std::string> scenes = standardSceneNames();
-  std::string backend = "cpu";
   SolverOptions options;
   int repeat = 3;
+  std::string dump, compare;
+  bool bare = true, gather = true;
 };
 
 std::vector<std::string> split(const std::string& s)
@@ -40,9 +52,21 @@ std::vector<std::string> split(const std::string& s)
   return out;
 }
 
+Backend parseBackend(const std::string& name)
+{
+  if (name == "cpu")
+    return Backend::Cpu;
+  if (name == "cuda")
+    return Backend::Cuda;
+  if (name == "auto")
+    return Backend::Auto;
+  throw Error("Unknown backend '" + name + "'; use cpu, cuda or auto.");
+}
+
 Args parse(int argc, char** argv)
 {
   Args a;
+  a.options.backend = Backend::Cpu;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -62,119 +86,198 @@ Args parse(int argc, char** argv)
     else if (arg == "--repeat")
       a.repeat = std::max(1, std::stoi(value()));
     else if (arg == "--backend")
-      a.backend = value();
+      a.options.backend = parseBackend(value());
+    else if (arg == "--devices")
+      a.options.cudaDevices = std::stoi(value());
+    else if (arg == "--bvh-update")
+      a.options.cudaBvhUpdate = value() == "refit" ? CudaBvhUpdate::Refit : CudaBvhUpdate::Rebuild;
+    else if (arg == "--dump")
+      a.dump = value();
+    else if (arg == "--compare")
+      a.compare = value();
+    else if (arg == "--no-bare")
+      a.bare = false;
+    else if (arg == "--no-gather")
+      a.gather = false;
     else
     {
       throw Error("Usage: linkgi-bench [--scenes a,b] [--rays 256] [--bounces 3] [--repeat 3] "
-                  "[--backend cpu]; unknown argument " + arg + ".");
+                  "[--backend cpu|cuda|auto] [--devices N] [--bvh-update rebuild|refit] "
+                  "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather]; unknown argument " +
+        arg + ".");
     }
-  }
-  if (a.backend != "cpu")
-  {
-    throw Error("Backend '" + a.backend + "' is not available in this build; use cpu.");
   }
   return a;
 }
 
-/// The link rays of the solver, materialised once.
-std::vector<RTCRayHit> linkRays(const Scene& scene, const SolverOptions& o)
+void writeSolution(const std::string& path, const Solution& s)
 {
-  const std::vector<Vec3f> dirs = makeDirectionSet(o.raysPerVertex);
-  const std::vector<Vec3f> shifts = originShifts(scene, Topology::build(scene.vertexCount(), scene.triangles));
-  const float eps = rayEpsilon(scene);
-  std::vector<RTCRayHit> rays(scene.vertexCount() * dirs.size());
-  tbb::parallel_for(std::size_t(0), scene.vertexCount(), [&](std::size_t v) {
-    const Frame f = vertexFrame(scene.normals[v], o.twist, o.seed, Index(v));
-    const Vec3f org = scene.positions[v] + scene.normals[v] * eps + shifts[v];
-    for (std::size_t k = 0; k < dirs.size(); ++k)
-    {
-      RTCRayHit& r = rays[v * dirs.size() + k];
-      std::memset(&r, 0, sizeof(r));
-      const Vec3f d = f.toWorld(dirs[k]);
-      r.ray.org_x = org.x, r.ray.org_y = org.y, r.ray.org_z = org.z;
-      r.ray.dir_x = d.x, r.ray.dir_y = d.y, r.ray.dir_z = d.z;
-      r.ray.tfar = 3.0e38f;
-      r.ray.mask = 0xffffffffu;
-      r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    }
-  });
-  return rays;
+  std::ofstream f(path, std::ios::binary);
+  const std::uint64_t n = s.elementCount();
+  f.write(reinterpret_cast<const char*>(&n), sizeof(n));
+  for (const auto* v : { &s.direct, &s.indirect, &s.radiance })
+  {
+    f.write(reinterpret_cast<const char*>(v->data()), std::streamsize(n * sizeof(Vec3f)));
+  }
+  if (!f)
+  {
+    throw Error("Could not write " + path + ".");
+  }
 }
 
-/// Rays per second of a plain parallel rtcIntersect1 loop on a default Embree scene.
-double bareEmbreeRaysPerSecond(const Scene& scene, std::vector<RTCRayHit> rays)
+Solution readSolution(const std::string& path)
 {
-  RTCDevice device = rtcNewDevice(nullptr);
-  RTCScene rtc = rtcNewScene(device);
-  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
-    g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, scene.vertexCount()));
-  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-    g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, scene.triangleCount()));
-  std::memcpy(vb, scene.positions.data(), 12 * scene.vertexCount());
-  std::memcpy(ib, scene.triangles.data(), 12 * scene.triangleCount());
-  rtcCommitGeometry(g);
-  rtcAttachGeometry(rtc, g);
-  rtcReleaseGeometry(g);
-  rtcCommitScene(rtc);
-  const auto start = std::chrono::steady_clock::now();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024),
-    [&](const tbb::blocked_range<std::size_t>& r) {
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      for (std::size_t i = r.begin(); i < r.end(); ++i)
-      {
-        rtcIntersect1(rtc, &context, &rays[i]);
-      }
-    });
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  rtcReleaseScene(rtc);
-  rtcReleaseDevice(device);
-  return rays.size() / s;
+  std::ifstream f(path, std::ios::binary);
+  std::uint64_t n = 0;
+  f.read(reinterpret_cast<char*>(&n), sizeof(n));
+  Solution s;
+  for (auto* v : { &s.direct, &s.indirect, &s.radiance })
+  {
+    v->resize(n);
+    f.read(reinterpret_cast<char*>(v->data()), std::streamsize(n * sizeof(Vec3f)));
+  }
+  if (!f)
+  {
+    throw Error("Could not read " + path + ".");
+  }
+  return s;
+}
+
+/// Worst channel of the relative RMSE of each output against `reference`, area-weighted
+/// ("aw") and per vertex unweighted ("pv").
+std::string agreement(const Scene& scene, const Solution& a, const Solution& reference)
+{
+  const std::vector<float> areas = vertexAreas(scene), ones(areas.size(), 1.f);
+  std::ostringstream json;
+  json << "{";
+  const char* names[] = { "direct", "indirect", "radiance" };
+  const std::vector<Vec3f>* mine[] = { &a.direct, &a.indirect, &a.radiance };
+  const std::vector<Vec3f>* theirs[] = { &reference.direct, &reference.indirect, &reference.radiance };
+  for (int k = 0; k < 3; ++k)
+  {
+    const ErrorMetrics aw = relativeRmse(*mine[k], *theirs[k], areas);
+    const ErrorMetrics pv = relativeRmse(*mine[k], *theirs[k], ones);
+    json << (k ? "," : "") << "\"" << names[k] << "_aw\":" << maxComponent(aw.relRmse) << ",\""
+         << names[k] << "_pv\":" << maxComponent(pv.relRmse);
+  }
+  json << "}";
+  return json.str();
+}
+
+double peakHostMb()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
+
+/// Moves every light a little: a light-only change.
+Scene movedLights(const Scene& scene)
+{
+  Scene moved = scene;
+  for (Light& l : moved.lights)
+  {
+    l.position += Vec3f(0.01f, 0.f, 0.01f) * boundingDiagonal(scene.positions);
+  }
+  return moved;
 }
 
 void benchScene(const std::string& name, const Args& args)
 {
-  const Scene scene = makeStandardScene(name);
-  const std::vector<RTCRayHit> rays = linkRays(scene, args.options);
-  SolverStats full;
-  double msLight = 1e30, bare = 0;
-  // The solver and the bare loop alternate, so both see the same machine load; each
-  // figure is the best of `repeat` runs.
+  const Scene scene = bench::makeScene(name);
+  const Scene moved = movedLights(scene);
+  Solver solver;
+  solver.update(scene, args.options);
+  const SolverStats cold = solver.stats();
+  // Warm full updates (reset() forgets every cached stage but keeps allocations), then
+  // light-only updates; each figure is the best of `repeat`.
+  SolverStats full = cold;
+  double msLight = 1e30;
   for (int r = 0; r < args.repeat; ++r)
   {
-    Solver solver;
+    solver.reset();
     solver.update(scene, args.options);
-    if (r == 0 || solver.stats().msLinks < full.msLinks)
+    if (solver.stats().msTotal < full.msTotal || r == 0)
     {
       full = solver.stats();
     }
-    // A light-only change: move every light a little.
-    Scene moved = scene;
-    for (Light& l : moved.lights)
+    for (const Scene* s : { &moved, &scene })
     {
-      l.position += Vec3f(0.01f, 0.f, 0.01f) * boundingDiagonal(scene.positions);
+      solver.update(*s, args.options);
+      if (solver.stats().builtLinks)
+      {
+        throw Error("A light-only change rebuilt the links.");
+      }
+      msLight = std::min(msLight, solver.stats().msTotal);
     }
-    solver.update(moved, args.options);
-    if (solver.stats().builtLinks)
-    {
-      throw Error("A light-only change rebuilt the links.");
-    }
-    msLight = std::min(msLight, solver.stats().msTotal);
-    bare = std::max(bare, bareEmbreeRaysPerSecond(scene, rays));
   }
-  const double raysPerS = full.rays / (full.msLinks * 1e-3);
-  std::printf("{\"scene\":\"%s\",\"backend\":\"%s\",\"threads\":%d,\"vertices\":%zu,\"triangles\":%zu,"
-              "\"rays_per_vertex\":%u,\"bounces\":%u,\"rays\":%llu,\"rays_per_s\":%.4g,"
-              "\"bare_embree_rays_per_s\":%.4g,\"ray_rate_ratio\":%.3f,"
-              "\"links_raw\":%llu,\"links_compressed\":%llu,\"link_bytes\":%llu,\"light_rays\":%llu,"
-              "\"ms_bvh\":%.3f,\"ms_links\":%.3f,\"ms_compress\":%.3f,\"ms_light_links\":%.3f,"
-              "\"ms_bounces\":%.3f,\"ms_smoothing\":%.3f,\"ms_full_update\":%.3f,\"ms_light_update\":%.3f}\n",
-    name.c_str(), args.backend.c_str(), workerCount(), scene.vertexCount(), scene.triangleCount(),
-    args.options.raysPerVertex, args.options.bounces, (unsigned long long)full.rays, raysPerS, bare,
-    raysPerS / bare, (unsigned long long)full.linksRaw, (unsigned long long)full.linksCompressed,
-    (unsigned long long)full.linkBytes, (unsigned long long)full.lightRays, full.msBvh, full.msLinks,
-    full.msCompress, full.msLightLinks, full.msBounces, full.msSmoothing, full.msTotal, msLight);
+  const Solution& solution = solver.solution();
+  std::ostringstream extra;
+  if (name == "torso")
+  {
+    // A deformation: same triangles, moved vertices (BVH refit or rebuild, links, all after).
+    SceneParams bent;
+    bent.deformation = 0.5f;
+    Solver deforming;
+    deforming.update(scene, args.options);
+    deforming.update(makeStandardScene("torso", bent), args.options);
+    extra << ",\"ms_deform_update\":" << deforming.stats().msTotal
+          << ",\"deform_bvh\":\"" << (deforming.stats().builtBvh ? "rebuild" : "refit") << "\"";
+  }
+  if (!args.dump.empty())
+  {
+    writeSolution(args.dump + "/" + name + ".bin", solution);
+  }
+  if (!args.compare.empty())
+  {
+    extra << ",\"agreement\":" << agreement(scene, solution, readSolution(args.compare + "/" + name + ".bin"));
+  }
+#if LINKGI_HAVE_CUDA
+  if (full.backend == "cuda" && args.gather)
+  {
+    const bench::GatherBenchmark g = bench::benchmarkGather(scene, args.options, 20);
+    extra << ",\"gather\":{\"rows\":" << g.rows << ",\"nnz\":" << g.nonZeros
+          << ",\"useful_mb\":" << g.usefulBytes / 1e6 << ",\"ms_gather\":" << g.msGather
+          << ",\"tb_per_s\":" << g.usefulBytes / (g.msGather * 1e-3) / 1e12
+          << ",\"ms_fused_bounce\":" << g.msBounce << ",\"ms_cusparse_3spmv\":" << g.msCusparse
+          << ",\"speedup_vs_cusparse\":" << g.msCusparse / g.msGather
+          << ",\"max_rel_diff\":" << g.maxRelativeDifference << "}";
+  }
+#endif
+#if LINKGI_HAVE_EMBREE
+  if (full.backend == "cpu" && args.bare)
+  {
+    const double bare = bench::bareEmbreeRaysPerSecond(scene, args.options);
+    extra << ",\"bare_embree_rays_per_s\":" << bare << ",\"ray_rate_ratio\":"
+          << full.rays / (full.msLinks * 1e-3) / bare;
+  }
+#endif
+  std::ostringstream perDevice;
+  for (std::size_t i = 0; i < full.linkedPerDevice.size(); ++i)
+  {
+    perDevice << (i ? "," : "") << full.linkedPerDevice[i];
+  }
+  std::printf("{\"scene\":\"%s\",\"backend\":\"%s\",\"device\":\"%s\",\"devices\":%d,\"threads\":%d,"
+              "\"vertices\":%zu,\"triangles\":%zu,\"rays_per_vertex\":%u,\"bounces\":%u,\"rays\":%llu,"
+              "\"rays_per_s\":%.4g,\"links_raw\":%llu,\"links_compressed\":%llu,\"link_bytes\":%llu,"
+              "\"light_rays\":%llu,\"ms_bvh\":%.3f,\"ms_links\":%.3f,\"ms_compress\":%.3f,"
+              "\"ms_link_generation\":%.3f,\"ms_light_links\":%.3f,\"ms_bounces\":%.3f,"
+              "\"ms_smoothing\":%.3f,\"ms_full_update\":%.3f,\"ms_full_update_cold\":%.3f,"
+              "\"ms_light_update\":%.3f,\"gpu_peak_mb\":%.1f,\"host_peak_mb\":%.1f,"
+              "\"linked_per_device\":[%s]%s,\"note\":\"%s\"}\n",
+    name.c_str(), full.backend.c_str(), full.device.c_str(), full.devices, workerCount(),
+    scene.vertexCount(), scene.triangleCount(), args.options.raysPerVertex, args.options.bounces,
+    (unsigned long long)full.rays, full.rays / (full.msLinks * 1e-3),
+    (unsigned long long)full.linksRaw, (unsigned long long)full.linksCompressed,
+    (unsigned long long)full.linkBytes, (unsigned long long)full.lightRays, full.msBvh,
+    full.msLinks, full.msCompress, full.msLinks + full.msCompress, full.msLightLinks,
+    full.msBounces, full.msSmoothing, full.msTotal, cold.msTotal, msLight,
+    full.gpuPeakBytes / 1048576.0, peakHostMb(), perDevice.str().c_str(), extra.str().c_str(),
+    full.backendNote.c_str());
+  for (const std::string& w : full.warnings)
+  {
+    std::fprintf(stderr, "linkgi-bench: %s: %s\n", name.c_str(), w.c_str());
+  }
   std::fflush(stdout);
 }
 }

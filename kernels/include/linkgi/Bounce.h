@@ -5,6 +5,36 @@
 
 namespace linkgi
 {
+/// Outgoing radiance of a diffuse element: L = Le + rho/pi (E_fixed + E_ind).
+LINKGI_HOST_DEVICE inline Vec3f outgoingRadiance(const Vec3f& albedo, const Vec3f& fixedIrradiance,
+  const Vec3f& indirect, const Vec3f& emission)
+{
+  return albedo * (fixedIrradiance + indirect) * (1.f / kPi) + emission;
+}
+
+/// Eq. 5-6 for element e (vertex v = e mod vertexCount): the mean of its value and those of
+/// one-ring neighbours whose normals are within the feature angle. `value(i)` reads element
+/// i; the back side of a two-sided pair averages with back sides.
+template <typename ValueAt>
+LINKGI_HOST_DEVICE inline Vec3f smoothElement(const ValueAt& value, std::size_t e, Index v,
+  const Index* offsets, const Index* neighbours, const Vec3f* normals, float cosFeatureAngle)
+{
+  const std::size_t sideOffset = e - v; // 0 for fronts, vertexCount for backs
+  Vec3f sum = value(e);
+  float count = 1.f;
+  for (Index i = offsets[v]; i < offsets[v + 1]; ++i)
+  {
+    const Index u = neighbours[i];
+    // Both sides of a two-sided pair negate both normals, so the test is the same.
+    if (dot(normals[v], normals[u]) > cosFeatureAngle)
+    {
+      sum += value(u + sideOffset);
+      count += 1.f;
+    }
+  }
+  return sum / count;
+}
+
 /// y = M x for RGB vectors (one gather per row; rows in parallel).
 void gatherRgb(const SparseMatrix& m, const Vec3f* x, Vec3f* y);
 

@@ -60,6 +60,43 @@ LINKGI_HOST_DEVICE inline Ray shadowRay(const Light& light, const Vec3f& origin,
   return r;
 }
 
+/// Shadow-ray origin of vertex v's sample on side `sign` (+1 front, -1 back).
+LINKGI_HOST_DEVICE inline Vec3f vertexLightOrigin(const Vec3f& p, const Vec3f& n, const Vec3f& shift,
+  float sign, float eps)
+{
+  return p + n * (sign * eps) + shift;
+}
+
+/// Shadow-ray origin of the midpoint sample of edge (a, b): offset along the mean normal
+/// (a's normal where the two cancel) and by the mean origin shift.
+LINKGI_HOST_DEVICE inline Vec3f edgeLightOrigin(const Vec3f& pa, const Vec3f& pb, const Vec3f& na,
+  const Vec3f& nb, const Vec3f& shiftA, const Vec3f& shiftB, float sign, float eps)
+{
+  Vec3f n = normalize(na + nb);
+  if (dot(n, n) == 0.f)
+  {
+    n = na;
+  }
+  return (pa + pb) * 0.5f + n * (sign * eps) + (shiftA + shiftB) * 0.5f;
+}
+
+/// Hat-weighted visibility of vertex v: its own sample (weight 1) and the midpoints of its
+/// incident edges (weight 1/2 each) when oversampling.
+LINKGI_HOST_DEVICE inline float oversampledVisibility(Index v, const float* vertexVisible,
+  const float* edgeVisible, const Index* offsets, const Index* vertexEdges, bool oversampling)
+{
+  float visible = vertexVisible[v], weight = 1.f;
+  if (oversampling)
+  {
+    for (Index i = offsets[v]; i < offsets[v + 1]; ++i)
+    {
+      visible += 0.5f * edgeVisible[vertexEdges[i]];
+      weight += 0.5f;
+    }
+  }
+  return visible / weight;
+}
+
 struct DirectLightResult
 {
   std::vector<Vec3f> irradiance; ///< per element (back sides after front sides if two-sided)

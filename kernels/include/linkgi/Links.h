@@ -16,9 +16,9 @@ struct Elements
 {
   std::size_t vertexCount = 0;
   bool twoSided = false;
-  std::size_t count() const { return twoSided ? 2 * vertexCount : vertexCount; }
-  Index vertexOf(std::size_t e) const { return Index(e < vertexCount ? e : e - vertexCount); }
-  float sideSign(std::size_t e) const { return e < vertexCount ? 1.f : -1.f; }
+  LINKGI_HOST_DEVICE std::size_t count() const { return twoSided ? 2 * vertexCount : vertexCount; }
+  LINKGI_HOST_DEVICE Index vertexOf(std::size_t e) const { return Index(e < vertexCount ? e : e - vertexCount); }
+  LINKGI_HOST_DEVICE float sideSign(std::size_t e) const { return e < vertexCount ? 1.f : -1.f; }
 };
 
 /// Sparse matrix in CSR form; row = receiving element.
@@ -63,6 +63,67 @@ struct LinkHits
   std::vector<Hit> hits; ///< elements x raysPerVertex, row-major
   std::uint32_t raysPerVertex = 0;
 };
+
+/// What turning one ray's hit into links needs besides the hit: plain data for the GPU.
+struct LinkParams
+{
+  Index vertexCount = 0;
+  bool twoSided = false;
+  float weight = 0.f;  ///< pi / n_C
+  int envWidth = 0;    ///< lat-long environment size, 0 x 0 for a constant colour (texel 0)
+  int envHeight = 0;
+};
+
+/// The links one ray adds to its element's row: up to three (element, weight) pairs for a
+/// hit (barycentric weights, back sides offset by vertexCount), one environment texel for a
+/// miss, none for a back-face hit on one-sided elements (the ray is blocked and sees black).
+struct RayLinks
+{
+  Index column[3];
+  float weight[3];
+  int count = 0;
+  bool environment = false;
+};
+
+LINKGI_HOST_DEVICE inline RayLinks linksOfRay(const Hit& h, const Vec3f& direction,
+  const Triangle* triangles, const Vec3f* faceNormals, const LinkParams& p)
+{
+  RayLinks r;
+  if (h.triangle == kInvalidIndex)
+  {
+    r.environment = true;
+    r.count = 1;
+    r.column[0] = p.envWidth > 0 ? environmentTexel(p.envWidth, p.envHeight, direction) : 0;
+    r.weight[0] = p.weight;
+    return r;
+  }
+  const bool back = dot(direction, faceNormals[h.triangle]) > 0.f;
+  if (back && !p.twoSided)
+  {
+    return r;
+  }
+  const Index offset = back ? p.vertexCount : 0;
+  const Triangle tri = triangles[h.triangle];
+  const float bary[3] = { 1.f - h.u - h.v, h.u, h.v };
+  for (int j = 0; j < 3; ++j)
+  {
+    if (bary[j] > 0.f)
+    {
+      r.column[r.count] = tri.v[j] + offset;
+      r.weight[r.count] = p.weight * bary[j];
+      ++r.count;
+    }
+  }
+  return r;
+}
+
+/// Where element rays start: off the surface along the side's normal, and shifted towards
+/// the one-ring centroid (see originShifts).
+LINKGI_HOST_DEVICE inline Vec3f elementRayOrigin(const Vec3f& position, const Vec3f& sideNormal,
+  const Vec3f& shift, float eps)
+{
+  return position + sideNormal * eps + shift;
+}
 
 /// Ray offset along the normal used throughout: a small fraction of the scene size.
 float rayEpsilon(const Scene& scene);

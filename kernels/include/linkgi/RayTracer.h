@@ -40,6 +40,13 @@ public:
   virtual void occluded(const Ray* rays, std::uint8_t* occluded, std::size_t count) const = 0;
 };
 
-/// The CPU backend, on Embree 3. Embree errors are reported as linkgi::Error.
+/// The CPU backend, on Embree 3. Embree errors are reported as linkgi::Error. Builds
+/// without Embree throw linkgi::Error here.
 std::unique_ptr<RayTracer> createEmbreeRayTracer();
+
+/// Our own BVH (the GPU's layout and traversal) on the CPU, for builds without Embree.
+std::unique_ptr<RayTracer> createBvhRayTracer();
+
+/// The CPU ray tracer of this build: Embree where available, else createBvhRayTracer().
+std::unique_ptr<RayTracer> createCpuRayTracer();
 }

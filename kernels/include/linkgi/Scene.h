@@ -37,6 +37,17 @@ struct Light
   float spotExponent = 0.f;
 };
 
+/// Texel of a width x height lat-long map seen along the unit direction d (layout below);
+/// the one formula the CPU and the GPU both use.
+LINKGI_HOST_DEVICE inline Index environmentTexel(int width, int height, const Vec3f& d)
+{
+  const float u = std::atan2(d.x, -d.z) * (0.5f / kPi) + 0.5f;
+  const float v = std::acos(fminf(fmaxf(d.y, -1.f), 1.f)) / kPi;
+  const int col = static_cast<int>(fminf(fmaxf(u * width, 0.f), float(width - 1)));
+  const int row = static_cast<int>(fminf(fmaxf(v * height, 0.f), float(height - 1)));
+  return Index(row) * Index(width) + Index(col);
+}
+
 /// Radiance arriving from infinity along directions that hit no geometry.
 /// A constant colour, optionally modulated by a lat-long (equirectangular) map with +Y up:
 /// column u = (atan2(d.x, -d.z) / 2pi + 1/2) * width, row v = acos(d.y) / pi * height.

@@ -10,6 +10,21 @@
 
 namespace linkgi
 {
+/// Where the solver runs.
+enum class Backend
+{
+  Auto, ///< CUDA when this build has it and a CUDA device exists, else the CPU (default)
+  Cpu,  ///< Embree and all cores
+  Cuda  ///< the GPU(s); falls back to the CPU with a warning when no device or memory is left
+};
+
+/// CUDA backend: what a deformation (same triangles, moved vertices) does to the GPU's BVH.
+enum class CudaBvhUpdate
+{
+  Rebuild, ///< a new linear BVH: about as fast as a refit on the GPU, and the tree stays tight
+  Refit    ///< new boxes for the old tree (faster for tiny motions; boxes overlap as it deforms)
+};
+
 struct SolverOptions
 {
   /// n_C: directions per vertex, a perfect square k*k (traced in 4x4 blocks). Default 256.
@@ -32,6 +47,12 @@ struct SolverOptions
   /// hard shadow edges do not alias onto vertices. Default on.
   bool lightOversampling = true;
   AlbedoPolicy albedoPolicy = AlbedoPolicy::Clamp;
+  /// CPU, CUDA, or Auto (CUDA when a device exists). Default Auto.
+  Backend backend = Backend::Auto;
+  /// CUDA: link generation runs on at most this many GPUs (0 = all of them). Default 0.
+  int cudaDevices = 0;
+  /// CUDA: BVH update on deformation. Default Rebuild.
+  CudaBvhUpdate cudaBvhUpdate = CudaBvhUpdate::Rebuild;
 };
 
 /// Per-element results. Elements are the vertices; with two-sided elements the back sides
@@ -58,7 +79,13 @@ struct SolverStats
   // Stage times of the last update in milliseconds (0 for stages that did not run).
   double msBvh = 0, msLinks = 0, msCompress = 0, msLightLinks = 0, msBounces = 0,
          msSmoothing = 0, msTotal = 0;
-  std::vector<std::string> warnings; ///< from scene validation
+  std::vector<std::string> warnings; ///< from scene validation and backend fallbacks
+  /// Which backend ran the last update ("cpu" or "cuda"), on what ("embree", "2 x NVIDIA
+  /// H200"), and why that one (the Auto choice or the reason for a fallback to the CPU).
+  std::string backend, device, backendNote;
+  int devices = 0;                         ///< GPUs the link stage used (0 on the CPU)
+  std::vector<std::uint64_t> linkedPerDevice; ///< elements each GPU linked, last link stage
+  std::uint64_t gpuPeakBytes = 0;          ///< most GPU memory in use during the update
 };
 
 /// Computes direct and multi-bounce indirect irradiance per vertex. Between updates it keeps

@@ -1,0 +1,205 @@
+// The CUDA backend on small scenes: the GPU tracer against the CPU's, agreement of the two
+// backends per stage option, caching, determinism, multi-GPU and the CPU fallback. Every
+// test that needs a GPU skips (with the reason) where there is none.
+#include "CudaFixtures.h"
+#include "SceneFixtures.h"
+
+#include "linkgi/BvhBuild.h"
+#include "linkgi/Scenes.h"
+
+#include <random>
+
+using namespace linkgi;
+using namespace linkgi::test;
+
+namespace
+{
+SolverOptions fast()
+{
+  SolverOptions o;
+  o.raysPerVertex = 64;
+  return o;
+}
+
+void expectIdentical(const Solution& a, const Solution& b)
+{
+  ASSERT_EQ(a.elementCount(), b.elementCount());
+  for (std::size_t i = 0; i < a.elementCount(); ++i)
+  {
+    ASSERT_EQ(a.direct[i], b.direct[i]) << i;
+    ASSERT_EQ(a.indirect[i], b.indirect[i]) << i;
+    ASSERT_EQ(a.radiance[i], b.radiance[i]) << i;
+  }
+}
+}
+
+TEST(Cuda, RequestWithoutDeviceFallsBackToTheCpu)
+{
+  std::string why;
+  if (!cuda::devices(&why).empty())
+  {
+    GTEST_SKIP() << "this machine has a CUDA device";
+  }
+  Solver solver;
+  solver.update(roomWithBlock(), onBackend(Backend::Cuda, fast()));
+  EXPECT_EQ(solver.stats().backend, "cpu");
+  ASSERT_FALSE(solver.stats().warnings.empty());
+  EXPECT_NE(solver.stats().warnings.back().find("CUDA backend not available"), std::string::npos);
+  // Auto says why it chose the CPU, without a warning.
+  Solver automatic;
+  automatic.update(roomWithBlock(), onBackend(Backend::Auto, fast()));
+  EXPECT_EQ(automatic.stats().backend, "cpu");
+  EXPECT_NE(automatic.stats().backendNote.find("Auto"), std::string::npos);
+  EXPECT_TRUE(automatic.stats().warnings.empty());
+}
+
+TEST(Cuda, GpuTracerFindsTheHostBvhHits)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  const Scene s = makeStandardScene("tearoom");
+  auto gpu = cuda::createRayTracer(0);
+  auto cpu = createBvhRayTracer();
+  gpu->build(s.positions, s.triangles);
+  cpu->build(s.positions, s.triangles);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  std::vector<Ray> rays(20000);
+  for (Ray& r : rays)
+  {
+    r.origin = s.positions[rng() % s.vertexCount()] + Vec3f(u(rng), u(rng), u(rng)) * 0.01f;
+    r.direction = normalize(Vec3f(u(rng), u(rng), u(rng)));
+  }
+  std::vector<Hit> a(rays.size()), b(rays.size());
+  gpu->trace(rays.data(), a.data(), rays.size());
+  cpu->trace(rays.data(), b.data(), rays.size());
+  std::vector<std::uint8_t> oa(rays.size()), ob(rays.size());
+  gpu->occluded(rays.data(), oa.data(), rays.size());
+  cpu->occluded(rays.data(), ob.data(), rays.size());
+  std::size_t differ = 0, occludedDiffer = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i)
+  {
+    differ += a[i].triangle != b[i].triangle && std::fabs(a[i].t - b[i].t) > 1e-4f;
+    occludedDiffer += oa[i] != ob[i];
+  }
+  EXPECT_LE(differ, rays.size() / 1000);
+  EXPECT_LE(occludedDiffer, rays.size() / 1000);
+}
+
+TEST(Cuda, BackendsAgreeOnARoom)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  expectBackendsAgree(roomWithBlock(), fast(), 2e-3f);
+}
+
+TEST(Cuda, BackendsAgreeTwoSidedWithAnEnvironmentMap)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  Scene s = twoSquares(false, 12);
+  s.environment.color = Vec3f(1.f);
+  s.environment.width = 8;
+  s.environment.height = 4;
+  for (int i = 0; i < 32; ++i)
+  {
+    s.environment.texels.push_back(Vec3f(0.1f * (i % 8), 0.2f, 0.05f * (i / 8)));
+  }
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = normalize(Vec3f(0.3f, -0.2f, -1.f));
+  s.lights.push_back(sun);
+  SolverOptions o = fast();
+  o.twoSided = true;
+  expectBackendsAgree(s, o, 2e-3f);
+}
+
+TEST(Cuda, ManyRaysPerVertexUseTheWideMerge)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  SolverOptions o = fast();
+  o.raysPerVertex = 1024; // 4 rays per thread in the merge
+  expectBackendsAgree(roomWithBlock(0.5f), o, 2e-3f);
+  o.raysPerVertex = 100; // not a multiple of the warp: warps straddle elements
+  expectBackendsAgree(roomWithBlock(0.5f), o, 2e-3f);
+}
+
+TEST(Cuda, TooManyRaysFallBackToTheCpuWithAWarning)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  SolverOptions o = onBackend(Backend::Cuda, fast());
+  o.raysPerVertex = 2025;
+  Solver solver;
+  solver.update(twoSquares(true, 2), o);
+  EXPECT_EQ(solver.stats().backend, "cpu");
+  ASSERT_FALSE(solver.stats().warnings.empty());
+  EXPECT_NE(solver.stats().warnings.back().find("CUDA backend failed"), std::string::npos);
+}
+
+TEST(Cuda, ResultsAreDeterministicAndCachedStagesMatchFreshSolves)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  Scene s = roomWithBlock();
+  const SolverOptions o = onBackend(Backend::Cuda, fast());
+  Solver a, b;
+  expectIdentical(a.update(s, o), b.update(s, o));
+  s.lights[0].position = { -0.7f, 2.2f, 0.1f };
+  const Solution moved = a.update(s, o);
+  EXPECT_FALSE(a.stats().builtLinks);
+  EXPECT_TRUE(a.stats().builtLightLinks);
+  Solver fresh;
+  expectIdentical(moved, fresh.update(s, o));
+  for (Vec3f& albedo : s.albedo)
+  {
+    albedo = albedo * 0.5f;
+  }
+  const Solution recoloured = a.update(s, o);
+  EXPECT_FALSE(a.stats().builtLightLinks);
+  Solver fresh2;
+  expectIdentical(recoloured, fresh2.update(s, o));
+}
+
+TEST(Cuda, DeformationRefitsOrRebuildsAndAgreesWithTheCpu)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  const Scene rest = makeStandardScene("torso");
+  SceneParams p;
+  p.deformation = 0.7f;
+  const Scene bent = makeStandardScene("torso", p);
+  for (CudaBvhUpdate mode : { CudaBvhUpdate::Rebuild, CudaBvhUpdate::Refit })
+  {
+    SolverOptions o = onBackend(Backend::Cuda, fast());
+    o.cudaBvhUpdate = mode;
+    Solver gpu;
+    gpu.update(rest, o);
+    const Solution& moved = gpu.update(bent, o);
+    EXPECT_EQ(gpu.stats().refitBvh, mode == CudaBvhUpdate::Refit);
+    EXPECT_EQ(gpu.stats().builtBvh, mode == CudaBvhUpdate::Rebuild);
+    Solver cpu;
+    const Solution& reference = cpu.update(bent, onBackend(Backend::Cpu, fast()));
+    EXPECT_LE(relativeError(moved.radiance, reference.radiance), 2e-3f);
+  }
+}
+
+TEST(Cuda, AllGpusGiveTheSameLinksAsOne)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  if (cuda::devices().size() < 2)
+  {
+    GTEST_SKIP() << "needs two CUDA devices";
+  }
+  const Scene s = makeStandardScene("tearoom");
+  SolverOptions one = onBackend(Backend::Cuda, fast()), all = one;
+  one.cudaDevices = 1;
+  all.cudaDevices = 0;
+  Solver a, b;
+  const Solution& single = a.update(s, one);
+  const Solution& multi = b.update(s, all);
+  ASSERT_GE(b.stats().devices, 2);
+  std::uint64_t linked = 0;
+  for (std::uint64_t n : b.stats().linkedPerDevice)
+  {
+    EXPECT_GT(n, 0u);
+    linked += n;
+  }
+  EXPECT_EQ(linked, s.vertexCount());
+  EXPECT_EQ(a.stats().linksCompressed, b.stats().linksCompressed);
+  expectIdentical(single, multi);
+}

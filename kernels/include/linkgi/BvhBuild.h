@@ -1,0 +1,246 @@
+// Linear BVH construction (Karras 2012) as per-item steps, so the GPU runs them as kernels
+// and the CPU as loops: Morton keys, the hierarchy from sorted keys, then bounds bottom-up.
+// The bottom-up pass is also the refit for moved vertices.
+#pragma once
+
+#include "linkgi/Bvh.h"
+
+#include <vector>
+
+namespace linkgi
+{
+namespace bvh
+{
+/// Axis-aligned box; empty when lo > hi.
+struct Box
+{
+  Vec3f lo{ 3.4e38f, 3.4e38f, 3.4e38f };
+  Vec3f hi{ -3.4e38f, -3.4e38f, -3.4e38f };
+
+  LINKGI_HOST_DEVICE void grow(const Vec3f& p)
+  {
+    lo = { fminf(lo.x, p.x), fminf(lo.y, p.y), fminf(lo.z, p.z) };
+    hi = { fmaxf(hi.x, p.x), fmaxf(hi.y, p.y), fmaxf(hi.z, p.z) };
+  }
+  LINKGI_HOST_DEVICE void grow(const Box& b)
+  {
+    grow(b.lo);
+    grow(b.hi);
+  }
+};
+
+LINKGI_HOST_DEVICE inline int clz64(std::uint64_t x)
+{
+#if defined(__CUDA_ARCH__)
+  return __clzll(static_cast<long long>(x));
+#else
+  return x == 0 ? 64 : __builtin_clzll(x);
+#endif
+}
+
+LINKGI_HOST_DEVICE inline int clz32(std::uint32_t x)
+{
+#if defined(__CUDA_ARCH__)
+  return __clz(static_cast<int>(x));
+#else
+  return x == 0 ? 32 : __builtin_clz(x);
+#endif
+}
+
+/// Spreads the low 21 bits of x to every third bit.
+LINKGI_HOST_DEVICE inline std::uint64_t spreadBits21(std::uint64_t x)
+{
+  x &= 0x1fffffull;
+  x = (x | x << 32) & 0x1f00000000ffffull;
+  x = (x | x << 16) & 0x1f0000ff0000ffull;
+  x = (x | x << 8) & 0x100f00f00f00f00full;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
+}
+
+/// 63-bit Morton code of the triangle centroid within the scene box.
+LINKGI_HOST_DEVICE inline std::uint64_t mortonKey(const Vec3f& a, const Vec3f& b, const Vec3f& c,
+  const Vec3f& sceneLo, const Vec3f& sceneInvExtent)
+{
+  const Vec3f centroid = (a + b + c) * (1.f / 3.f);
+  const float scale = 2097151.f; // 2^21 - 1
+  const auto quantize = [&](float x, float lo, float inv) {
+    const float q = (x - lo) * inv * scale;
+    return static_cast<std::uint64_t>(fminf(fmaxf(q, 0.f), scale));
+  };
+  return spreadBits21(quantize(centroid.x, sceneLo.x, sceneInvExtent.x)) << 2 |
+    spreadBits21(quantize(centroid.y, sceneLo.y, sceneInvExtent.y)) << 1 |
+    spreadBits21(quantize(centroid.z, sceneLo.z, sceneInvExtent.z));
+}
+
+/// Common-prefix length of sorted keys i and j, tie-broken by index so equal keys still
+/// form a binary tree; -1 outside [0, n).
+LINKGI_HOST_DEVICE inline int commonPrefix(const std::uint64_t* keys, int n, int i, int j)
+{
+  if (j < 0 || j >= n)
+  {
+    return -1;
+  }
+  const std::uint64_t a = keys[i], b = keys[j];
+  return a == b ? 64 + clz32(static_cast<std::uint32_t>(i ^ j)) : clz64(a ^ b);
+}
+
+/// Karras 2012, one internal node i of n - 1: finds the key range it covers and where that
+/// range splits, and links its two children (and their parents).
+LINKGI_HOST_DEVICE inline void buildInternalNode(const std::uint64_t* keys, int n, int i,
+  BvhNode* nodes, int* leafParents)
+{
+  const int d = commonPrefix(keys, n, i, i + 1) - commonPrefix(keys, n, i, i - 1) >= 0 ? 1 : -1;
+  const int minPrefix = commonPrefix(keys, n, i, i - d);
+  int maxLength = 2;
+  while (commonPrefix(keys, n, i, i + maxLength * d) > minPrefix)
+  {
+    maxLength *= 2;
+  }
+  int length = 0;
+  for (int t = maxLength / 2; t >= 1; t /= 2)
+  {
+    if (commonPrefix(keys, n, i, i + (length + t) * d) > minPrefix)
+    {
+      length += t;
+    }
+  }
+  const int j = i + length * d;
+  const int nodePrefix = commonPrefix(keys, n, i, j);
+  int split = 0;
+  for (int t = length;;)
+  {
+    t = (t + 1) / 2;
+    if (commonPrefix(keys, n, i, i + (split + t) * d) > nodePrefix)
+    {
+      split += t;
+    }
+    if (t <= 1)
+    {
+      break;
+    }
+  }
+  const int gamma = i + split * d + (d < 0 ? -1 : 0);
+  const int first = i < j ? i : j, last = i < j ? j : i;
+  BvhNode& node = nodes[i];
+  node.child[0] = first == gamma ? ~gamma : gamma;
+  node.child[1] = last == gamma + 1 ? ~(gamma + 1) : gamma + 1;
+  for (int c = 0; c < 2; ++c)
+  {
+    if (node.child[c] < 0)
+    {
+      leafParents[~node.child[c]] = i;
+    }
+    else
+    {
+      nodes[node.child[c]].parent = i;
+    }
+  }
+  if (i == 0)
+  {
+    node.parent = -1;
+  }
+}
+
+/// The leaf-order triangle record of original triangle `id`.
+LINKGI_HOST_DEVICE inline BvhTriangle makeTriangle(const Vec3f& a, const Vec3f& b, const Vec3f& c, Index id)
+{
+  return BvhTriangle{ a, id, b - a, 0.f, c - a, 0.f };
+}
+
+LINKGI_HOST_DEVICE inline Box triangleBox(const BvhTriangle& t)
+{
+  Box box;
+  box.grow(t.v0);
+  box.grow(t.v0 + t.e1);
+  box.grow(t.v0 + t.e2);
+  return box;
+}
+
+LINKGI_HOST_DEVICE inline void storeChildBox(BvhNode& node, int side, const Box& b)
+{
+  if (side == 0)
+  {
+    node.lo0x = b.lo.x, node.hi0x = b.hi.x, node.lo0y = b.lo.y, node.hi0y = b.hi.y;
+    node.lo0z = b.lo.z, node.hi0z = b.hi.z;
+  }
+  else
+  {
+    node.lo1x = b.lo.x, node.hi1x = b.hi.x, node.lo1y = b.lo.y, node.hi1y = b.hi.y;
+    node.lo1z = b.lo.z, node.hi1z = b.hi.z;
+  }
+}
+
+/// Reads a float that another GPU thread may have just written (bypassing L1).
+LINKGI_HOST_DEVICE inline float loadFresh(const float* p)
+{
+#if defined(__CUDA_ARCH__)
+  return __ldcg(p);
+#else
+  return *p;
+#endif
+}
+
+LINKGI_HOST_DEVICE inline Box unionOfChildren(const BvhNode& node)
+{
+  Box b;
+  b.lo = { fminf(loadFresh(&node.lo0x), loadFresh(&node.lo1x)),
+    fminf(loadFresh(&node.lo0y), loadFresh(&node.lo1y)),
+    fminf(loadFresh(&node.lo0z), loadFresh(&node.lo1z)) };
+  b.hi = { fmaxf(loadFresh(&node.hi0x), loadFresh(&node.hi1x)),
+    fmaxf(loadFresh(&node.hi0y), loadFresh(&node.hi1y)),
+    fmaxf(loadFresh(&node.hi0z), loadFresh(&node.hi1z)) };
+  return b;
+}
+
+/// Returns the previous value of *counter after adding 1 (atomically on the GPU).
+LINKGI_HOST_DEVICE inline unsigned arriveAt(unsigned* counter)
+{
+#if defined(__CUDA_ARCH__)
+  __threadfence(); // our child box must be visible before the sibling reads it
+  return atomicAdd(counter, 1u);
+#else
+  return __atomic_fetch_add(counter, 1u, __ATOMIC_ACQ_REL);
+#endif
+}
+
+/// Bottom-up bounds from leaf `leaf`: writes its box into its parent, and the second thread
+/// to arrive at a node carries the union on upwards. `arrivals` (n - 1 zeros) is consumed.
+LINKGI_HOST_DEVICE inline void propagateBounds(BvhNode* nodes, const int* leafParents,
+  const BvhTriangle* tris, unsigned* arrivals, int leaf)
+{
+  int child = ~leaf;
+  int node = leafParents[leaf];
+  Box box = triangleBox(tris[leaf]);
+  while (node >= 0)
+  {
+    storeChildBox(nodes[node], nodes[node].child[0] == child ? 0 : 1, box);
+    if (arriveAt(&arrivals[node]) == 0)
+    {
+      return; // the sibling subtree is not done; its thread continues from here
+    }
+#if defined(__CUDA_ARCH__)
+    __threadfence();
+#endif
+    box = unionOfChildren(nodes[node]);
+    child = node;
+    node = nodes[node].parent;
+  }
+}
+}
+
+/// A BVH built on the CPU with the same steps the GPU runs, in the same layout; used by the
+/// CPU ray tracer of builds without Embree, and by tests that check the GPU's layout.
+struct HostBvh
+{
+  std::vector<BvhNode> nodes;
+  std::vector<BvhTriangle> triangles;
+  std::vector<int> leafParents;
+
+  void build(const std::vector<Vec3f>& positions, const std::vector<Triangle>& triangles);
+  /// New positions, same triangles as the last build.
+  void refit(const std::vector<Vec3f>& positions, const std::vector<Triangle>& triangles);
+  BvhView view() const;
+};
+}

@@ -1,0 +1,24 @@
+// The CUDA entry points of builds without the CUDA backend (LINKGI_ENABLE_CUDA=OFF).
+#include "linkgi/Cuda.h"
+
+namespace linkgi::cuda
+{
+bool compiled()
+{
+  return false;
+}
+
+std::vector<DeviceInfo> devices(std::string* why)
+{
+  if (why)
+  {
+    *why = "this build has no CUDA backend (LINKGI_ENABLE_CUDA=OFF)";
+  }
+  return {};
+}
+
+std::unique_ptr<RayTracer> createRayTracer(int)
+{
+  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
+}
+}

@@ -1,0 +1,199 @@
+// Light exchange on the GPU: a custom RGB CSR gather (one pass over the matrix for all three
+// channels, 16-byte vector loads), fused with the next radiance; smoothing and the output.
+#include "Kernels.h"
+
+#include "linkgi/Bounce.h"
+
+namespace linkgi::cuda
+{
+namespace
+{
+constexpr int kThreads = 256;
+
+__device__ inline Vec3f toVec(const Rgba& c)
+{
+  return { c.r, c.g, c.b };
+}
+__device__ inline Rgba toRgba(const Vec3f& v)
+{
+  return { v.x, v.y, v.z, 0.f };
+}
+
+/// Sum over row `row` of M x with `Lanes` threads; every lane returns the full sum. All
+/// lanes of the warp must call it (the shuffles name the whole warp); rows past the end
+/// take part with an empty range.
+template <int Lanes>
+__device__ inline Vec3f gatherRow(const CsrView& m, const Rgba* __restrict__ x, Index row, int lane)
+{
+  const bool active = row < m.rows;
+  const Index begin = active ? __ldg(m.rowOffsets + row) : 0;
+  const Index end = active ? __ldg(m.rowOffsets + row + 1) : 0;
+  float r = 0.f, g = 0.f, b = 0.f;
+  Index i = begin + lane;
+  // Two entries per lane per step keep more loads in flight.
+  for (; i + Lanes < end; i += 2 * Lanes)
+  {
+    const Index c0 = __ldg(m.columns + i), c1 = __ldg(m.columns + i + Lanes);
+    const float w0 = __ldg(m.weights + i), w1 = __ldg(m.weights + i + Lanes);
+    const float4 x0 = __ldg(reinterpret_cast<const float4*>(x) + c0);
+    const float4 x1 = __ldg(reinterpret_cast<const float4*>(x) + c1);
+    r += w0 * x0.x + w1 * x1.x;
+    g += w0 * x0.y + w1 * x1.y;
+    b += w0 * x0.z + w1 * x1.z;
+  }
+  if (i < end)
+  {
+    const Index c = __ldg(m.columns + i);
+    const float w = __ldg(m.weights + i);
+    const float4 xc = __ldg(reinterpret_cast<const float4*>(x) + c);
+    r += w * xc.x;
+    g += w * xc.y;
+    b += w * xc.z;
+  }
+  for (int offset = Lanes / 2; offset > 0; offset /= 2)
+  {
+    r += __shfl_xor_sync(0xffffffffu, r, offset, Lanes);
+    g += __shfl_xor_sync(0xffffffffu, g, offset, Lanes);
+    b += __shfl_xor_sync(0xffffffffu, b, offset, Lanes);
+  }
+  return { r, g, b };
+}
+
+__device__ inline Vec3f albedoOf(const BounceParams& p, Index e)
+{
+  return p.albedo[e < p.vertexCount ? e : e - p.vertexCount];
+}
+__device__ inline Vec3f emissionOf(const BounceParams& p, Index e)
+{
+  return p.emission && e < p.vertexCount ? p.emission[e] : Vec3f(0.f);
+}
+
+template <int Lanes>
+__global__ void gatherKernel(CsrView m, const Rgba* __restrict__ x, Rgba* __restrict__ y)
+{
+  const std::size_t t = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  const Index row = Index(t / Lanes);
+  const Vec3f sum = gatherRow<Lanes>(m, x, row, int(t % Lanes));
+  if (row < m.rows && t % Lanes == 0)
+  {
+    y[row] = toRgba(sum);
+  }
+}
+
+template <int Lanes>
+__global__ void bounceKernel(CsrView w, BounceParams p, const Rgba* __restrict__ fixed,
+  const Rgba* __restrict__ radiance, Rgba* __restrict__ indirect, Rgba* __restrict__ next)
+{
+  const std::size_t t = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  const Index e = Index(t / Lanes);
+  const Vec3f sum = gatherRow<Lanes>(w, radiance, e, int(t % Lanes));
+  if (e < w.rows && t % Lanes == 0)
+  {
+    indirect[e] = toRgba(sum);
+    if (next)
+    {
+      next[e] = toRgba(outgoingRadiance(albedoOf(p, e), toVec(fixed[e]), sum, emissionOf(p, e)));
+    }
+  }
+}
+
+__global__ void startKernel(BounceParams p, Rgba* fixed, Rgba* radiance)
+{
+  const Index e = blockIdx.x * blockDim.x + threadIdx.x;
+  if (e < p.elements)
+  {
+    const Vec3f f = p.direct[e] + toVec(p.environment[e]);
+    fixed[e] = toRgba(f);
+    radiance[e] = toRgba(outgoingRadiance(albedoOf(p, e), f, Vec3f(0.f), emissionOf(p, e)));
+  }
+}
+
+__global__ void finishKernel(FinishParams p, Vec3f* out)
+{
+  const Index e = blockIdx.x * blockDim.x + threadIdx.x;
+  const BounceParams& b = p.bounce;
+  if (e >= b.elements)
+  {
+    return;
+  }
+  const auto indirectAt = [&p, &b](std::size_t i) {
+    const Vec3f bounced = p.indirect ? toVec(p.indirect[i]) : Vec3f(0.f);
+    return bounced + toVec(b.environment[i]);
+  };
+  const Index v = e < b.vertexCount ? e : e - b.vertexCount;
+  const Vec3f indirect = p.smoothing
+    ? smoothElement(indirectAt, e, v, p.neighbourOffsets, p.neighbours, p.normals, p.cosFeatureAngle)
+    : indirectAt(e);
+  const Vec3f direct = b.direct[e];
+  out[e] = direct;
+  out[b.elements + e] = indirect;
+  out[2 * std::size_t(b.elements) + e] =
+    outgoingRadiance(albedoOf(b, e), direct, indirect, emissionOf(b, e));
+}
+
+/// Threads per row from the mean row length: a full warp for long rows.
+int lanesFor(const CsrView& m)
+{
+  const double mean = m.rows ? double(m.nonZeros) / m.rows : 0.0;
+  return mean >= 48 ? 32 : mean >= 12 ? 16 : 8;
+}
+
+unsigned blocksForRows(Index rows, int lanes)
+{
+  return unsigned((std::size_t(rows) * lanes + kThreads - 1) / kThreads);
+}
+}
+
+void gatherRgb(const CsrView& m, const Rgba* x, Rgba* y, cudaStream_t stream)
+{
+  if (m.rows == 0)
+  {
+    return;
+  }
+  const int lanes = lanesFor(m);
+  const unsigned blocks = blocksForRows(m.rows, lanes);
+  if (lanes == 32)
+    gatherKernel<32><<<blocks, kThreads, 0, stream>>>(m, x, y);
+  else if (lanes == 16)
+    gatherKernel<16><<<blocks, kThreads, 0, stream>>>(m, x, y);
+  else
+    gatherKernel<8><<<blocks, kThreads, 0, stream>>>(m, x, y);
+  LINKGI_CUDA_CHECK_LAUNCH("gatherKernel");
+}
+
+void startBounces(const BounceParams& p, Rgba* fixedIrradiance, Rgba* radiance, cudaStream_t stream)
+{
+  if (p.elements)
+  {
+    startKernel<<<(p.elements + kThreads - 1) / kThreads, kThreads, 0, stream>>>(p, fixedIrradiance, radiance);
+    LINKGI_CUDA_CHECK_LAUNCH("startKernel");
+  }
+}
+
+void bounce(const CsrView& w, const BounceParams& p, const Rgba* fixedIrradiance,
+  const Rgba* radiance, Rgba* indirect, Rgba* nextRadiance, cudaStream_t stream)
+{
+  if (w.rows == 0)
+  {
+    return;
+  }
+  const int lanes = lanesFor(w);
+  const unsigned blocks = blocksForRows(w.rows, lanes);
+  if (lanes == 32)
+    bounceKernel<32><<<blocks, kThreads, 0, stream>>>(w, p, fixedIrradiance, radiance, indirect, nextRadiance);
+  else if (lanes == 16)
+    bounceKernel<16><<<blocks, kThreads, 0, stream>>>(w, p, fixedIrradiance, radiance, indirect, nextRadiance);
+  else
+    bounceKernel<8><<<blocks, kThreads, 0, stream>>>(w, p, fixedIrradiance, radiance, indirect, nextRadiance);
+  LINKGI_CUDA_CHECK_LAUNCH("bounceKernel");
+}
+
+void finish(const FinishParams& p, Vec3f* out, cudaStream_t stream)
+{
+  if (p.bounce.elements)
+  {
+    finishKernel<<<(p.bounce.elements + kThreads - 1) / kThreads, kThreads, 0, stream>>>(p, out);
+    LINKGI_CUDA_CHECK_LAUNCH("finishKernel");
+  }
+}
+}

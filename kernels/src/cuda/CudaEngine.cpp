@@ -1,0 +1,337 @@
+#include "EngineDevice.h"
+
+#include "linkgi/Cuda.h"
+#include "linkgi/Sampling.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace linkgi::cuda
+{
+namespace
+{
+double msSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+template <typename T>
+void uploadVector(GPUBuffer<T>& buffer, const std::vector<T>& host, cudaStream_t stream)
+{
+  buffer.upload(host, stream);
+}
+}
+
+CsrView DeviceCsr::view() const
+{
+  CsrView v;
+  v.rowOffsets = rowOffsets.data();
+  v.columns = columns.data();
+  v.weights = weights.data();
+  v.rows = rowOffsets.size() ? Index(rowOffsets.size() - 1) : 0;
+  v.nonZeros = Index(columns.size());
+  return v;
+}
+
+EngineDevice::EngineDevice(int device) : id(device)
+{
+  use();
+  LINKGI_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
+  for (cudaEvent_t& e : events)
+  {
+    LINKGI_CUDA_CHECK(cudaEventCreate(&e));
+  }
+}
+
+EngineDevice::~EngineDevice()
+{
+  cudaSetDevice(id);
+  for (cudaEvent_t e : events)
+  {
+    cudaEventDestroy(e);
+  }
+  cudaStreamDestroy(stream);
+}
+
+Engine::Engine(int maxDevices)
+{
+  std::string why;
+  const std::vector<DeviceInfo> found = cuda::devices(&why);
+  if (found.empty())
+  {
+    throw CudaError("The CUDA backend cannot run: " + why + ".", false);
+  }
+  const std::size_t use = maxDevices > 0 ? std::min<std::size_t>(found.size(), maxDevices) : found.size();
+  for (std::size_t d = 0; d < use; ++d)
+  {
+    devices.push_back(std::make_unique<EngineDevice>(found[d].index));
+  }
+  // Peer access lets the first device pull the other devices' link rows directly.
+  for (std::size_t d = 1; d < devices.size(); ++d)
+  {
+    int can = 0;
+    cudaDeviceCanAccessPeer(&can, devices[0]->id, devices[d]->id);
+    if (can)
+    {
+      devices[0]->use();
+      const cudaError_t status = cudaDeviceEnablePeerAccess(devices[d]->id, 0);
+      if (status != cudaSuccess && status != cudaErrorPeerAccessAlreadyEnabled)
+      {
+        LINKGI_CUDA_CHECK(status);
+      }
+      cudaGetLastError();
+    }
+  }
+}
+
+Engine::~Engine() = default;
+
+int Engine::deviceCount() const
+{
+  return int(devices.size());
+}
+
+std::string Engine::description() const
+{
+  cudaDeviceProp prop{};
+  cudaGetDeviceProperties(&prop, devices[0]->id);
+  return (devices.size() > 1 ? std::to_string(devices.size()) + " x " : std::string()) + prop.name;
+}
+
+CsrView Engine::transport() const
+{
+  return devices[0]->transport.view();
+}
+
+void Engine::samplePeakMemory()
+{
+  for (const auto& d : devices)
+  {
+    d->use();
+    std::size_t freeBytes = 0, totalBytes = 0;
+    if (cudaMemGetInfo(&freeBytes, &totalBytes) == cudaSuccess)
+    {
+      peak = std::max(peak, totalBytes - freeBytes);
+    }
+  }
+}
+
+void Engine::update(const HostInputs& in, const SolverOptions& options, const StageMask& mask,
+  Solution& solution, SolverStats& stats, const ProgressCallback& progress)
+{
+  using clock = std::chrono::steady_clock;
+  auto t = clock::now();
+  uploadGeometry(in, mask, stats, options);
+  stats.msBvh = msSince(t);
+  samplePeakMemory();
+  if (mask.relink)
+  {
+    buildLinks(in, options, stats, progress);
+    stats.builtLinks = true;
+    ++stats.linkBuilds;
+    samplePeakMemory();
+  }
+  if (progress && !progress("light links", 0.85))
+  {
+    throw Aborted();
+  }
+  if (mask.relight)
+  {
+    t = clock::now();
+    computeDirectLight(in, options, stats);
+    stats.msLightLinks = msSince(t);
+    stats.builtLightLinks = true;
+    ++stats.lightLinkBuilds;
+  }
+  if (progress && !progress("bounces", 0.95))
+  {
+    throw Aborted();
+  }
+  bounceAndFinish(in, options, solution, stats);
+  samplePeakMemory();
+  const EngineDevice& d0 = *devices[0];
+  stats.rays = rays;
+  stats.linksRaw = rawLinks;
+  stats.linksCompressed = d0.transport.columns.size();
+  stats.linkBytes = d0.transport.view().nonZeros * 8ull + d0.transport.rowOffsets.size() * 4ull +
+    d0.environment.columns.size() * 8ull + d0.environment.rowOffsets.size() * 4ull;
+  stats.lightRays = lightRays;
+}
+
+void Engine::uploadGeometry(const HostInputs& in, const StageMask& mask, SolverStats& stats,
+  const SolverOptions& options)
+{
+  const Scene& s = in.scene;
+  for (std::size_t i = 0; i < devices.size(); ++i)
+  {
+    EngineDevice& d = *devices[i];
+    d.use();
+    if (mask.topology)
+    {
+      uploadVector(d.triangles, s.triangles, d.stream);
+    }
+    if (mask.positions)
+    {
+      uploadVector(d.positions, s.positions, d.stream);
+    }
+    if (mask.geometry)
+    {
+      uploadVector(d.normals, s.normals, d.stream);
+      uploadVector(d.shifts, in.shifts, d.stream);
+      uploadVector(d.faceNormals, in.faceNormals, d.stream);
+    }
+    const bool rebuild = mask.topology || (mask.positions && options.cudaBvhUpdate == CudaBvhUpdate::Rebuild);
+    if (rebuild)
+    {
+      d.bvh.build(d.positions.data(), Index(s.vertexCount()), d.triangles.data(),
+        Index(s.triangleCount()), d.stream);
+    }
+    else if (mask.positions)
+    {
+      d.bvh.refit(d.positions.data(), d.triangles.data(), d.stream);
+    }
+    if (i == 0)
+    {
+      stats.builtBvh = rebuild;
+      stats.refitBvh = !rebuild && mask.positions;
+      stats.bvhBuilds += rebuild;
+      stats.bvhRefits += stats.refitBvh;
+    }
+  }
+  EngineDevice& d0 = *devices[0];
+  d0.use();
+  if (mask.topology)
+  {
+    const Topology& topo = in.topology;
+    uploadVector(d0.neighbourOffsets, topo.neighbourOffsets, d0.stream);
+    uploadVector(d0.neighbours, topo.neighbours, d0.stream);
+    uploadVector(d0.vertexEdges, topo.vertexEdges, d0.stream);
+    d0.edges.upload(reinterpret_cast<const Index*>(topo.edges.data()), 2 * topo.edges.size(), d0.stream);
+    static_assert(sizeof(topo.edges[0]) == 2 * sizeof(Index), "edges are pairs of indices");
+  }
+  uploadVector(d0.albedo, s.albedo, d0.stream);
+  uploadVector(d0.emission, s.emission, d0.stream);
+  for (const auto& d : devices)
+  {
+    d->sync();
+  }
+}
+
+void Engine::computeDirectLight(const HostInputs& in, const SolverOptions& options, SolverStats&)
+{
+  const Scene& s = in.scene;
+  EngineDevice& d = *devices[0];
+  d.use();
+  const Index nv = Index(s.vertexCount());
+  const Elements elements{ s.vertexCount(), options.twoSided };
+  d.direct.resize(elements.count());
+  d.direct.fillZero(d.stream);
+  d.vertexVisible.resize(nv);
+  d.edgeVisible.resize(std::max<std::size_t>(1, in.topology.edges.size()));
+  d.counter.resize(1);
+  d.counter.fillZero(d.stream);
+  DirectLightParams p;
+  p.bvh = d.bvh.view();
+  p.positions = d.positions.data();
+  p.normals = d.normals.data();
+  p.shifts = d.shifts.data();
+  p.edges = d.edges.data();
+  p.neighbourOffsets = d.neighbourOffsets.data();
+  p.vertexEdges = d.vertexEdges.data();
+  p.vertexCount = nv;
+  p.edgeCount = Index(in.topology.edges.size());
+  p.eps = rayEpsilon(s);
+  p.oversampling = options.lightOversampling;
+  for (const Light& light : s.lights)
+  {
+    if (maxComponent(light.intensity) <= 0.f)
+    {
+      continue;
+    }
+    for (int side = 0; side < (options.twoSided ? 2 : 1); ++side)
+    {
+      addDirectLight(p, light, side == 0 ? 1.f : -1.f, side == 0 ? 0 : nv, d.vertexVisible.data(),
+        d.edgeVisible.data(), d.direct.data(), d.counter.data(), d.stream);
+    }
+  }
+  unsigned long long traced = 0;
+  LINKGI_CUDA_CHECK(cudaMemcpyAsync(&traced, d.counter.data(), sizeof(traced), cudaMemcpyDeviceToHost, d.stream));
+  d.sync();
+  lightRays = traced;
+}
+
+void Engine::bounceAndFinish(const HostInputs& in, const SolverOptions& options,
+  Solution& solution, SolverStats& stats)
+{
+  using clock = std::chrono::steady_clock;
+  const Scene& s = in.scene;
+  EngineDevice& d = *devices[0];
+  d.use();
+  auto t = clock::now();
+  const Elements elements{ s.vertexCount(), options.twoSided };
+  const Index ne = Index(elements.count());
+  const Environment& env = s.environment;
+  std::vector<Rgba> texels;
+  if (env.hasTexture())
+  {
+    texels.reserve(env.texels.size());
+    for (const Vec3f& c : env.texels)
+    {
+      const Vec3f r = env.color * c;
+      texels.push_back({ r.x, r.y, r.z, 0.f });
+    }
+  }
+  else
+  {
+    texels.push_back({ env.color.x, env.color.y, env.color.z, 0.f });
+  }
+  d.texelRadiance.upload(texels, d.stream);
+  d.envIrradiance.resize(ne);
+  gatherRgb(d.environment.view(), d.texelRadiance.data(), d.envIrradiance.data(), d.stream);
+
+  BounceParams b;
+  b.elements = ne;
+  b.vertexCount = Index(s.vertexCount());
+  b.direct = d.direct.data();
+  b.environment = d.envIrradiance.data();
+  b.albedo = d.albedo.data();
+  b.emission = s.emission.empty() ? nullptr : d.emission.data();
+  d.fixedIrradiance.resize(ne);
+  d.radiance[0].resize(ne);
+  d.radiance[1].resize(ne);
+  d.indirect.resize(ne);
+  startBounces(b, d.fixedIrradiance.data(), d.radiance[0].data(), d.stream);
+  for (std::uint32_t i = 0; i < options.bounces; ++i)
+  {
+    const bool last = i + 1 == options.bounces;
+    bounce(d.transport.view(), b, d.fixedIrradiance.data(), d.radiance[i % 2].data(),
+      d.indirect.data(), last ? nullptr : d.radiance[(i + 1) % 2].data(), d.stream);
+  }
+  d.sync();
+  stats.msBounces = msSince(t);
+  stats.ranBounces = true;
+  ++stats.bounceRuns;
+
+  t = clock::now();
+  FinishParams f;
+  f.bounce = b;
+  f.indirect = options.bounces > 0 ? d.indirect.data() : nullptr;
+  f.smoothing = options.smoothing;
+  f.cosFeatureAngle = std::cos(options.featureAngleDegrees * (kPi / 180.f));
+  f.neighbourOffsets = d.neighbourOffsets.data();
+  f.neighbours = d.neighbours.data();
+  f.normals = d.normals.data();
+  d.output.resize(3 * std::size_t(ne));
+  finish(f, d.output.data(), d.stream);
+  solution.direct.resize(ne);
+  solution.indirect.resize(ne);
+  solution.radiance.resize(ne);
+  d.sync();
+  d.output.download(solution.direct.data(), ne);
+  LINKGI_CUDA_CHECK(cudaMemcpy(solution.indirect.data(), d.output.data() + ne, ne * sizeof(Vec3f),
+    cudaMemcpyDeviceToHost));
+  LINKGI_CUDA_CHECK(cudaMemcpy(solution.radiance.data(), d.output.data() + 2 * std::size_t(ne),
+    ne * sizeof(Vec3f), cudaMemcpyDeviceToHost));
+  stats.msSmoothing = msSince(t);
+}
+}

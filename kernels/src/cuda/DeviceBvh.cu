@@ -1,0 +1,227 @@
+#include "DeviceBvh.h"
+
+#include "Kernels.h"
+#include "Primitives.h"
+
+namespace linkgi::cuda
+{
+namespace
+{
+constexpr int kThreads = 256;
+
+unsigned blocksFor(std::size_t n, int threads = kThreads)
+{
+  return unsigned((n + threads - 1) / threads);
+}
+
+/// Block-wide union of per-thread boxes into out[blockIdx.x].
+__device__ void reduceBox(bvh::Box box, bvh::Box* out)
+{
+  __shared__ float lo[3][kThreads], hi[3][kThreads];
+  const int t = threadIdx.x;
+  lo[0][t] = box.lo.x, lo[1][t] = box.lo.y, lo[2][t] = box.lo.z;
+  hi[0][t] = box.hi.x, hi[1][t] = box.hi.y, hi[2][t] = box.hi.z;
+  __syncthreads();
+  for (int s = kThreads / 2; s > 0; s /= 2)
+  {
+    if (t < s)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a][t] = fminf(lo[a][t], lo[a][t + s]);
+        hi[a][t] = fmaxf(hi[a][t], hi[a][t + s]);
+      }
+    }
+    __syncthreads();
+  }
+  if (t == 0)
+  {
+    out[blockIdx.x].lo = { lo[0][0], lo[1][0], lo[2][0] };
+    out[blockIdx.x].hi = { hi[0][0], hi[1][0], hi[2][0] };
+  }
+}
+
+__global__ void pointBoxKernel(const Vec3f* points, Index n, bvh::Box* partial)
+{
+  bvh::Box box;
+  for (Index i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x)
+  {
+    box.grow(points[i]);
+  }
+  reduceBox(box, partial);
+}
+
+__global__ void boxUnionKernel(const bvh::Box* partial, Index n, bvh::Box* out)
+{
+  bvh::Box box;
+  for (Index i = threadIdx.x; i < n; i += blockDim.x)
+  {
+    box.grow(partial[i]);
+  }
+  reduceBox(box, out);
+}
+
+__global__ void mortonKernel(const Vec3f* positions, const Triangle* triangles, Index n,
+  const bvh::Box* sceneBox, std::uint64_t* keys, Index* values)
+{
+  const Index i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n)
+  {
+    return;
+  }
+  const bvh::Box box = *sceneBox;
+  const Vec3f extent = box.hi - box.lo;
+  const Vec3f inv(extent.x > 0.f ? 1.f / extent.x : 0.f, extent.y > 0.f ? 1.f / extent.y : 0.f,
+    extent.z > 0.f ? 1.f / extent.z : 0.f);
+  const Triangle t = triangles[i];
+  keys[i] = bvh::mortonKey(positions[t.v[0]], positions[t.v[1]], positions[t.v[2]], box.lo, inv);
+  values[i] = i;
+}
+
+__global__ void gatherTrianglesKernel(const Vec3f* positions, const Triangle* triangles,
+  const Index* order, Index n, BvhTriangle* out)
+{
+  const Index p = blockIdx.x * blockDim.x + threadIdx.x;
+  if (p < n)
+  {
+    const Index id = order[p];
+    const Triangle t = triangles[id];
+    out[p] = bvh::makeTriangle(positions[t.v[0]], positions[t.v[1]], positions[t.v[2]], id);
+  }
+}
+
+__global__ void hierarchyKernel(const std::uint64_t* keys, int n, BvhNode* nodes, int* leafParents)
+{
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n - 1)
+  {
+    bvh::buildInternalNode(keys, n, i, nodes, leafParents);
+  }
+}
+
+__global__ void boundsKernel(BvhNode* nodes, const int* leafParents, const BvhTriangle* tris,
+  unsigned* arrivals, int n)
+{
+  const int leaf = blockIdx.x * blockDim.x + threadIdx.x;
+  if (leaf < n)
+  {
+    bvh::propagateBounds(nodes, leafParents, tris, arrivals, leaf);
+  }
+}
+
+__global__ void traceKernel(BvhView bvh, const Ray* rays, Hit* hits, std::size_t n)
+{
+  const std::size_t i = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i < n)
+  {
+    Hit h;
+    bvh::traverse<false>(bvh, rays[i], h);
+    hits[i] = h;
+  }
+}
+
+__global__ void occludedKernel(BvhView bvh, const Ray* rays, std::uint8_t* occluded, std::size_t n)
+{
+  const std::size_t i = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i < n)
+  {
+    Hit h;
+    occluded[i] = bvh::traverse<true>(bvh, rays[i], h) ? 1 : 0;
+  }
+}
+}
+
+void DeviceBvh::build(const Vec3f* positions, Index vertexCount, const Triangle* tris,
+  Index triangleCount, cudaStream_t stream)
+{
+  count = triangleCount;
+  if (count == 0)
+  {
+    return;
+  }
+  const unsigned partials = std::min(1024u, blocksFor(vertexCount));
+  boxes.resize(partials + 1);
+  pointBoxKernel<<<partials, kThreads, 0, stream>>>(positions, vertexCount, boxes.data());
+  LINKGI_CUDA_CHECK_LAUNCH("pointBoxKernel");
+  boxUnionKernel<<<1, kThreads, 0, stream>>>(boxes.data(), partials, boxes.data() + partials);
+  LINKGI_CUDA_CHECK_LAUNCH("boxUnionKernel");
+
+  keys.resize(count);
+  sortedKeys.resize(count);
+  ids.resize(count);
+  mortonKernel<<<blocksFor(count), kThreads, 0, stream>>>(positions, tris, count,
+    boxes.data() + partials, keys.data(), ids.data());
+  LINKGI_CUDA_CHECK_LAUNCH("mortonKernel");
+  order.resize(count);
+  sortPairs(keys.data(), sortedKeys.data(), ids.data(), order.data(), count, 63, temp, stream);
+
+  nodes.resize(count > 1 ? count - 1 : 1);
+  leafParents.resize(count);
+  arrivals.resize(nodes.size());
+  if (count > 1)
+  {
+    hierarchyKernel<<<blocksFor(count - 1), kThreads, 0, stream>>>(sortedKeys.data(), int(count),
+      nodes.data(), leafParents.data());
+    LINKGI_CUDA_CHECK_LAUNCH("hierarchyKernel");
+  }
+  gatherAndBound(positions, tris, stream);
+}
+
+void DeviceBvh::refit(const Vec3f* positions, const Triangle* tris, cudaStream_t stream)
+{
+  if (count > 0)
+  {
+    gatherAndBound(positions, tris, stream);
+  }
+}
+
+void DeviceBvh::gatherAndBound(const Vec3f* positions, const Triangle* tris, cudaStream_t stream)
+{
+  triangles.resize(count);
+  gatherTrianglesKernel<<<blocksFor(count), kThreads, 0, stream>>>(positions, tris, order.data(),
+    count, triangles.data());
+  LINKGI_CUDA_CHECK_LAUNCH("gatherTrianglesKernel");
+  if (count > 1)
+  {
+    arrivals.fillZero(stream);
+    boundsKernel<<<blocksFor(count), kThreads, 0, stream>>>(nodes.data(), leafParents.data(),
+      triangles.data(), arrivals.data(), int(count));
+    LINKGI_CUDA_CHECK_LAUNCH("boundsKernel");
+  }
+}
+
+BvhView DeviceBvh::view() const
+{
+  BvhView v;
+  v.nodes = nodes.data();
+  v.triangles = triangles.data();
+  v.root = count > 1 ? 0 : ~0;
+  v.triangleCount = count;
+  return v;
+}
+
+std::size_t DeviceBvh::bytes() const
+{
+  return nodes.bytes() + triangles.bytes() + leafParents.bytes() + arrivals.bytes() +
+    order.bytes() + boxes.bytes() + temp.bytes() + keys.bytes() + sortedKeys.bytes() + ids.bytes();
+}
+
+void traceRays(const BvhView& bvh, const Ray* rays, Hit* hits, std::size_t count, cudaStream_t stream)
+{
+  if (count)
+  {
+    traceKernel<<<blocksFor(count), kThreads, 0, stream>>>(bvh, rays, hits, count);
+    LINKGI_CUDA_CHECK_LAUNCH("traceKernel");
+  }
+}
+
+void occludedRays(const BvhView& bvh, const Ray* rays, std::uint8_t* occluded, std::size_t count,
+  cudaStream_t stream)
+{
+  if (count)
+  {
+    occludedKernel<<<blocksFor(count), kThreads, 0, stream>>>(bvh, rays, occluded, count);
+    LINKGI_CUDA_CHECK_LAUNCH("occludedKernel");
+  }
+}
+}

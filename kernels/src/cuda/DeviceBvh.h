@@ -1,0 +1,37 @@
+// The BVH on one GPU: built there as a linear BVH (Morton order, Karras' hierarchy,
+// bottom-up bounds) into the node layout of linkgi/Bvh.h; refit reuses the hierarchy.
+#pragma once
+
+#include "GPUBuffer.h"
+
+#include "linkgi/BvhBuild.h"
+
+namespace linkgi::cuda
+{
+class DeviceBvh
+{
+public:
+  /// positions / triangles are device arrays; they may change or go away after the call.
+  void build(const Vec3f* positions, Index vertexCount, const Triangle* triangles,
+    Index triangleCount, cudaStream_t stream);
+  /// Same triangles as the last build, moved positions: new boxes, same tree.
+  void refit(const Vec3f* positions, const Triangle* triangles, cudaStream_t stream);
+  BvhView view() const;
+  std::size_t bytes() const;
+  Index triangleCount() const { return count; }
+
+private:
+  void gatherAndBound(const Vec3f* positions, const Triangle* triangles, cudaStream_t stream);
+
+  Index count = 0;
+  GPUBuffer<BvhNode> nodes;
+  GPUBuffer<BvhTriangle> triangles;
+  GPUBuffer<int> leafParents;
+  GPUBuffer<unsigned> arrivals;
+  GPUBuffer<Index> order; ///< original triangle of each leaf
+  GPUBuffer<bvh::Box> boxes;
+  GPUBuffer<unsigned char> temp;
+  GPUBuffer<std::uint64_t> keys, sortedKeys; ///< build scratch, kept for the next build
+  GPUBuffer<Index> ids;
+};
+}

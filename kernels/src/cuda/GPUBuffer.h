@@ -1,0 +1,143 @@
+// GPUBuffer<T>: device memory owned like a std::vector, on the device that was current at
+// allocation (and freed there).
+#pragma once
+
+#include "CudaCheck.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace linkgi::cuda
+{
+template <typename T>
+class GPUBuffer
+{
+public:
+  GPUBuffer() = default;
+  explicit GPUBuffer(std::size_t count) { resize(count); }
+  ~GPUBuffer() { release(); }
+  GPUBuffer(const GPUBuffer&) = delete;
+  GPUBuffer& operator=(const GPUBuffer&) = delete;
+  GPUBuffer(GPUBuffer&& o) noexcept { swap(o); }
+  GPUBuffer& operator=(GPUBuffer&& o) noexcept
+  {
+    if (this != &o)
+    {
+      release();
+      swap(o);
+    }
+    return *this;
+  }
+
+  /// Discards the contents; keeps the allocation when it is large enough.
+  void resize(std::size_t count)
+  {
+    if (count > capacity_)
+    {
+      release();
+      void* p = nullptr;
+      LINKGI_CUDA_CHECK(cudaGetDevice(&device_));
+      LINKGI_CUDA_CHECK(cudaMalloc(&p, count * sizeof(T)));
+      data_ = static_cast<T*>(p);
+      capacity_ = count;
+    }
+    size_ = count;
+  }
+
+  /// Grows to at least `count` elements keeping the first size() (capacity at least doubles,
+  /// so appending batch by batch reallocates rarely); size() becomes `count`.
+  void growKeep(std::size_t count, cudaStream_t stream)
+  {
+    if (count > capacity_)
+    {
+      GPUBuffer bigger;
+      bigger.resize(std::max(count, 2 * capacity_));
+      if (size_)
+      {
+        LINKGI_CUDA_CHECK(cudaMemcpyAsync(bigger.data_, data_, size_ * sizeof(T), cudaMemcpyDeviceToDevice, stream));
+        LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+      }
+      swap(bigger);
+    }
+    size_ = count;
+  }
+
+  void upload(const T* host, std::size_t count, cudaStream_t stream = nullptr)
+  {
+    resize(count);
+    if (count)
+    {
+      LINKGI_CUDA_CHECK(cudaMemcpyAsync(data_, host, count * sizeof(T), cudaMemcpyHostToDevice, stream));
+    }
+  }
+  void upload(const std::vector<T>& host, cudaStream_t stream = nullptr)
+  {
+    upload(host.data(), host.size(), stream);
+  }
+  /// Synchronous copy of the first `count` elements to the host.
+  void download(T* host, std::size_t count) const
+  {
+    if (count)
+    {
+      LINKGI_CUDA_CHECK(cudaMemcpy(host, data_, count * sizeof(T), cudaMemcpyDeviceToHost));
+    }
+  }
+  std::vector<T> download() const
+  {
+    std::vector<T> host(size_);
+    download(host.data(), size_);
+    return host;
+  }
+  void fillZero(cudaStream_t stream = nullptr)
+  {
+    if (size_)
+    {
+      LINKGI_CUDA_CHECK(cudaMemsetAsync(data_, 0, size_ * sizeof(T), stream));
+    }
+  }
+
+  T* data() { return data_; }
+  const T* data() const { return data_; }
+  std::size_t size() const { return size_; }
+  std::size_t bytes() const { return capacity_ * sizeof(T); }
+  bool empty() const { return size_ == 0; }
+
+  void swapWith(GPUBuffer& o) noexcept { swap(o); }
+
+  void release()
+  {
+    if (data_)
+    {
+      int current = 0;
+      // Free on the owning device; errors here cannot be reported from a destructor.
+      cudaGetDevice(&current);
+      if (current != device_)
+      {
+        cudaSetDevice(device_);
+      }
+      cudaFree(data_);
+      if (current != device_)
+      {
+        cudaSetDevice(current);
+      }
+    }
+    data_ = nullptr;
+    size_ = capacity_ = 0;
+  }
+
+private:
+  void swap(GPUBuffer& o) noexcept
+  {
+    std::swap(data_, o.data_);
+    std::swap(size_, o.size_);
+    std::swap(capacity_, o.capacity_);
+    std::swap(device_, o.device_);
+  }
+
+  T* data_ = nullptr;
+  std::size_t size_ = 0, capacity_ = 0;
+  int device_ = 0;
+};
+}

@@ -1,0 +1,154 @@
+// Launchers of the CUDA backend's kernels: host-callable, no __global__ here. Arguments
+// are device pointers and plain structs; every launcher runs on `stream` and checks its
+// launch (LINKGI_CUDA_CHECK_LAUNCH). The per-item math lives in the shared headers
+// (Bvh.h, BvhBuild.h, Links.h, DirectLight.h, Bounce.h) that the CPU uses too.
+#pragma once
+
+#include "CudaCheck.h"
+
+#include "linkgi/Bvh.h"
+#include "linkgi/Scene.h"
+
+#include <cuda_runtime_api.h>
+
+#include <cstdint>
+
+namespace linkgi::cuda
+{
+/// RGB padded to 16 bytes, so a gathered vector element is one load.
+struct alignas(16) Rgba
+{
+  float r, g, b, a;
+};
+
+/// One link ray's result as the link stage stores it.
+struct LinkHit
+{
+  Index triangle; ///< kInvalidIndex on a miss
+  float u, v;
+};
+
+/// A CSR matrix in device memory (row = receiving element).
+struct CsrView
+{
+  const Index* rowOffsets = nullptr;
+  const Index* columns = nullptr;
+  const float* weights = nullptr;
+  Index rows = 0;
+  Index nonZeros = 0;
+};
+
+// ---- rays (generic, for the RayTracer interface) ----
+void traceRays(const BvhView& bvh, const Ray* rays, Hit* hits, std::size_t count, cudaStream_t stream);
+void occludedRays(const BvhView& bvh, const Ray* rays, std::uint8_t* occluded, std::size_t count,
+  cudaStream_t stream);
+
+// ---- link generation ----
+struct LinkTraceParams
+{
+  BvhView bvh;
+  const Vec3f* positions = nullptr;
+  const Vec3f* normals = nullptr;
+  const Vec3f* shifts = nullptr;
+  const Vec3f* directions = nullptr; ///< raysPerVertex local directions
+  Index raysPerVertex = 0;
+  Index vertexCount = 0;
+  bool twist = true;
+  std::uint32_t seed = 0;
+  float eps = 0.f;
+  Index firstElement = 0; ///< the batch: elements [firstElement, firstElement + elementCount)
+  Index elementCount = 0;
+};
+/// hits[(x - firstElement) * raysPerVertex + k] for ray k of element x.
+void traceLinks(const LinkTraceParams& p, LinkHit* hits, cudaStream_t stream);
+
+/// Where compressLinks writes: per element a fixed-capacity row (3 n_C transport entries,
+/// n_C environment entries) and the number of entries used.
+struct LinkRowsOut
+{
+  Index* columns = nullptr;
+  float* weights = nullptr;
+  Index* counts = nullptr;
+  Index* envColumns = nullptr;
+  float* envWeights = nullptr;
+  Index* envCounts = nullptr;
+  unsigned long long* rawLinks = nullptr; ///< incremented by the links before merging
+};
+struct LinkCompressParams
+{
+  LinkTraceParams trace;
+  const Triangle* triangles = nullptr;
+  const Vec3f* faceNormals = nullptr;
+  bool twoSided = false;
+  int envWidth = 0, envHeight = 0;
+};
+/// Merges each element's links with equal columns (weights summed in ray order, columns
+/// sorted); deterministic. Returns false if raysPerVertex is above kMaxCompressRays.
+constexpr Index kMaxCompressRays = 1024;
+bool compressLinks(const LinkCompressParams& p, const LinkHit* hits, const LinkRowsOut& out,
+  cudaStream_t stream);
+
+/// Copies fixed-capacity rows into CSR arrays: row r's `counts[r]` entries from
+/// src + r * capacity to dst + offsets[r].
+void packRows(const Index* srcColumns, const float* srcWeights, Index capacity, const Index* counts,
+  const Index* offsets, Index rows, Index* dstColumns, float* dstWeights, cudaStream_t stream);
+
+/// offsets[i] += add for i < count.
+void addToAll(Index* offsets, Index count, Index add, cudaStream_t stream);
+
+// ---- light links ----
+struct DirectLightParams
+{
+  BvhView bvh;
+  const Vec3f* positions = nullptr;
+  const Vec3f* normals = nullptr;
+  const Vec3f* shifts = nullptr;
+  const Index* edges = nullptr; ///< pairs (a, b)
+  const Index* neighbourOffsets = nullptr;
+  const Index* vertexEdges = nullptr;
+  Index vertexCount = 0;
+  Index edgeCount = 0;
+  float eps = 0.f;
+  bool oversampling = true;
+};
+/// Adds one light's shadowed irradiance on one side (sign +1 front, -1 back) to
+/// irradiance[v + sideOffset]. vertexVisible / edgeVisible are scratch of vertexCount /
+/// edgeCount floats; rays counts the shadow rays traced.
+void addDirectLight(const DirectLightParams& p, const Light& light, float sign, Index sideOffset,
+  float* vertexVisible, float* edgeVisible, Vec3f* irradiance, unsigned long long* rays,
+  cudaStream_t stream);
+
+// ---- bounces, smoothing, output ----
+/// y = M x, RGB; rows in parallel with 8..32 threads per row.
+void gatherRgb(const CsrView& m, const Rgba* x, Rgba* y, cudaStream_t stream);
+
+struct BounceParams
+{
+  Index elements = 0;
+  Index vertexCount = 0;
+  const Vec3f* direct = nullptr;   ///< E_d per element
+  const Rgba* environment = nullptr; ///< E_env per element
+  const Vec3f* albedo = nullptr;   ///< per vertex
+  const Vec3f* emission = nullptr; ///< per vertex, nullptr = none (front sides emit)
+};
+/// radiance = L(E_ind = 0); fixedIrradiance = E_d + E_env.
+void startBounces(const BounceParams& p, Rgba* fixedIrradiance, Rgba* radiance, cudaStream_t stream);
+/// One Jacobi bounce fused with the next radiance: indirect = W radiance, and when
+/// `nextRadiance` is not null, nextRadiance = L(indirect).
+void bounce(const CsrView& w, const BounceParams& p, const Rgba* fixedIrradiance,
+  const Rgba* radiance, Rgba* indirect, Rgba* nextRadiance, cudaStream_t stream);
+
+struct FinishParams
+{
+  BounceParams bounce;
+  const Rgba* indirect = nullptr; ///< after the bounces, nullptr if there were none
+  bool smoothing = false;
+  float cosFeatureAngle = 0.f;
+  const Index* neighbourOffsets = nullptr;
+  const Index* neighbours = nullptr;
+  const Vec3f* normals = nullptr;
+};
+/// Writes E_d, smoothed E_ind + E_env and L = Le + rho/pi (E_d + E_ind) per element into
+/// out[0, n), out[n, 2n), out[2n, 3n).
+void finish(const FinishParams& p, Vec3f* out, cudaStream_t stream);
+}

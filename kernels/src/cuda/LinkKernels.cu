@@ -1,0 +1,302 @@
+// Link generation on the GPU: one thread per ray, consecutive threads shooting consecutive
+// directions of one element (a warp = two coherent 4x4 blocks, as in the paper), then a
+// per-element merge of equal columns in shared memory (block radix sort by (row, column)).
+#include "Kernels.h"
+
+#include "linkgi/Links.h"
+#include "linkgi/Sampling.h"
+
+#include <cub/block/block_radix_sort.cuh>
+#include <cub/block/block_scan.cuh>
+
+namespace linkgi::cuda
+{
+namespace
+{
+constexpr int kThreads = 256;
+
+__device__ inline Frame elementFrame(const LinkTraceParams& p, Index x)
+{
+  const Index v = x < p.vertexCount ? x : x - p.vertexCount;
+  const float sign = x < p.vertexCount ? 1.f : -1.f;
+  return vertexFrame(p.normals[v] * sign, p.twist, p.seed, x);
+}
+
+__global__ void traceLinksKernel(LinkTraceParams p, LinkHit* hits)
+{
+  const std::size_t i = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i >= std::size_t(p.elementCount) * p.raysPerVertex)
+  {
+    return;
+  }
+  const Index x = p.firstElement + Index(i / p.raysPerVertex);
+  const Index k = Index(i % p.raysPerVertex);
+  const Index v = x < p.vertexCount ? x : x - p.vertexCount;
+  const Vec3f normal = p.normals[v] * (x < p.vertexCount ? 1.f : -1.f);
+  const Frame frame = vertexFrame(normal, p.twist, p.seed, x);
+  Ray ray;
+  ray.origin = elementRayOrigin(p.positions[v], normal, p.shifts[v], p.eps);
+  ray.direction = frame.toWorld(p.directions[k]);
+  Hit h;
+  bvh::traverse<false>(p.bvh, ray, h);
+  hits[i] = LinkHit{ h.triangle, h.u, h.v };
+}
+
+/// Items per thread: 3 links per ray, R rays per thread.
+template <int R>
+struct Compress
+{
+  static constexpr int kItems = 3 * R;
+  using Sort = cub::BlockRadixSort<unsigned long long, kThreads, kItems, float>;
+  using Scan = cub::BlockScan<int, kThreads>;
+  static constexpr int kTotal = kThreads * kItems;
+  struct Sorted
+  {
+    unsigned long long keys[kTotal];
+    float values[kTotal];
+  };
+  union Shared
+  {
+    typename Sort::TempStorage sort;
+    Sorted sorted;
+  };
+};
+
+constexpr unsigned long long kNoKey = ~0ull;
+constexpr int kEnvBit = 32, kRowShift = 33; // key = row << 33 | environment << 32 | column
+
+/// One block merges the links of `rowsPerBlock` elements (R = 1: n_C <= 256 rays per
+/// element, one ray per thread; R = 4: one element of up to 1024 rays, rays t*4..t*4+3 in
+/// thread t). Keys are (local row, environment?, column); the stable sort keeps equal keys
+/// in ray order, so weights add up in the CPU's order.
+template <int R>
+__global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
+  const LinkHit* hits, LinkRowsOut out, int rowsPerBlock, int endBit)
+{
+  using C = Compress<R>;
+  __shared__ typename C::Shared shared;
+  __shared__ typename C::Scan::TempStorage scanStorage;
+  __shared__ int segmentStart[2 * kThreads];
+  __shared__ int segmentCount[2 * kThreads];
+  const LinkTraceParams& t = p.trace;
+  const Index n = t.raysPerVertex;
+  const Index firstRow = blockIdx.x * rowsPerBlock; // within the batch
+  for (int s = threadIdx.x; s < 2 * rowsPerBlock; s += kThreads)
+  {
+    segmentCount[s] = 0;
+  }
+
+  LinkParams lp;
+  lp.vertexCount = t.vertexCount;
+  lp.twoSided = p.twoSided;
+  lp.weight = kPi / float(n);
+  lp.envWidth = p.envWidth;
+  lp.envHeight = p.envHeight;
+
+  unsigned long long keys[C::kItems];
+  float values[C::kItems];
+  int raw = 0;
+  for (int r = 0; r < R; ++r)
+  {
+    const int localRow = R == 1 ? int(threadIdx.x / n) : 0;
+    const Index k = R == 1 ? threadIdx.x % n : threadIdx.x * R + r;
+    const Index row = firstRow + localRow;
+    RayLinks links;
+    if (localRow < rowsPerBlock && row < t.elementCount && k < n)
+    {
+      const Index x = t.firstElement + row;
+      const Vec3f dir = elementFrame(t, x).toWorld(t.directions[k]);
+      const LinkHit lh = hits[std::size_t(row) * n + k];
+      Hit h;
+      h.triangle = lh.triangle;
+      h.u = lh.u;
+      h.v = lh.v;
+      links = linksOfRay(h, dir, p.triangles, p.faceNormals, lp);
+    }
+    raw += links.count;
+    for (int j = 0; j < 3; ++j)
+    {
+      const bool valid = j < links.count;
+      keys[3 * r + j] = valid ? (static_cast<unsigned long long>(localRow) << kRowShift) |
+          (static_cast<unsigned long long>(links.environment) << kEnvBit) | links.column[j]
+                              : kNoKey;
+      values[3 * r + j] = valid ? links.weight[j] : 0.f;
+    }
+  }
+  for (int offset = 16; offset > 0; offset /= 2)
+  {
+    raw += __shfl_down_sync(0xffffffffu, raw, offset);
+  }
+  if ((threadIdx.x & 31) == 0 && raw)
+  {
+    atomicAdd(out.rawLinks, static_cast<unsigned long long>(raw));
+  }
+
+  typename C::Sort(shared.sort).Sort(keys, values, 0, endBit);
+  __syncthreads(); // the sort's storage becomes the sorted arrays
+  for (int i = 0; i < C::kItems; ++i)
+  {
+    shared.sorted.keys[threadIdx.x * C::kItems + i] = keys[i];
+    shared.sorted.values[threadIdx.x * C::kItems + i] = values[i];
+  }
+  __syncthreads();
+
+  // A head starts a run of equal keys; heads are numbered in order by a block scan.
+  const unsigned long long mask = (1ull << endBit) - 1;
+  const auto keyAt = [&](int i) { return shared.sorted.keys[i] & mask; };
+  int heads = 0;
+  for (int i = 0; i < C::kItems; ++i)
+  {
+    const int at = threadIdx.x * C::kItems + i;
+    heads += keyAt(at) != (kNoKey & mask) && (at == 0 || keyAt(at) != keyAt(at - 1));
+  }
+  int headIndex = 0;
+  typename C::Scan(scanStorage).ExclusiveSum(heads, headIndex);
+  // Segment = (local row, environment?); its first head's number gives offsets in the row.
+  for (int i = 0; i < C::kItems; ++i)
+  {
+    const int at = threadIdx.x * C::kItems + i;
+    const unsigned long long key = keyAt(at);
+    if (key == (kNoKey & mask) || (at > 0 && key == keyAt(at - 1)))
+    {
+      continue;
+    }
+    const int segment = int(key >> kEnvBit);
+    if (at == 0 || int(keyAt(at - 1) >> kEnvBit) != segment)
+    {
+      segmentStart[segment] = headIndex;
+    }
+    atomicAdd(&segmentCount[segment], 1);
+    ++headIndex;
+  }
+  __syncthreads();
+  headIndex -= heads; // back to this thread's first head
+  for (int i = 0; i < C::kItems; ++i)
+  {
+    const int at = threadIdx.x * C::kItems + i;
+    const unsigned long long key = keyAt(at);
+    if (key == (kNoKey & mask) || (at > 0 && key == keyAt(at - 1)))
+    {
+      continue;
+    }
+    float sum = 0.f;
+    for (int j = at; j < C::kTotal && keyAt(j) == key; ++j)
+    {
+      sum += shared.sorted.values[j];
+    }
+    const int segment = int(key >> kEnvBit);
+    const bool env = segment & 1;
+    const Index row = firstRow + (segment >> 1);
+    const std::size_t slot = std::size_t(row) * (env ? n : 3 * n) + (headIndex - segmentStart[segment]);
+    (env ? out.envColumns : out.columns)[slot] = Index(key & 0xffffffffu);
+    (env ? out.envWeights : out.weights)[slot] = sum;
+    ++headIndex;
+  }
+  for (int s = threadIdx.x; s < rowsPerBlock; s += kThreads)
+  {
+    if (firstRow + s < t.elementCount)
+    {
+      out.counts[firstRow + s] = segmentCount[2 * s];
+      out.envCounts[firstRow + s] = segmentCount[2 * s + 1];
+    }
+  }
+}
+
+__global__ void packRowsKernel(const Index* srcColumns, const float* srcWeights, Index capacity,
+  const Index* counts, const Index* offsets, Index rows, Index* dstColumns, float* dstWeights)
+{
+  // One warp per row.
+  const Index row = (std::size_t(blockIdx.x) * blockDim.x + threadIdx.x) / 32;
+  const int lane = threadIdx.x & 31;
+  if (row >= rows)
+  {
+    return;
+  }
+  const std::size_t src = std::size_t(row) * capacity;
+  const Index dst = offsets[row], count = counts[row];
+  for (Index i = lane; i < count; i += 32)
+  {
+    dstColumns[dst + i] = srcColumns[src + i];
+    dstWeights[dst + i] = srcWeights[src + i];
+  }
+}
+
+__global__ void addKernel(Index* values, Index count, Index add)
+{
+  const Index i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < count)
+  {
+    values[i] += add;
+  }
+}
+
+int bitsFor(unsigned x)
+{
+  int b = 0;
+  while ((1u << b) <= x && b < 31)
+  {
+    ++b;
+  }
+  return b;
+}
+}
+
+void traceLinks(const LinkTraceParams& p, LinkHit* hits, cudaStream_t stream)
+{
+  const std::size_t rays = std::size_t(p.elementCount) * p.raysPerVertex;
+  if (rays)
+  {
+    traceLinksKernel<<<unsigned((rays + kThreads - 1) / kThreads), kThreads, 0, stream>>>(p, hits);
+    LINKGI_CUDA_CHECK_LAUNCH("traceLinksKernel");
+  }
+}
+
+bool compressLinks(const LinkCompressParams& p, const LinkHit* hits, const LinkRowsOut& out,
+  cudaStream_t stream)
+{
+  const Index n = p.trace.raysPerVertex, rows = p.trace.elementCount;
+  if (n == 0 || n > kMaxCompressRays)
+  {
+    return false;
+  }
+  if (rows == 0)
+  {
+    return true;
+  }
+  if (n <= kThreads)
+  {
+    const int rowsPerBlock = int(kThreads / n);
+    const int endBit = kRowShift + bitsFor(unsigned(rowsPerBlock - 1));
+    const unsigned blocks = unsigned((rows + rowsPerBlock - 1) / rowsPerBlock);
+    compressKernel<1><<<blocks, kThreads, 0, stream>>>(p, hits, out, rowsPerBlock, endBit);
+    LINKGI_CUDA_CHECK_LAUNCH("compressKernel<1>");
+  }
+  else
+  {
+    compressKernel<4><<<rows, kThreads, 0, stream>>>(p, hits, out, 1, kRowShift);
+    LINKGI_CUDA_CHECK_LAUNCH("compressKernel<4>");
+  }
+  return true;
+}
+
+void packRows(const Index* srcColumns, const float* srcWeights, Index capacity, const Index* counts,
+  const Index* offsets, Index rows, Index* dstColumns, float* dstWeights, cudaStream_t stream)
+{
+  if (rows)
+  {
+    const std::size_t threads = std::size_t(rows) * 32;
+    packRowsKernel<<<unsigned((threads + kThreads - 1) / kThreads), kThreads, 0, stream>>>(
+      srcColumns, srcWeights, capacity, counts, offsets, rows, dstColumns, dstWeights);
+    LINKGI_CUDA_CHECK_LAUNCH("packRowsKernel");
+  }
+}
+
+void addToAll(Index* offsets, Index count, Index add, cudaStream_t stream)
+{
+  if (count && add)
+  {
+    addKernel<<<(count + kThreads - 1) / kThreads, kThreads, 0, stream>>>(offsets, count, add);
+    LINKGI_CUDA_CHECK_LAUNCH("addKernel");
+  }
+}
+}

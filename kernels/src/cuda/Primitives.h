@@ -1,0 +1,19 @@
+// Device-wide sort and scan (CUB), kept behind plain functions so that CUB's templates are
+// compiled once, in Primitives.cu.
+#pragma once
+
+#include "GPUBuffer.h"
+
+#include "linkgi/Config.h"
+
+namespace linkgi::cuda
+{
+/// Radix sort of (key, value) pairs on key bits [0, endBit); stable. `temp` grows as needed.
+void sortPairs(const std::uint64_t* keysIn, std::uint64_t* keysOut, const Index* valuesIn,
+  Index* valuesOut, std::size_t count, int endBit, GPUBuffer<unsigned char>& temp,
+  cudaStream_t stream);
+
+/// out[i] = in[0] + ... + in[i-1]; out may alias in.
+void exclusiveSum(const Index* in, Index* out, std::size_t count, GPUBuffer<unsigned char>& temp,
+  cudaStream_t stream);
+}
