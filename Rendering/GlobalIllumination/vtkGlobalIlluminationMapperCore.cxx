@@ -24,6 +24,7 @@
 
 #include "vtkGlobalIlluminationLightDec.h"
 #include "vtkGlobalIlluminationLightImpl.h"
+#include "vtkGlobalIlluminationUniformFlow.h"
 #include "vtkGlobalIlluminationVertexDec.h"
 #include "vtkGlobalIlluminationVertexImpl.h"
 
@@ -302,6 +303,8 @@ void vtkGlobalIlluminationMapperCore::ReplaceShaderLight(
     vs, "//VTK::Light::Impl", std::string(vtkGlobalIlluminationVertexImpl) + "  //VTK::Light::Impl", false);
   vtkShaderProgram::Substitute(fs, "//VTK::Light::Dec",
     defines.str() + vtkGlobalIlluminationLightDec + "//VTK::Light::Dec", false);
+  vtkShaderProgram::Substitute(fs, "//VTK::UniformFlow::Impl",
+    std::string(vtkGlobalIlluminationUniformFlow) + "  //VTK::UniformFlow::Impl", false);
   vtkShaderProgram::Substitute(
     fs, "//VTK::Light::Impl", std::string(vtkGlobalIlluminationLightImpl) + "  //VTK::Light::Impl", false);
   shaders[vtkShader::Vertex]->SetSource(vs);

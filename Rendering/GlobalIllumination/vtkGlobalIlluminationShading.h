@@ -159,10 +159,11 @@ public:
 
   ///@{
   /**
-   * Shadow bias, in shadow-map texels at the receiver: the shadow lookup moves along the
-   * surface normal by Bias * (0.5 + (ShadowFilterRadius / 2 + 0.75) * sin(angle of
-   * incidence)) texels, which is what the filter's footprint needs to be free of acne at
-   * any angle, without detaching shadows from their casters. The default value is 1.
+   * Shadow bias, in shadow-map texels at the receiver: the shadow lookup moves off the
+   * triangle along its normal by ShadowBias * (0.5 + sqrt(2) * (ShadowFilterRadius / 2 + 1)
+   * * sin(angle of incidence)) texels, which is what the filter's footprint needs to be
+   * free of acne at any angle, without detaching shadows from their casters. The default
+   * value is 1.
    */
   vtkSetClampMacro(ShadowBias, double, 0.0, 64.0);
   vtkGetMacro(ShadowBias, double);

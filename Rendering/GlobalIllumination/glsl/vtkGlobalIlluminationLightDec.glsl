@@ -107,21 +107,10 @@ float giImageShadow(float layer, vec2 uv, float depth)
   return s / 12.0;
 }
 
-// Fraction of light i that reaches p (unit normal n facing the light at cosSurface, at
-// distance dist). Normal-offset bias: the lookup point moves along the normal by
-// bias * (0.5 + (radius / 2 + 0.75) sin(theta)) texels. Across the filter's inner taps
-// (radius / 2 texels, plus the hardware's bilinear texel) the stored depth of a surface
-// lit at angle theta changes by that many texels times tan(theta), and an offset along the
-// normal buys 1 / cos(theta) of depth margin per unit, so the default bias of 1 keeps lit
-// surfaces free of acne at any angle while a shadow starts right at its caster's base (the
-// offset moves the lookup sideways by at most ~2 texels, not away from the contact).
-float giShadowFactor(int i, vec3 p, vec3 n, float cosSurface, float dist)
+// Filtered shadow-map lookup of light i at q (1 = lit).
+float giShadowLookup(int i, vec3 q)
 {
   vec4 sd = giShadowDepth[i];
-  float texel = sd.z * dist + sd.w;
-  float sinSurface = sqrt(max(1.0 - cosSurface * cosSurface, 0.0));
-  float offset = 0.5 + (0.5 * giShadowFilter.y + 0.75) * sinSurface;
-  vec3 q = p + n * (texel * giShadowFilter.z * offset);
   float layer = float(giShadowLayer[i]);
   if (giShadowKind[i] == 1)
   {
@@ -137,12 +126,48 @@ float giShadowFactor(int i, vec3 p, vec3 n, float cosSurface, float dist)
   float x = giShadowKind[i] == 2 ? length(q - giLightPosition[i]) : dot(q, giLightDirection[i]);
   return giImageShadow(layer, uv, x * sd.x + sd.y);
 }
+
+// Fraction of light i that reaches p, at distance dist, on a triangle of unit normal g
+// (the geometric normal: the shadow map holds the triangles, not the smooth surface that
+// the shading normals describe).
+//
+// Normal-offset bias: the lookup point moves off the triangle by
+// bias * (0.5 + sqrt(2) (radius / 2 + 1) sin(theta)) texels, theta the light's angle to
+// the triangle. The filter's inner taps reach radius / 2 texels along both axes, plus the
+// hardware's bilinear texel, so up to sqrt(2) (radius / 2 + 1) texels along the triangle's
+// slope, over which its stored depth changes by that many texels times tan(theta); an
+// offset along the normal buys 1 / cos(theta) of depth margin per unit. So the default bias
+// of 1 keeps lit surfaces free of acne at any angle, while shadows still start at their
+// casters' base (the offset moves the lookup sideways by at most ~3 texels).
+//
+// Shadow terminator: near the light's terminator on a coarse curved mesh, triangles turn
+// away from the light while their smooth shading normals still face it. The triangles
+// themselves would shadow such points (black facets, or stripes); the smooth surface
+// would not, and neither do the filter's shadow rays, which start along the vertex
+// normals. So the shadow fades out as the triangle turns edge-on to the light (over the
+// last ~6 degrees); those points are dim anyway, their shading normal being near the
+// terminator too.
+float giShadowFactor(int i, vec3 p, vec3 g, vec3 l, float dist)
+{
+  float cosTriangle = dot(g, l);
+  if (cosTriangle <= 0.0)
+  {
+    return 1.0;
+  }
+  vec4 sd = giShadowDepth[i];
+  float texel = sd.z * dist + sd.w;
+  float sinTriangle = sqrt(max(1.0 - cosTriangle * cosTriangle, 0.0));
+  float offset = 0.5 + 1.41421 * (0.5 * giShadowFilter.y + 1.0) * sinTriangle;
+  vec3 q = p + g * (texel * giShadowFilter.z * offset);
+  return mix(1.0, giShadowLookup(i, q), smoothstep(0.0, 0.1, cosTriangle));
+}
 #endif
 
-// Irradiance E_d at p (unit normal n) from all lights, with shadows, as
-// linkgi::unshadowedIrradiance computes it; `glossy` collects E * (m + 8) / (8 pi) * (n.h)^m,
-// the normalized Blinn-Phong lobe of exponent m = specularPower.
-vec3 giDirectIrradiance(vec3 p, vec3 n, vec3 eye, float shininess, out vec3 glossy)
+// Irradiance E_d at p (unit shading normal n, geometric normal g) from all lights, with
+// shadows, as linkgi::unshadowedIrradiance computes it; `glossy` collects
+// E * (m + 8) / (8 pi) * (n.h)^m, the normalized Blinn-Phong lobe of exponent
+// m = specularPower.
+vec3 giDirectIrradiance(vec3 p, vec3 n, vec3 g, vec3 eye, float shininess, out vec3 glossy)
 {
   vec3 irradiance = vec3(0.0);
   glossy = vec3(0.0);
@@ -176,7 +201,7 @@ vec3 giDirectIrradiance(vec3 p, vec3 n, vec3 eye, float shininess, out vec3 glos
     }
     if (giShadowKind[i] != 0)
     {
-      e *= giShadowFactor(i, p, n, cosSurface, dist);
+      e *= giShadowFactor(i, p, g, l, dist);
     }
     irradiance += e;
 #if GI_GLOSSY

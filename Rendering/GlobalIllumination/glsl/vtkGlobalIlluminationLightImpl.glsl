@@ -1,6 +1,11 @@
   // LinkGI: outgoing radiance L = Le + albedo / pi (E_d + E_ind) + glossy, tone mapped.
   vec3 giPosition = (giViewToWorld * vec4(vertexVC.xyz, 1.0)).xyz;
   vec3 giNormal = normalize(mat3(giViewToWorld) * normalVCVSOutput);
+  // The triangle's own normal (from the position derivatives taken in uniform control
+  // flow), on the same side as the shading normal.
+  vec3 giTriangle = mat3(giViewToWorld) * giTriangleNormalVC;
+  giTriangle = dot(giTriangle, giTriangle) > 0.0 ? normalize(giTriangle) : giNormal;
+  giTriangle = dot(giTriangle, giNormal) < 0.0 ? -giTriangle : giTriangle;
 #if GI_HAS_ALBEDO
   vec3 giAlbedo = mix(diffuseColor, giAlbedoVSOutput.rgb, giAlbedoVSOutput.a);
 #else
@@ -10,7 +15,7 @@
 #if GI_MODE != 2
   vec3 giEye = giCamera.w > 0.5 ? giCamera.xyz : normalize(giCamera.xyz - giPosition);
   vec3 giGlossy;
-  vec3 giDirect = giDirectIrradiance(giPosition, giNormal, giEye, specularPower, giGlossy);
+  vec3 giDirect = giDirectIrradiance(giPosition, giNormal, giTriangle, giEye, specularPower, giGlossy);
   giRadiance += giAlbedo * (1.0 / GI_PI) * giDirect + specularColor * giGlossy;
 #if GI_HAS_EMISSION
   giRadiance += giEmissionVSOutput;
