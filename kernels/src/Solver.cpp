@@ -188,6 +188,15 @@ Backend Solver::Impl::choose(const SolverOptions& opt, SolverStats& st)
     st.backendNote = "CPU requested.";
     return Backend::Cpu;
   }
+#if LINKGI_HAVE_CUDA
+  if (engine && engineDevices == opt.cudaDevices)
+  {
+    // The devices were found when the engine was made (asking again costs milliseconds).
+    st.backendNote = std::string(opt.backend == Backend::Auto ? "Auto: " : "CUDA requested: ") +
+      std::to_string(engine->deviceCount()) + " CUDA device(s) in use; using the GPU.";
+    return Backend::Cuda;
+  }
+#endif
   std::string why;
   const std::vector<cuda::DeviceInfo> gpus = cuda::devices(&why);
   if (gpus.empty())

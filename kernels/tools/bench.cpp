@@ -228,7 +228,7 @@ void benchScene(const std::string& name, const Args& args)
   {
     writeSolution(args.dump + "/" + name + ".bin", solution);
   }
-  if (!args.compare.empty())
+  if (!args.compare.empty() && std::ifstream(args.compare + "/" + name + ".bin"))
   {
     extra << ",\"agreement\":" << agreement(scene, solution, readSolution(args.compare + "/" + name + ".bin"));
   }

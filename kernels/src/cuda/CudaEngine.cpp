@@ -15,6 +15,15 @@ double msSince(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// Asks the caller whether to go on; the fractions follow the CPU path's stage ranges.
+void ask(const ProgressCallback& progress, const char* stage, double fraction)
+{
+  if (progress && !progress(stage, fraction))
+  {
+    throw Aborted();
+  }
+}
+
 template <typename T>
 void uploadVector(GPUBuffer<T>& buffer, const std::vector<T>& host, cudaStream_t stream)
 {
@@ -66,6 +75,7 @@ Engine::Engine(int maxDevices)
   {
     devices.push_back(std::make_unique<EngineDevice>(found[d].index));
   }
+  name = (use > 1 ? std::to_string(use) + " x " : std::string()) + found[0].name;
   // Peer access lets the first device pull the other devices' link rows directly.
   for (std::size_t d = 1; d < devices.size(); ++d)
   {
@@ -93,9 +103,7 @@ int Engine::deviceCount() const
 
 std::string Engine::description() const
 {
-  cudaDeviceProp prop{};
-  cudaGetDeviceProperties(&prop, devices[0]->id);
-  return (devices.size() > 1 ? std::to_string(devices.size()) + " x " : std::string()) + prop.name;
+  return name;
 }
 
 CsrView Engine::transport() const
@@ -126,28 +134,24 @@ void Engine::update(const HostInputs& in, const SolverOptions& options, const St
   samplePeakMemory();
   if (mask.relink)
   {
+    ask(progress, "links", 0.0);
     buildLinks(in, options, stats, progress);
+    ask(progress, "compress", 0.85);
     stats.builtLinks = true;
     ++stats.linkBuilds;
     samplePeakMemory();
   }
-  if (progress && !progress("light links", 0.85))
-  {
-    throw Aborted();
-  }
   if (mask.relight)
   {
+    ask(progress, "light links", 0.85);
     t = clock::now();
     computeDirectLight(in, options, stats);
     stats.msLightLinks = msSince(t);
     stats.builtLightLinks = true;
     ++stats.lightLinkBuilds;
+    ask(progress, "light links", 0.95);
   }
-  if (progress && !progress("bounces", 0.95))
-  {
-    throw Aborted();
-  }
-  bounceAndFinish(in, options, solution, stats);
+  bounceAndFinish(in, options, solution, stats, progress);
   samplePeakMemory();
   const EngineDevice& d0 = *devices[0];
   stats.rays = rays;
@@ -261,7 +265,7 @@ void Engine::computeDirectLight(const HostInputs& in, const SolverOptions& optio
 }
 
 void Engine::bounceAndFinish(const HostInputs& in, const SolverOptions& options,
-  Solution& solution, SolverStats& stats)
+  Solution& solution, SolverStats& stats, const ProgressCallback& progress)
 {
   using clock = std::chrono::steady_clock;
   const Scene& s = in.scene;
@@ -304,6 +308,7 @@ void Engine::bounceAndFinish(const HostInputs& in, const SolverOptions& options,
   for (std::uint32_t i = 0; i < options.bounces; ++i)
   {
     const bool last = i + 1 == options.bounces;
+    ask(progress, "bounces", 0.95 + 0.05 * double(i) / options.bounces);
     bounce(d.transport.view(), b, d.fixedIrradiance.data(), d.radiance[i % 2].data(),
       d.indirect.data(), last ? nullptr : d.radiance[(i + 1) % 2].data(), d.stream);
   }

@@ -79,10 +79,11 @@ private:
     const ProgressCallback& progress);
   void computeDirectLight(const HostInputs& in, const SolverOptions& options, SolverStats& stats);
   void bounceAndFinish(const HostInputs& in, const SolverOptions& options, Solution& solution,
-    SolverStats& stats);
+    SolverStats& stats, const ProgressCallback& progress);
   void samplePeakMemory();
 
   std::vector<std::unique_ptr<EngineDevice>> devices;
+  std::string name;
   std::size_t peak = 0;
   std::vector<std::size_t> linked;
   std::uint64_t rawLinks = 0, rays = 0, lightRays = 0;

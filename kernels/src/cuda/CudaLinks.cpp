@@ -282,7 +282,7 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
         d.pieces.push_back(linkBatch(d, job, first, count));
         d.pieces.back().device = int(i);
         done += count;
-        if (ask && progress && !progress("links", 0.85 * double(done) / std::max<Index>(ne, 1)))
+        if (ask && progress && !progress("links", 0.75 * double(done) / std::max<Index>(ne, 1)))
         {
           throw Aborted();
         }
