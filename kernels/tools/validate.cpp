@@ -33,7 +33,8 @@ Args parse(int argc, char** argv)
     if (i + 1 >= argc)
     {
       throw Error("Usage: linkgi-validate [--scenes a,b] [--rays 256] [--bounces 3] "
-                  "[--reference-factor 16]; " + arg + " needs a value.");
+                  "[--smoothing 1] [--oversampling 1] [--reference-factor 16]; " + arg +
+        " needs a value.");
     }
     const std::string value = argv[++i];
     if (arg == "--scenes")
@@ -49,6 +50,10 @@ Args parse(int argc, char** argv)
       a.options.raysPerVertex = std::stoul(value);
     else if (arg == "--bounces")
       a.options.bounces = std::stoul(value);
+    else if (arg == "--smoothing")
+      a.options.smoothing = value != "0";
+    else if (arg == "--oversampling")
+      a.options.lightOversampling = value != "0";
     else if (arg == "--reference-factor")
       a.referenceFactor = std::max(1ul, std::stoul(value));
     else
@@ -83,11 +88,11 @@ void validateScene(const std::string& name, const Args& args)
     sum(sol.direct, sol.indirect), sum(ref.direct, ref.indirect), vertexAreas(scene));
   const ErrorMetrics ei = relativeRmse(sol.indirect, ref.indirect, vertexAreas(scene));
   std::printf("{\"scene\":\"%s\",\"vertices\":%zu,\"rays_per_vertex\":%u,\"bounces\":%u,"
-              "\"reference_paths_per_vertex\":%u,\"rel_rmse_r\":%.4f,\"rel_rmse_g\":%.4f,"
+              "\"smoothing\":%d,\"oversampling\":%d,\"reference_paths_per_vertex\":%u,\"rel_rmse_r\":%.4f,\"rel_rmse_g\":%.4f,"
               "\"rel_rmse_b\":%.4f,\"rel_rmse_luminance\":%.4f,\"indirect_rel_rmse_luminance\":%.4f,"
               "\"ms_solver\":%.1f,\"ms_reference\":%.1f}\n",
     name.c_str(), scene.vertexCount(), args.options.raysPerVertex, args.options.bounces,
-    ro.pathsPerVertex, e.relRmse.x, e.relRmse.y, e.relRmse.z, e.relRmseLuminance,
+    int(args.options.smoothing), int(args.options.lightOversampling), ro.pathsPerVertex, e.relRmse.x, e.relRmse.y, e.relRmse.z, e.relRmseLuminance,
     ei.relRmseLuminance, solver.stats().msTotal, msReference);
   std::fflush(stdout);
 }
