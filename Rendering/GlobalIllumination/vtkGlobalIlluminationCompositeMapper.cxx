@@ -40,7 +40,8 @@ void vtkGlobalIlluminationCompositeMapper::SetShading(vtkGlobalIlluminationShadi
   }
   for (auto& helper : this->Helpers)
   {
-    static_cast<vtkGlobalIlluminationCompositeMapperHelper*>(helper.second)->SetShading(this->Shading);
+    static_cast<vtkGlobalIlluminationCompositeMapperHelper*>(helper.second)
+      ->SetShading(this->Shading);
   }
   this->Modified();
 }
@@ -64,7 +65,8 @@ vtkCompositeMapperHelper2* vtkGlobalIlluminationCompositeMapper::CreateHelper()
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationCompositeMapper::CopyMapperValuesToHelper(vtkCompositeMapperHelper2* helper)
+void vtkGlobalIlluminationCompositeMapper::CopyMapperValuesToHelper(
+  vtkCompositeMapperHelper2* helper)
 {
   this->Superclass::CopyMapperValuesToHelper(helper);
   static_cast<vtkGlobalIlluminationCompositeMapperHelper*>(helper)->SetShading(this->Shading);

@@ -4,6 +4,7 @@
 
 #include "vtkFloatArray.h"
 #include "vtkObjectFactory.h"
+#include "vtkPoints.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
@@ -39,7 +40,8 @@ void vtkGlobalIlluminationCompositeMapperHelper::ReleaseGraphicsResources(vtkWin
 }
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationCompositeMapperHelper::Shades(const vtkOpenGLHelper* cellBO, vtkActor* act)
+bool vtkGlobalIlluminationCompositeMapperHelper::Shades(const vtkOpenGLHelper* cellBO,
+                                                        vtkActor* act)
 {
   const std::ptrdiff_t type = cellBO - this->Primitives;
   if (type < PrimitiveStart || type >= PrimitiveEnd)
@@ -56,16 +58,17 @@ void vtkGlobalIlluminationCompositeMapperHelper::RenderPieceDraw(vtkRenderer* re
   if (!ren->GetSelector())
   {
     this->Core->Prepare(ren, act,
-      vtkGlobalIlluminationMapperCore::MakeCasters(
-        this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()));
+                        vtkGlobalIlluminationMapperCore::MakeCasters(
+                          this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()));
   }
   this->Superclass::RenderPieceDraw(ren, act);
   this->Core->FinishDraw();
 }
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildShaders(
-  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO,
+                                                                         vtkRenderer* ren,
+                                                                         vtkActor* act)
 {
   bool rebuild = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act);
   const std::string key = this->Shades(&cellBO, act) ? this->Core->ShaderKey(act) : "VTK";
@@ -107,8 +110,8 @@ void vtkGlobalIlluminationCompositeMapperHelper::SetLightingShaderParameters(
 }
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildBufferObjects(
-  vtkRenderer* ren, vtkActor* act)
+bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildBufferObjects(vtkRenderer* ren,
+                                                                               vtkActor* act)
 {
   const bool rebuild = this->Superclass::GetNeedToRebuildBufferObjects(ren, act);
   return rebuild || this->Core->BufferKey() != this->BufferKey;
@@ -136,11 +139,21 @@ void vtkGlobalIlluminationCompositeMapperHelper::BuildBufferObjects(vtkRenderer*
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationCompositeMapperHelper::AppendOneBufferObject(vtkRenderer* ren,
-  vtkActor* act, vtkCompositeMapperHelperData* hdata, vtkIdType& flatIndex,
+void vtkGlobalIlluminationCompositeMapperHelper::AppendOneBufferObject(
+  vtkRenderer* ren, vtkActor* act, vtkCompositeMapperHelperData* hdata, vtkIdType& flatIndex,
   std::vector<unsigned char>& colors, std::vector<float>& norms)
 {
+  // Blocks that share their points with an earlier block share its vertices in the buffer
+  // (vtkOpenGLVertexBufferObjectGroup appends an array once), and so its attributes.
+  vtkIdType offset = 0, total = 0;
+  vtkPoints* points = hdata->Data->GetPoints();
+  const bool shared =
+    points && this->VBOs->ArrayExists("vertexMC", points->GetData(), offset, total);
   this->Superclass::AppendOneBufferObject(ren, act, hdata, flatIndex, colors, norms);
+  if (shared)
+  {
+    return;
+  }
   const auto attributes = this->Core->MakeAttributes(hdata->Data, true);
   this->Core->Keep(attributes);
   if (this->Core->GetHasAlbedo())

@@ -6,6 +6,8 @@
  * vertex buffer. This helper adds the shading attributes of every block to that buffer
  * (zeros for blocks without an array, with the actor's colour as their albedo) and shades
  * like vtkGlobalIlluminationMapper; its shadow maps hold the triangles of all its blocks.
+ * Blocks with the same vtkPoints share their vertices in the buffer (VTK appends an array
+ * once), so they also share the first such block's shading arrays.
  *
  * Not wrapped, not installed.
  */
@@ -43,18 +45,21 @@ protected:
 
   void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
   bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
-  void ReplaceShaderLight(
-    std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
-  void SetLightingShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+  void ReplaceShaderLight(std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren,
+                          vtkActor* act) override;
+  void SetLightingShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren,
+                                   vtkActor* act) override;
   bool GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   void AppendOneBufferObject(vtkRenderer* ren, vtkActor* act, vtkCompositeMapperHelperData* hdata,
-    vtkIdType& flatIndex, std::vector<unsigned char>& colors, std::vector<float>& norms) override;
+                             vtkIdType& flatIndex, std::vector<unsigned char>& colors,
+                             std::vector<float>& norms) override;
 
   bool Shades(const vtkOpenGLHelper* cellBO, vtkActor* act);
 
 private:
-  vtkGlobalIlluminationCompositeMapperHelper(const vtkGlobalIlluminationCompositeMapperHelper&) = delete;
+  vtkGlobalIlluminationCompositeMapperHelper(const vtkGlobalIlluminationCompositeMapperHelper&) =
+    delete;
   void operator=(const vtkGlobalIlluminationCompositeMapperHelper&) = delete;
 
   std::unique_ptr<vtkGlobalIlluminationMapperCore> Core;

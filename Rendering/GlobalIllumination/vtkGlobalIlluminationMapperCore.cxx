@@ -119,7 +119,8 @@ vtkGlobalIlluminationMapperCore::vtkGlobalIlluminationMapperCore(vtkObject* owne
 vtkGlobalIlluminationMapperCore::~vtkGlobalIlluminationMapperCore() = default;
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationMapperCore::Shades(int primitiveType, int lightComplexity, vtkActor* actor)
+bool vtkGlobalIlluminationMapperCore::Shades(int primitiveType, int lightComplexity,
+                                             vtkActor* actor)
 {
   const bool surface = primitiveType == vtkOpenGLPolyDataMapper::PrimitiveTris ||
     primitiveType == vtkOpenGLPolyDataMapper::PrimitiveTriStrips;
@@ -150,8 +151,8 @@ vtkGlobalIlluminationMapperCore::Attributes vtkGlobalIlluminationMapperCore::Mak
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapperCore::GetPresence(
-  vtkPolyData* poly, bool& albedo, bool& indirect, bool& emission) const
+void vtkGlobalIlluminationMapperCore::GetPresence(vtkPolyData* poly, bool& albedo, bool& indirect,
+                                                  bool& emission) const
 {
   const auto has = [poly](const char* name)
   {
@@ -214,7 +215,8 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::MakeCasters(
     vtkOpenGLVertexBufferObject* vbo = vbos->GetVBO("vertexMC");
     vao->AddAttributeArray(program, vbo, "vertexMC", 0, false);
     const GLuint last = static_cast<GLuint>(std::max(vbo->GetNumberOfTuples(), 1u) - 1);
-    for (int type : { vtkOpenGLPolyDataMapper::PrimitiveTris, vtkOpenGLPolyDataMapper::PrimitiveTriStrips })
+    for (int type :
+         { vtkOpenGLPolyDataMapper::PrimitiveTris, vtkOpenGLPolyDataMapper::PrimitiveTriStrips })
     {
       vtkOpenGLIndexBufferObject* ibo = primitives[type].IBO;
       if (ibo->IndexCount == 0)
@@ -223,7 +225,7 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::MakeCasters(
       }
       ibo->Bind();
       glDrawRangeElements(GL_TRIANGLES, 0, last, static_cast<GLsizei>(ibo->IndexCount),
-        GL_UNSIGNED_INT, nullptr);
+                          GL_UNSIGNED_INT, nullptr);
       ibo->Release();
     }
   };
@@ -231,8 +233,8 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::MakeCasters(
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapperCore::Prepare(
-  vtkRenderer* renderer, vtkActor*, const ShadowMaps::Casters& casters)
+void vtkGlobalIlluminationMapperCore::Prepare(vtkRenderer* renderer, vtkActor*,
+                                              const ShadowMaps::Casters& casters)
 {
   const double scale = this->Shading ? this->Shading->GetLightIntensityScale() : 1.0;
   const int maximum = vtkGlobalIlluminationShading::GetMaximumNumberOfLights();
@@ -258,9 +260,9 @@ void vtkGlobalIlluminationMapperCore::Prepare(
   }
   if (ignored > 0 && ignored != this->IgnoredLightsWarned)
   {
-    vtkWarningWithObjectMacro(this->Owner, << "The renderer has " << ignored
-      << " more switched-on lights than the " << maximum
-      << " a global illumination mapper shades; they are ignored.");
+    vtkWarningWithObjectMacro(
+      this->Owner, << "The renderer has " << ignored << " more switched-on lights than the "
+                   << maximum << " a global illumination mapper shades; they are ignored.");
   }
   this->IgnoredLightsWarned = ignored;
   auto* window = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
@@ -298,21 +300,27 @@ void vtkGlobalIlluminationMapperCore::ReplaceShaderLight(
   std::string vs = shaders[vtkShader::Vertex]->GetSource();
   std::string fs = shaders[vtkShader::Fragment]->GetSource();
   vtkShaderProgram::Substitute(vs, "//VTK::Light::Dec",
-    defines.str() + vtkGlobalIlluminationVertexDec + "//VTK::Light::Dec", false);
+                               defines.str() + vtkGlobalIlluminationVertexDec + "//VTK::Light::Dec",
+                               false);
   vtkShaderProgram::Substitute(
-    vs, "//VTK::Light::Impl", std::string(vtkGlobalIlluminationVertexImpl) + "  //VTK::Light::Impl", false);
+    vs, "//VTK::Light::Impl", std::string(vtkGlobalIlluminationVertexImpl) + "  //VTK::Light::Impl",
+    false);
   vtkShaderProgram::Substitute(fs, "//VTK::Light::Dec",
-    defines.str() + vtkGlobalIlluminationLightDec + "//VTK::Light::Dec", false);
-  vtkShaderProgram::Substitute(fs, "//VTK::UniformFlow::Impl",
-    std::string(vtkGlobalIlluminationUniformFlow) + "  //VTK::UniformFlow::Impl", false);
+                               defines.str() + vtkGlobalIlluminationLightDec + "//VTK::Light::Dec",
+                               false);
   vtkShaderProgram::Substitute(
-    fs, "//VTK::Light::Impl", std::string(vtkGlobalIlluminationLightImpl) + "  //VTK::Light::Impl", false);
+    fs, "//VTK::UniformFlow::Impl",
+    std::string(vtkGlobalIlluminationUniformFlow) + "  //VTK::UniformFlow::Impl", false);
+  vtkShaderProgram::Substitute(fs, "//VTK::Light::Impl",
+                               std::string(vtkGlobalIlluminationLightImpl) + "  //VTK::Light::Impl",
+                               false);
   shaders[vtkShader::Vertex]->SetSource(vs);
   shaders[vtkShader::Fragment]->SetSource(fs);
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapperCore::SetShaderParameters(vtkShaderProgram* program, vtkRenderer* renderer)
+void vtkGlobalIlluminationMapperCore::SetShaderParameters(vtkShaderProgram* program,
+                                                          vtkRenderer* renderer)
 {
   vtkGlobalIlluminationShading* s = this->Shading;
   program->SetUniformf("giExposure", static_cast<float>(s ? s->GetExposure() : 1.0));
@@ -370,8 +378,8 @@ void vtkGlobalIlluminationMapperCore::SetShaderParameters(vtkShaderProgram* prog
   {
     this->TextureActive = this->ShadowMaps.Activate();
   }
-  this->ShadowMaps.SetUniforms(
-    program, n, s ? s->GetShadowFilterRadius() : 1.5, s ? s->GetShadowBias() : 1.0);
+  this->ShadowMaps.SetUniforms(program, n, s ? s->GetShadowFilterRadius() : 1.5,
+                               s ? s->GetShadowBias() : 1.0);
 }
 
 //------------------------------------------------------------------------------

@@ -91,12 +91,13 @@ public:
   std::string BufferKey() const;
 
   /// The shadow casters drawn from a mapper's buffers (its triangles and strips).
-  static vtkGlobalIlluminationShadowMaps::Casters MakeCasters(vtkOpenGLVertexBufferObjectGroup* vbos,
-    vtkOpenGLHelper* primitives, vtkActor* actor, vtkMTimeType version);
+  static vtkGlobalIlluminationShadowMaps::Casters MakeCasters(
+    vtkOpenGLVertexBufferObjectGroup* vbos, vtkOpenGLHelper* primitives, vtkActor* actor,
+    vtkMTimeType version);
 
   /// Takes the renderer's lights and brings the shadow maps up to date. Call before drawing.
   void Prepare(vtkRenderer* renderer, vtkActor* actor,
-    const vtkGlobalIlluminationShadowMaps::Casters& casters);
+               const vtkGlobalIlluminationShadowMaps::Casters& casters);
 
   /// A key of everything the shader source depends on: a change rebuilds the shaders.
   std::string ShaderKey(vtkActor* actor) const;

@@ -84,7 +84,7 @@ public:
    * only if something they depend on changed. Returns true if it rendered.
    */
   bool Update(vtkOpenGLRenderWindow* window, const std::vector<Light>& lights, bool shadows,
-    const Casters& casters, int resolution);
+              const Casters& casters, int resolution);
 
   ///@{
   /// Binds the depth texture array to a free texture unit for the lighting shader;
@@ -109,15 +109,17 @@ public:
   {
     int Kind = 0; ///< 0 none, 1 cube, 2 perspective (spot), 3 orthographic (directional)
     int Layer = 0;
-    std::array<double, 16> WorldToClip{}; ///< row-major; kinds 2 and 3
+    std::array<double, 16> WorldToClip{};           ///< row-major; kinds 2 and 3
     std::array<double, 2> DepthMap{ { 1.0, 0.0 } }; ///< stored depth = x * [0] + [1]
     std::array<double, 2> Texel{ { 0.0, 0.0 } };    ///< texel size = [0] * distance + [1]
   };
 
 private:
-  std::vector<Map> Plan(const std::vector<Light>& lights, const double bounds[6], int resolution) const;
+  std::vector<Map> Plan(const std::vector<Light>& lights, const double bounds[6],
+                        int resolution) const;
   void Allocate(vtkOpenGLRenderWindow* window, int layers, int resolution);
-  void Render(vtkOpenGLRenderWindow* window, const std::vector<Light>& lights, const Casters& casters);
+  void Render(vtkOpenGLRenderWindow* window, const std::vector<Light>& lights,
+              const Casters& casters);
 
   std::vector<Map> Maps;
   std::vector<double> Signature;
