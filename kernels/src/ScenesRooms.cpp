@@ -57,10 +57,10 @@ Scene makeTearoom()
   MeshBuilder b;
   const Vec3f cream(0.78f, 0.72f, 0.6f), sage(0.45f, 0.55f, 0.4f), wood(0.45f, 0.3f, 0.18f);
   const Vec3f china(0.85f, 0.85f, 0.82f), cloth(0.6f, 0.15f, 0.12f), dark(0.25f);
-  addRoom(b, Vec3f(-2.f, 0.f, -2.f), Vec3f(2.f, 3.f, 2.f), 0.16f, wood, Vec3f(0.8f),
+  addRoom(b, Vec3f(-2.f, 0.f, -2.f), Vec3f(2.f, 3.f, 2.f), 0.19f, wood, Vec3f(0.8f),
     { sage, cream, cream, cream });
   // Rug: a single sheet just above the floor; its underside faces the floor and is never seen.
-  addRect(b, Vec3f(-1.2f, 0.005f, -0.9f), Vec3f(0.f, 0.f, 1.8f), Vec3f(2.4f, 0.f, 0.f), 0.12f,
+  addRect(b, Vec3f(-1.2f, 0.005f, -0.9f), Vec3f(0.f, 0.f, 1.8f), Vec3f(2.4f, 0.f, 0.f), 0.15f,
     cloth);
 
   // Round pedestal table.
@@ -84,12 +84,12 @@ Scene makeTearoom()
 
   // Pendant lamp over the table and a floor lamp in the (+x, -z) corner.
   b.addCylinder(Vec3f(0.f, 2.35f, 0.f), Vec3f(0.f, 3.f, 0.f), 0.006f, 6, 2, false, dark);
-  addShade(b, Vec3f(0.f, 2.05f, 0.f), 0.3f, 0.25f, 0.08f, 40, Vec3f(0.85f, 0.7f, 0.35f));
+  addShade(b, Vec3f(0.f, 2.05f, 0.f), 0.3f, 0.25f, 0.08f, 32, Vec3f(0.85f, 0.7f, 0.35f));
   const Vec3f corner(1.6f, 0.f, -1.6f);
   b.addCylinder(corner, corner + Vec3f(0.f, 0.03f, 0.f), 0.15f, 24, 1, true, dark);
   b.addCylinder(corner + Vec3f(0.f, 0.03f, 0.f), corner + Vec3f(0.f, 1.45f, 0.f), 0.015f, 8, 8,
     false, dark);
-  addShade(b, corner + Vec3f(0.f, 1.4f, 0.f), 0.3f, 0.22f, 0.14f, 32, Vec3f(0.8f, 0.75f, 0.6f));
+  addShade(b, corner + Vec3f(0.f, 1.4f, 0.f), 0.3f, 0.22f, 0.14f, 28, Vec3f(0.8f, 0.75f, 0.6f));
 
   Scene scene = b.take();
   scene.lights.push_back(pointLight(Vec3f(0.f, 2.2f, 0.f), Vec3f(6.f, 5.5f, 4.8f)));
