@@ -64,6 +64,17 @@ if(LINKGI_PARAVIEW_PLUGIN_ENABLED)
       "-DCMAKE_C_COMPILER_LAUNCHER:FILEPATH=${CMAKE_C_COMPILER_LAUNCHER}"
       "-DCMAKE_CXX_COMPILER_LAUNCHER:FILEPATH=${CMAKE_CXX_COMPILER_LAUNCHER}")
   endif()
+  # The engine with the same backends as here (and so the same objects, from ccache).
+  set(_linkgi_cuda_args "-DLINKGI_ENABLE_CUDA:BOOL=${LINKGI_ENABLE_CUDA}")
+  if(LINKGI_ENABLE_CUDA)
+    list(APPEND _linkgi_cuda_args
+      "-DCMAKE_CUDA_COMPILER:FILEPATH=${CMAKE_CUDA_COMPILER}"
+      "-DCMAKE_CUDA_ARCHITECTURES:STRING=${CMAKE_CUDA_ARCHITECTURES}")
+    if(CMAKE_CUDA_COMPILER_LAUNCHER)
+      list(APPEND _linkgi_cuda_args
+        "-DCMAKE_CUDA_COMPILER_LAUNCHER:FILEPATH=${CMAKE_CUDA_COMPILER_LAUNCHER}")
+    endif()
+  endif()
   ExternalProject_Add(linkgi_paraview_plugin
     SOURCE_DIR        "${PROJECT_SOURCE_DIR}/paraview-plugin"
     BINARY_DIR        "${_linkgi_plugin_build}"
@@ -74,6 +85,7 @@ if(LINKGI_PARAVIEW_PLUGIN_ENABLED)
       "-DCMAKE_C_COMPILER:FILEPATH=${CMAKE_C_COMPILER}"
       "-DCMAKE_CXX_COMPILER:FILEPATH=${CMAKE_CXX_COMPILER}"
       ${_linkgi_launcher_args}
+      ${_linkgi_cuda_args}
       "-DCMAKE_INSTALL_LIBDIR:STRING=${CMAKE_INSTALL_LIBDIR}"
       "-DParaView_DIR:PATH=${LINKGI_PARAVIEW_CMAKE_DIR}"
       "-DLINKGI_PARAVIEW_PYTHON_PREFIX:PATH=${LINKGI_PARAVIEW_PYTHON_PREFIX}"
