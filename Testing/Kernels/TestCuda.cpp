@@ -178,6 +178,31 @@ TEST(Cuda, DeformationRefitsOrRebuildsAndAgreesWithTheCpu)
   }
 }
 
+TEST(Cuda, AutoBvhUpdateRefitsSmallAndRebuildsLargeDeformations)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  Scene s = roomWithBlock();
+  const SolverOptions o = onBackend(Backend::Cuda, fast()); // CudaBvhUpdate::Auto
+  Solver solver;
+  solver.update(s, o);
+  for (Vec3f& p : s.positions)
+  {
+    p.y *= 1.05f; // boxes stay tight
+  }
+  solver.update(s, o);
+  EXPECT_TRUE(solver.stats().refitBvh);
+  for (Vec3f& p : s.positions)
+  {
+    // A strong twist about the vertical axis: a refit tree's boxes would swell.
+    const float a = 2.5f * p.y, c = std::cos(a), sn = std::sin(a);
+    p = Vec3f(c * p.x - sn * p.z, p.y, sn * p.x + c * p.z);
+  }
+  const Solution& twisted = solver.update(s, o);
+  EXPECT_TRUE(solver.stats().builtBvh);
+  Solver fresh;
+  expectIdentical(twisted, fresh.update(s, o));
+}
+
 TEST(Cuda, AllGpusGiveTheSameLinksAsOne)
 {
   LINKGI_REQUIRE_CUDA_DEVICE();

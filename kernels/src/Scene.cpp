@@ -85,14 +85,14 @@ void checkArray(const std::vector<Vec3f>& values, const char* name, Check isBad,
   }
 }
 
-bool notFinite(const Vec3f& v)
-{
-  return !isFinite(v);
-}
-bool negativeOrNotFinite(const Vec3f& v)
-{
-  return !isFinite(v) || v.x < 0.f || v.y < 0.f || v.z < 0.f;
-}
+// Function objects, not functions: checkArray inlines them (through a function pointer
+// the checks cost more than the rest of a light update on a large mesh).
+constexpr auto notFinite = [](const Vec3f& v) { return !isFinite(v); };
+constexpr auto negativeOrNotFinite = [](const Vec3f& v) {
+  // One comparison per channel: false for negative values, NaN and +Inf alike.
+  constexpr float kMax = 3.402823466e38f;
+  return !(v.x >= 0.f && v.x <= kMax && v.y >= 0.f && v.y <= kMax && v.z >= 0.f && v.z <= kMax);
+};
 
 void checkLights(const std::vector<Light>& lights)
 {
@@ -171,36 +171,21 @@ std::size_t repairNormals(Scene& scene)
 }
 }
 
-std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy)
+namespace
 {
-  std::vector<std::string> warnings;
+void checkShadingSizes(const Scene& scene)
+{
   const std::size_t n = scene.positions.size();
-  if (n == 0)
-  {
-    fail("The scene has no vertices.");
-  }
-  if (scene.triangles.empty())
-  {
-    fail("The scene has no triangles: global illumination needs surfaces (polygons or strips).");
-  }
   if (scene.normals.size() != n || scene.albedo.size() != n ||
     (!scene.emission.empty() && scene.emission.size() != n))
   {
     fail("The scene's normal, albedo or emission arrays do not have one value per vertex.");
   }
-  for (std::size_t i = 0; i < scene.triangles.size(); ++i)
-  {
-    for (Index v : scene.triangles[i].v)
-    {
-      if (v >= n)
-      {
-        fail("Triangle " + std::to_string(i) + " refers to vertex " + std::to_string(v) +
-          ", but the scene has only " + std::to_string(n) + " vertices.");
-      }
-    }
-  }
-  checkArray(scene.positions, "position", notFinite, "a non-finite (NaN or Inf)");
-  checkArray(scene.normals, "normal", notFinite, "a non-finite (NaN or Inf)");
+}
+
+/// The errors of albedo, emission, lights and environment.
+void checkShading(const Scene& scene)
+{
   checkArray(scene.albedo, "albedo", negativeOrNotFinite, "a negative or non-finite");
   checkArray(scene.emission, "emission", negativeOrNotFinite, "a negative or non-finite");
   checkLights(scene.lights);
@@ -214,25 +199,15 @@ std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy)
   {
     fail("The environment map's texel count does not match its width x height.");
   }
+}
 
-  if (const std::size_t removed = removeDegenerateTriangles(scene))
-  {
-    warnings.push_back("Removed " + std::to_string(removed) + " degenerate triangles.");
-    if (scene.triangles.empty())
-    {
-      fail("Every triangle of the scene is degenerate (zero area).");
-    }
-  }
-  if (const std::size_t repaired = repairNormals(scene))
-  {
-    warnings.push_back(
-      "Replaced " + std::to_string(repaired) + " zero-length normals by face normals.");
-  }
-
+/// Albedo above 1 (clamped or rejected), and a scene without any light.
+void repairShading(Scene& scene, AlbedoPolicy policy, std::vector<std::string>& warnings)
+{
   std::size_t above = 0;
   for (Vec3f& a : scene.albedo)
   {
-    if (maxComponent(a) > 1.f)
+    if (a.x > 1.f || a.y > 1.f || a.z > 1.f) // maxComponent(a) > 1, without libm's fmaxf
     {
       ++above;
       a = { std::min(a.x, 1.f), std::min(a.y, 1.f), std::min(a.z, 1.f) };
@@ -252,7 +227,7 @@ std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy)
   bool anyEmission = false;
   for (const Vec3f& e : scene.emission)
   {
-    anyEmission = anyEmission || maxComponent(e) > 0.f;
+    anyEmission = anyEmission || e.x > 0.f || e.y > 0.f || e.z > 0.f;
   }
   bool anyLight = false;
   for (const Light& l : scene.lights)
@@ -264,6 +239,60 @@ std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy)
     warnings.push_back("The scene has no lights, no emission and a black environment: "
                        "all irradiance is zero.");
   }
+}
+}
+
+std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy)
+{
+  std::vector<std::string> warnings;
+  const std::size_t n = scene.positions.size();
+  if (n == 0)
+  {
+    fail("The scene has no vertices.");
+  }
+  if (scene.triangles.empty())
+  {
+    fail("The scene has no triangles: global illumination needs surfaces (polygons or strips).");
+  }
+  checkShadingSizes(scene);
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i)
+  {
+    for (Index v : scene.triangles[i].v)
+    {
+      if (v >= n)
+      {
+        fail("Triangle " + std::to_string(i) + " refers to vertex " + std::to_string(v) +
+          ", but the scene has only " + std::to_string(n) + " vertices.");
+      }
+    }
+  }
+  checkArray(scene.positions, "position", notFinite, "a non-finite (NaN or Inf)");
+  checkArray(scene.normals, "normal", notFinite, "a non-finite (NaN or Inf)");
+  checkShading(scene);
+
+  if (const std::size_t removed = removeDegenerateTriangles(scene))
+  {
+    warnings.push_back("Removed " + std::to_string(removed) + " degenerate triangles.");
+    if (scene.triangles.empty())
+    {
+      fail("Every triangle of the scene is degenerate (zero area).");
+    }
+  }
+  if (const std::size_t repaired = repairNormals(scene))
+  {
+    warnings.push_back(
+      "Replaced " + std::to_string(repaired) + " zero-length normals by face normals.");
+  }
+  repairShading(scene, policy, warnings);
+  return warnings;
+}
+
+std::vector<std::string> validateShading(Scene& scene, AlbedoPolicy policy)
+{
+  std::vector<std::string> warnings;
+  checkShadingSizes(scene);
+  checkShading(scene);
+  repairShading(scene, policy, warnings);
   return warnings;
 }
 }

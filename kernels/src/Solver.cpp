@@ -75,7 +75,59 @@ std::vector<Vec3f> environmentIrradiance(const SparseMatrix& wenv, const Environ
 struct Changes
 {
   bool topology = true, positions = true, geometry = true, relink = true, relight = true,
-       rebounce = true;
+       materials = true, rebounce = true;
+};
+
+/// Lends the cached scene's unchanged arrays to the scene of an update (no copy), and takes
+/// them back unless the update commits, so an error or abort leaves the cache whole.
+class ArrayLoan
+{
+public:
+  ArrayLoan(Scene& cache, Scene& work, bool geometry, bool albedo, bool emission)
+    : cache(cache), work(work), geometry(geometry), albedo(albedo), emission(emission)
+  {
+    move(cache, work);
+  }
+  ~ArrayLoan()
+  {
+    if (!committed)
+    {
+      move(work, cache);
+    }
+  }
+  ArrayLoan(const ArrayLoan&) = delete;
+  ArrayLoan& operator=(const ArrayLoan&) = delete;
+  void commit() { committed = true; }
+
+private:
+  void move(Scene& from, Scene& to) const
+  {
+    if (geometry)
+    {
+      to.positions = std::move(from.positions);
+      to.normals = std::move(from.normals);
+      to.triangles = std::move(from.triangles);
+    }
+    if (albedo)
+    {
+      to.albedo = std::move(from.albedo);
+    }
+    if (emission)
+    {
+      to.emission = std::move(from.emission);
+    }
+  }
+
+  Scene& cache;
+  Scene& work;
+  bool geometry, albedo, emission;
+  bool committed = false;
+};
+
+/// Which of the input's arrays equal the cached (validated) scene's, and are lent from it.
+struct Lent
+{
+  bool geometry = false, albedo = false, emission = false;
 };
 
 /// The host-side geometry data both backends read: new where the geometry changed.
@@ -112,8 +164,10 @@ struct Solver::Impl
   bool cudaValid = false;
 #endif
 
-  void solve(Scene scene, const SolverOptions& options, const ProgressCallback& progress);
-  Changes detect(const Scene& s, const SolverOptions& opt) const;
+  Solution spare; // the solution before last: its buffers are reused by the next update
+
+  void solve(const Scene& input, const SolverOptions& options, const ProgressCallback& progress);
+  Changes detect(const Scene& s, const SolverOptions& opt, const Lent& lent) const;
   Backend choose(const SolverOptions& opt, SolverStats& st);
   void solveCpu(const Scene& s, const SolverOptions& opt, Changes c, const HostGeometry& g,
     Solution& sol, SolverStats& st, const ProgressCallback& progress);
@@ -163,19 +217,23 @@ const Solution& Solver::update(const Scene& scene, const SolverOptions& options,
   return impl->solution;
 }
 
-Changes Solver::Impl::detect(const Scene& s, const SolverOptions& opt) const
+Changes Solver::Impl::detect(const Scene& s, const SolverOptions& opt, const Lent& lent) const
 {
+  // Lent arrays are the cached ones (the cache's own are empty meanwhile); the others are
+  // compared after validation, as validation may have repaired them.
   Changes c;
-  c.topology = !valid || s.vertexCount() != scene.vertexCount() || !sameArray(s.triangles, scene.triangles);
-  c.positions = c.topology || !sameArray(s.positions, scene.positions);
-  c.geometry = c.positions || !sameArray(s.normals, scene.normals);
+  c.topology = !lent.geometry &&
+    (!valid || s.vertexCount() != scene.vertexCount() || !sameArray(s.triangles, scene.triangles));
+  c.positions = c.topology || (!lent.geometry && !sameArray(s.positions, scene.positions));
+  c.geometry = c.positions || (!lent.geometry && !sameArray(s.normals, scene.normals));
   c.relink = c.geometry || opt.raysPerVertex != options.raysPerVertex ||
     opt.twoSided != options.twoSided || opt.twist != options.twist || opt.seed != options.seed ||
     !sameEnvironmentLayout(s.environment, scene.environment);
   c.relight = c.relink || !sameArray(s.lights, scene.lights) ||
     opt.lightOversampling != options.lightOversampling;
-  c.rebounce = c.relight || !sameArray(s.albedo, scene.albedo) ||
-    !sameArray(s.emission, scene.emission) || !sameEnvironment(s.environment, scene.environment) ||
+  c.materials = c.topology || (!lent.albedo && !sameArray(s.albedo, scene.albedo)) ||
+    (!lent.emission && !sameArray(s.emission, scene.emission));
+  c.rebounce = c.relight || c.materials || !sameEnvironment(s.environment, scene.environment) ||
     opt.bounces != options.bounces || opt.smoothing != options.smoothing ||
     opt.featureAngleDegrees != options.featureAngleDegrees;
   return c;
@@ -214,15 +272,45 @@ Backend Solver::Impl::choose(const SolverOptions& opt, SolverStats& st)
   return Backend::Cuda;
 }
 
-void Solver::Impl::solve(Scene s, const SolverOptions& opt, const ProgressCallback& progress)
+void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const ProgressCallback& progress)
 {
   const auto start = std::chrono::steady_clock::now();
   SolverStats st = stats; // lifetime counters carry over; per-update fields reset below
   st.builtBvh = st.refitBvh = st.builtLinks = st.builtLightLinks = st.ranBounces = false;
   st.msBvh = st.msLinks = st.msCompress = st.msLightLinks = st.msBounces = st.msSmoothing = 0;
-  st.warnings = validateScene(s, opt.albedoPolicy);
 
-  const Changes c = detect(s, opt);
+  // Unchanged arrays are neither copied nor validated again: the cached ones passed
+  // validation unchanged, so equal input arrays would too. A light or material change on
+  // a large mesh then costs no more host time than comparing the arrays.
+  Lent lent;
+  lent.geometry = valid && sameArray(input.positions, scene.positions) &&
+    sameArray(input.normals, scene.normals) && sameArray(input.triangles, scene.triangles);
+  lent.albedo = lent.geometry && sameArray(input.albedo, scene.albedo);
+  lent.emission = lent.geometry && sameArray(input.emission, scene.emission);
+  Scene s;
+  ArrayLoan loan(scene, s, lent.geometry, lent.albedo, lent.emission);
+  if (lent.geometry)
+  {
+    if (!lent.albedo)
+    {
+      s.albedo = input.albedo;
+    }
+    if (!lent.emission)
+    {
+      s.emission = input.emission;
+    }
+    s.lights = input.lights;
+    s.environment = input.environment;
+    st.warnings = validateShading(s, opt.albedoPolicy);
+  }
+  else
+  {
+    s = input;
+    st.warnings = validateScene(s, opt.albedoPolicy);
+  }
+
+  const Changes c = detect(s, opt, lent);
+  st.msPrepare = msSince(start);
   if (!c.rebounce && opt.backend == options.backend && opt.cudaDevices == options.cudaDevices)
   {
     st.msTotal = msSince(start);
@@ -249,7 +337,8 @@ void Solver::Impl::solve(Scene s, const SolverOptions& opt, const ProgressCallba
     c.geometry ? &newFaceNormals : &faceNormals };
   const double msHost = msSince(t);
 
-  Solution sol;
+  Solution sol = std::move(spare); // same sizes as a rule: no allocation, no page faults
+  spare = Solution();
   const Backend backend = choose(opt, st);
   if (backend != Backend::Cuda || !solveCuda(s, opt, c, g, sol, st, progress))
   {
@@ -267,8 +356,10 @@ void Solver::Impl::solve(Scene s, const SolverOptions& opt, const ProgressCallba
     shifts = std::move(newShifts);
     faceNormals = std::move(newFaceNormals);
   }
+  loan.commit();
   scene = std::move(s);
   options = opt;
+  spare = std::move(solution);
   solution = std::move(sol);
   valid = true;
   st.elements = solution.elementCount();
@@ -302,6 +393,7 @@ bool Solver::Impl::solveCuda(const Scene& s, const SolverOptions& opt, const Cha
     mask.geometry = all || c.geometry;
     mask.relink = all || c.relink;
     mask.relight = all || c.relight;
+    mask.materials = all || c.materials;
     cudaValid = false; // until this update has succeeded
     engine->update(cuda::HostInputs{ s, *g.topology, *g.shifts, *g.faceNormals }, opt, mask, sol,
       st, progress);

@@ -100,6 +100,11 @@ enum class AlbedoPolicy
 /// environment and no emission is valid: its solution is all zero (warned).
 std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp);
 
+/// The albedo, emission, light and environment half of validateScene, for a scene whose
+/// positions, normals and triangles passed validateScene unchanged before (the solver's
+/// light and material updates): the same errors, repairs and warnings for those arrays.
+std::vector<std::string> validateShading(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp);
+
 /// True if every array, light and the environment of `a` and `b` are bitwise equal.
 bool sameScene(const Scene& a, const Scene& b);
 

@@ -21,8 +21,10 @@ enum class Backend
 /// CUDA backend: what a deformation (same triangles, moved vertices) does to the GPU's BVH.
 enum class CudaBvhUpdate
 {
-  Rebuild, ///< a new linear BVH: about as fast as a refit on the GPU, and the tree stays tight
-  Refit    ///< new boxes for the old tree (faster for tiny motions; boxes overlap as it deforms)
+  Auto,    ///< refit while the tree stays tight, rebuild once its box surface area has grown
+           ///< by half since its build (boxes of a refit tree swell as the mesh deforms)
+  Rebuild, ///< always a new linear BVH (a millisecond for 200k triangles)
+  Refit    ///< always new boxes for the old tree
 };
 
 struct SolverOptions
@@ -51,8 +53,8 @@ struct SolverOptions
   Backend backend = Backend::Auto;
   /// CUDA: link generation runs on at most this many GPUs (0 = all of them). Default 0.
   int cudaDevices = 0;
-  /// CUDA: BVH update on deformation. Default Rebuild.
-  CudaBvhUpdate cudaBvhUpdate = CudaBvhUpdate::Rebuild;
+  /// CUDA: BVH update on deformation. Default Auto.
+  CudaBvhUpdate cudaBvhUpdate = CudaBvhUpdate::Auto;
 };
 
 /// Per-element results. Elements are the vertices; with two-sided elements the back sides
@@ -79,6 +81,8 @@ struct SolverStats
   // Stage times of the last update in milliseconds (0 for stages that did not run).
   double msBvh = 0, msLinks = 0, msCompress = 0, msLightLinks = 0, msBounces = 0,
          msSmoothing = 0, msTotal = 0;
+  /// Of msTotal: copying and validating the scene and finding what changed (host).
+  double msPrepare = 0;
   std::vector<std::string> warnings; ///< from scene validation and backend fallbacks
   /// Which backend ran the last update ("cpu" or "cuda"), on what ("embree", "2 x NVIDIA
   /// H200"), and why that one (the Auto choice or the reason for a fallback to the CPU).

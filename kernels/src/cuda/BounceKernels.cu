@@ -29,26 +29,41 @@ __device__ inline Vec3f gatherRow(const CsrView& m, const Rgba* __restrict__ x, 
   const Index begin = active ? __ldg(m.rowOffsets + row) : 0;
   const Index end = active ? __ldg(m.rowOffsets + row + 1) : 0;
   float r = 0.f, g = 0.f, b = 0.f;
+  const float4* xs = reinterpret_cast<const float4*>(x);
   Index i = begin + lane;
-  // Two entries per lane per step keep more loads in flight.
-  for (; i + Lanes < end; i += 2 * Lanes)
+  // Four entries per lane per step keep more loads in flight; the matrix streams through
+  // once (evict-first loads), so the gathered vector stays in L2.
+  for (; i + 3 * Lanes < end; i += 4 * Lanes)
   {
-    const Index c0 = __ldg(m.columns + i), c1 = __ldg(m.columns + i + Lanes);
-    const float w0 = __ldg(m.weights + i), w1 = __ldg(m.weights + i + Lanes);
-    const float4 x0 = __ldg(reinterpret_cast<const float4*>(x) + c0);
-    const float4 x1 = __ldg(reinterpret_cast<const float4*>(x) + c1);
-    r += w0 * x0.x + w1 * x1.x;
-    g += w0 * x0.y + w1 * x1.y;
-    b += w0 * x0.z + w1 * x1.z;
+    Index c[4];
+    float w[4];
+#pragma unroll
+    for (int k = 0; k < 4; ++k)
+    {
+      c[k] = __ldcs(m.columns + i + k * Lanes);
+      w[k] = __ldcs(m.weights + i + k * Lanes);
+    }
+    float4 v[4];
+#pragma unroll
+    for (int k = 0; k < 4; ++k)
+    {
+      v[k] = __ldg(xs + c[k]);
+    }
+#pragma unroll
+    for (int k = 0; k < 4; ++k)
+    {
+      r += w[k] * v[k].x;
+      g += w[k] * v[k].y;
+      b += w[k] * v[k].z;
+    }
   }
-  if (i < end)
+  for (; i < end; i += Lanes)
   {
-    const Index c = __ldg(m.columns + i);
-    const float w = __ldg(m.weights + i);
-    const float4 xc = __ldg(reinterpret_cast<const float4*>(x) + c);
-    r += w * xc.x;
-    g += w * xc.y;
-    b += w * xc.z;
+    const float w = __ldcs(m.weights + i);
+    const float4 v = __ldg(xs + __ldcs(m.columns + i));
+    r += w * v.x;
+    g += w * v.y;
+    b += w * v.z;
   }
   for (int offset = Lanes / 2; offset > 0; offset /= 2)
   {

@@ -16,6 +16,9 @@ double msSince(std::chrono::steady_clock::time_point start)
 }
 
 /// Asks the caller whether to go on; the fractions follow the CPU path's stage ranges.
+/// CudaBvhUpdate::Auto rebuilds a refit tree whose surface-area cost grew by this factor.
+constexpr double kRebuildGrowth = 1.5;
+
 void ask(const ProgressCallback& progress, const char* stage, double fraction)
 {
   if (progress && !progress(stage, fraction))
@@ -184,15 +187,18 @@ void Engine::uploadGeometry(const HostInputs& in, const StageMask& mask, SolverS
       uploadVector(d.shifts, in.shifts, d.stream);
       uploadVector(d.faceNormals, in.faceNormals, d.stream);
     }
-    const bool rebuild = mask.topology || (mask.positions && options.cudaBvhUpdate == CudaBvhUpdate::Rebuild);
+    bool rebuild = mask.topology || (mask.positions && options.cudaBvhUpdate == CudaBvhUpdate::Rebuild);
+    if (!rebuild && mask.positions)
+    {
+      d.bvh.refit(d.positions.data(), d.triangles.data(), d.stream);
+      // Auto: a refit tree whose boxes have swollen by half is rebuilt (one cost pass).
+      rebuild = options.cudaBvhUpdate == CudaBvhUpdate::Auto && d.bvh.cost(d.stream) > kRebuildGrowth * d.bvhBuildCost;
+    }
     if (rebuild)
     {
       d.bvh.build(d.positions.data(), Index(s.vertexCount()), d.triangles.data(),
         Index(s.triangleCount()), d.stream);
-    }
-    else if (mask.positions)
-    {
-      d.bvh.refit(d.positions.data(), d.triangles.data(), d.stream);
+      d.bvhBuildCost = options.cudaBvhUpdate == CudaBvhUpdate::Auto ? d.bvh.cost(d.stream) : 0.0;
     }
     if (i == 0)
     {
@@ -213,8 +219,11 @@ void Engine::uploadGeometry(const HostInputs& in, const StageMask& mask, SolverS
     d0.edges.upload(reinterpret_cast<const Index*>(topo.edges.data()), 2 * topo.edges.size(), d0.stream);
     static_assert(sizeof(topo.edges[0]) == 2 * sizeof(Index), "edges are pairs of indices");
   }
-  uploadVector(d0.albedo, s.albedo, d0.stream);
-  uploadVector(d0.emission, s.emission, d0.stream);
+  if (mask.materials)
+  {
+    uploadVector(d0.albedo, s.albedo, d0.stream);
+    uploadVector(d0.emission, s.emission, d0.stream);
+  }
   for (const auto& d : devices)
   {
     d->sync();
@@ -228,10 +237,20 @@ void Engine::computeDirectLight(const HostInputs& in, const SolverOptions& optio
   d.use();
   const Index nv = Index(s.vertexCount());
   const Elements elements{ s.vertexCount(), options.twoSided };
+  std::vector<Light> lit;
+  for (const Light& light : s.lights)
+  {
+    if (maxComponent(light.intensity) > 0.f) // dark lights trace nothing, as on the CPU
+    {
+      lit.push_back(light);
+    }
+  }
+  const std::size_t edges = in.topology.edges.size();
   d.direct.resize(elements.count());
   d.direct.fillZero(d.stream);
-  d.vertexVisible.resize(nv);
-  d.edgeVisible.resize(std::max<std::size_t>(1, in.topology.edges.size()));
+  d.lights.upload(lit, d.stream);
+  d.vertexVisible.resize(std::max<std::size_t>(1, lit.size() * nv));
+  d.edgeVisible.resize(std::max<std::size_t>(1, lit.size() * edges));
   d.counter.resize(1);
   d.counter.fillZero(d.stream);
   DirectLightParams p;
@@ -243,20 +262,13 @@ void Engine::computeDirectLight(const HostInputs& in, const SolverOptions& optio
   p.neighbourOffsets = d.neighbourOffsets.data();
   p.vertexEdges = d.vertexEdges.data();
   p.vertexCount = nv;
-  p.edgeCount = Index(in.topology.edges.size());
+  p.edgeCount = Index(edges);
   p.eps = rayEpsilon(s);
   p.oversampling = options.lightOversampling;
-  for (const Light& light : s.lights)
+  for (int side = 0; side < (options.twoSided ? 2 : 1); ++side)
   {
-    if (maxComponent(light.intensity) <= 0.f)
-    {
-      continue;
-    }
-    for (int side = 0; side < (options.twoSided ? 2 : 1); ++side)
-    {
-      addDirectLight(p, light, side == 0 ? 1.f : -1.f, side == 0 ? 0 : nv, d.vertexVisible.data(),
-        d.edgeVisible.data(), d.direct.data(), d.counter.data(), d.stream);
-    }
+    addDirectLights(p, d.lights.data(), int(lit.size()), side == 0 ? 1.f : -1.f, side == 0 ? 0 : nv,
+      d.vertexVisible.data(), d.edgeVisible.data(), d.direct.data(), d.counter.data(), d.stream);
   }
   unsigned long long traced = 0;
   LINKGI_CUDA_CHECK(cudaMemcpyAsync(&traced, d.counter.data(), sizeof(traced), cudaMemcpyDeviceToHost, d.stream));

@@ -23,6 +23,7 @@ struct StageMask
   bool geometry = true;  ///< positions or normals changed: new shifts and face normals
   bool relink = true;    ///< links
   bool relight = true;   ///< light links
+  bool materials = true; ///< albedo or emission
 };
 
 /// The host arrays of one update (owned by the solver).

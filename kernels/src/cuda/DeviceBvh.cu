@@ -109,6 +109,45 @@ __global__ void boundsKernel(BvhNode* nodes, const int* leafParents, const BvhTr
   }
 }
 
+__device__ inline float boxArea(float lx, float hx, float ly, float hy, float lz, float hz)
+{
+  const float dx = hx - lx, dy = hy - ly, dz = hz - lz;
+  return 2.f * (dx * dy + dy * dz + dz * dx);
+}
+
+/// Per block, in a fixed order: the summed child box areas of nodes i = block, block + grid...
+__global__ void areaKernel(const BvhNode* nodes, int n, double* partial)
+{
+  __shared__ double sum[kThreads];
+  double a = 0.0;
+  for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x)
+  {
+    const BvhNode& b = nodes[i];
+    a += boxArea(b.lo0x, b.hi0x, b.lo0y, b.hi0y, b.lo0z, b.hi0z) +
+      boxArea(b.lo1x, b.hi1x, b.lo1y, b.hi1y, b.lo1z, b.hi1z);
+  }
+  sum[threadIdx.x] = a;
+  __syncthreads();
+  for (int s = kThreads / 2; s > 0; s /= 2)
+  {
+    if (threadIdx.x < s)
+    {
+      sum[threadIdx.x] += sum[threadIdx.x + s];
+    }
+    __syncthreads();
+  }
+  if (threadIdx.x == 0)
+  {
+    partial[blockIdx.x] = sum[0];
+  }
+  if (blockIdx.x == 0 && threadIdx.x == 0)
+  {
+    const BvhNode& r = nodes[0];
+    partial[gridDim.x] = boxArea(fminf(r.lo0x, r.lo1x), fmaxf(r.hi0x, r.hi1x), fminf(r.lo0y, r.lo1y),
+      fmaxf(r.hi0y, r.hi1y), fminf(r.lo0z, r.lo1z), fmaxf(r.hi0z, r.hi1z));
+  }
+}
+
 __global__ void traceKernel(BvhView bvh, const Ray* rays, Hit* hits, std::size_t n)
 {
   const std::size_t i = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
@@ -188,6 +227,27 @@ void DeviceBvh::gatherAndBound(const Vec3f* positions, const Triangle* tris, cud
       triangles.data(), arrivals.data(), int(count));
     LINKGI_CUDA_CHECK_LAUNCH("boundsKernel");
   }
+}
+
+double DeviceBvh::cost(cudaStream_t stream)
+{
+  if (count < 2)
+  {
+    return 1.0;
+  }
+  constexpr unsigned kBlocks = 128;
+  areas.resize(kBlocks + 1);
+  areaKernel<<<kBlocks, kThreads, 0, stream>>>(nodes.data(), int(count - 1), areas.data());
+  LINKGI_CUDA_CHECK_LAUNCH("areaKernel");
+  double host[kBlocks + 1];
+  LINKGI_CUDA_CHECK(cudaMemcpyAsync(host, areas.data(), sizeof(host), cudaMemcpyDeviceToHost, stream));
+  LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+  double sum = 0.0;
+  for (unsigned b = 0; b < kBlocks; ++b)
+  {
+    sum += host[b];
+  }
+  return host[kBlocks] > 0.0 ? sum / host[kBlocks] : 1.0;
 }
 
 BvhView DeviceBvh::view() const

@@ -16,6 +16,9 @@ public:
     Index triangleCount, cudaStream_t stream);
   /// Same triangles as the last build, moved positions: new boxes, same tree.
   void refit(const Vec3f* positions, const Triangle* triangles, cudaStream_t stream);
+  /// Surface-area cost of the tree: the summed box areas of all children over the root
+  /// box's area (what a ray pays in box tests, roughly). Deterministic; synchronizes.
+  double cost(cudaStream_t stream);
   BvhView view() const;
   std::size_t bytes() const;
   Index triangleCount() const { return count; }
@@ -30,6 +33,7 @@ private:
   GPUBuffer<unsigned> arrivals;
   GPUBuffer<Index> order; ///< original triangle of each leaf
   GPUBuffer<bvh::Box> boxes;
+  GPUBuffer<double> areas;
   GPUBuffer<unsigned char> temp;
   GPUBuffer<std::uint64_t> keys, sortedKeys; ///< build scratch, kept for the next build
   GPUBuffer<Index> ids;

@@ -57,6 +57,7 @@ struct EngineDevice
   GPUBuffer<Vec3f> positions, normals, shifts, faceNormals, directions;
   GPUBuffer<Triangle> triangles;
   DeviceBvh bvh;
+  double bvhBuildCost = 0.0; ///< DeviceBvh::cost() right after the last build
 
   // Links (every device).
   LinkScratch scratch;
@@ -69,6 +70,7 @@ struct EngineDevice
   GPUBuffer<Index> neighbourOffsets, neighbours, edges, vertexEdges;
   GPUBuffer<Vec3f> albedo, emission, direct, output;
   GPUBuffer<float> vertexVisible, edgeVisible;
+  GPUBuffer<Light> lights;
   GPUBuffer<unsigned long long> counter;
   GPUBuffer<Index> rowCounts;
   DeviceCsr transport, environment;

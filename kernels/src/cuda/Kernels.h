@@ -111,12 +111,13 @@ struct DirectLightParams
   float eps = 0.f;
   bool oversampling = true;
 };
-/// Adds one light's shadowed irradiance on one side (sign +1 front, -1 back) to
-/// irradiance[v + sideOffset]. vertexVisible / edgeVisible are scratch of vertexCount /
-/// edgeCount floats; rays counts the shadow rays traced.
-void addDirectLight(const DirectLightParams& p, const Light& light, float sign, Index sideOffset,
-  float* vertexVisible, float* edgeVisible, Vec3f* irradiance, unsigned long long* rays,
-  cudaStream_t stream);
+/// Adds the shadowed irradiance of lights[0, lightCount) (device memory) on one side (sign
+/// +1 front, -1 back) to irradiance[v + sideOffset], light after light. vertexVisible /
+/// edgeVisible are scratch of lightCount x vertexCount / edgeCount floats; rays counts the
+/// shadow rays traced. Two launches for all lights.
+void addDirectLights(const DirectLightParams& p, const Light* lights, int lightCount, float sign,
+  Index sideOffset, float* vertexVisible, float* edgeVisible, Vec3f* irradiance,
+  unsigned long long* rays, cudaStream_t stream);
 
 // ---- bounces, smoothing, output ----
 /// y = M x, RGB; rows in parallel with 8..32 threads per row.

@@ -23,11 +23,14 @@ __device__ inline float visibility(const BvhView& bvh, const Light& light, const
   return bvh::traverse<true>(bvh, shadowRay(light, origin, directionToLight(light, origin)), h) ? 0.f : 1.f;
 }
 
-/// Samples [0, vertexCount) are vertices, the rest edge midpoints.
-__global__ void shadowSamplesKernel(DirectLightParams p, Light light, float sign,
+/// Samples [0, vertexCount) are vertices, the rest edge midpoints; blockIdx.y is the light.
+__global__ void shadowSamplesKernel(DirectLightParams p, const Light* lights, float sign,
   float* vertexVisible, float* edgeVisible, unsigned long long* rays)
 {
   const Index s = blockIdx.x * blockDim.x + threadIdx.x;
+  const Light light = lights[blockIdx.y];
+  vertexVisible += std::size_t(blockIdx.y) * p.vertexCount;
+  edgeVisible += std::size_t(blockIdx.y) * p.edgeCount;
   const Index total = p.vertexCount + (p.oversampling ? p.edgeCount : 0);
   bool traced = false;
   if (s < p.vertexCount)
@@ -63,33 +66,43 @@ __global__ void shadowSamplesKernel(DirectLightParams p, Light light, float sign
   }
 }
 
-__global__ void combineKernel(DirectLightParams p, Light light, float sign, Index sideOffset,
-  const float* vertexVisible, const float* edgeVisible, Vec3f* irradiance)
+/// Per vertex, the lights in order (the CPU's order of additions).
+__global__ void combineKernel(DirectLightParams p, const Light* lights, int lightCount, float sign,
+  Index sideOffset, const float* vertexVisible, const float* edgeVisible, Vec3f* irradiance)
 {
   const Index v = blockIdx.x * blockDim.x + threadIdx.x;
-  Vec3f e;
-  if (v < p.vertexCount && lit(p, light, v, sign, e))
-  {
-    irradiance[v + sideOffset] += e * oversampledVisibility(v, vertexVisible, edgeVisible,
-      p.neighbourOffsets, p.vertexEdges, p.oversampling);
-  }
-}
-}
-
-void addDirectLight(const DirectLightParams& p, const Light& light, float sign, Index sideOffset,
-  float* vertexVisible, float* edgeVisible, Vec3f* irradiance, unsigned long long* rays,
-  cudaStream_t stream)
-{
-  const Index samples = p.vertexCount + (p.oversampling ? p.edgeCount : 0);
-  if (samples == 0)
+  if (v >= p.vertexCount)
   {
     return;
   }
-  shadowSamplesKernel<<<(samples + kThreads - 1) / kThreads, kThreads, 0, stream>>>(
-    p, light, sign, vertexVisible, edgeVisible, rays);
+  Vec3f sum = irradiance[v + sideOffset];
+  for (int l = 0; l < lightCount; ++l)
+  {
+    Vec3f e;
+    if (lit(p, lights[l], v, sign, e))
+    {
+      sum += e * oversampledVisibility(v, vertexVisible + std::size_t(l) * p.vertexCount,
+        edgeVisible + std::size_t(l) * p.edgeCount, p.neighbourOffsets, p.vertexEdges, p.oversampling);
+    }
+  }
+  irradiance[v + sideOffset] = sum;
+}
+}
+
+void addDirectLights(const DirectLightParams& p, const Light* lights, int lightCount, float sign,
+  Index sideOffset, float* vertexVisible, float* edgeVisible, Vec3f* irradiance,
+  unsigned long long* rays, cudaStream_t stream)
+{
+  const Index samples = p.vertexCount + (p.oversampling ? p.edgeCount : 0);
+  if (samples == 0 || lightCount == 0)
+  {
+    return;
+  }
+  const dim3 grid((samples + kThreads - 1) / kThreads, unsigned(lightCount));
+  shadowSamplesKernel<<<grid, kThreads, 0, stream>>>(p, lights, sign, vertexVisible, edgeVisible, rays);
   LINKGI_CUDA_CHECK_LAUNCH("shadowSamplesKernel");
   combineKernel<<<(p.vertexCount + kThreads - 1) / kThreads, kThreads, 0, stream>>>(
-    p, light, sign, sideOffset, vertexVisible, edgeVisible, irradiance);
+    p, lights, lightCount, sign, sideOffset, vertexVisible, edgeVisible, irradiance);
   LINKGI_CUDA_CHECK_LAUNCH("combineKernel");
 }
 }
