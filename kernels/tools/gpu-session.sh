@@ -53,6 +53,9 @@ if has bench; then
   stamp bench
   "$build/bin/linkgi-bench" --backend cuda --scenes cornell,tearoom,torso,colorlamp,iphi,conference \
     --repeat 5 ${ref:+--compare $ref} > "$out/bench.jsonl" 2>> "$out/steps.log"
+  # Deforming meshes: refit the GPU's BVH instead of rebuilding it.
+  "$build/bin/linkgi-bench" --backend cuda --scenes torso,conference --bvh-update refit \
+    --repeat 3 --no-gather >> "$out/bench.jsonl" 2>> "$out/steps.log"
   cat "$out/bench.jsonl"
 fi
 if has scale; then
