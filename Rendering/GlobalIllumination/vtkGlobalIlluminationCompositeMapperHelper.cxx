@@ -40,8 +40,8 @@ void vtkGlobalIlluminationCompositeMapperHelper::ReleaseGraphicsResources(vtkWin
 }
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationCompositeMapperHelper::Shades(const vtkOpenGLHelper* cellBO,
-                                                        vtkActor* act)
+bool vtkGlobalIlluminationCompositeMapperHelper::Shades(
+  const vtkOpenGLHelper* cellBO, vtkActor* act)
 {
   const std::ptrdiff_t type = cellBO - this->Primitives;
   if (type < PrimitiveStart || type >= PrimitiveEnd)
@@ -58,17 +58,16 @@ void vtkGlobalIlluminationCompositeMapperHelper::RenderPieceDraw(vtkRenderer* re
   if (!ren->GetSelector())
   {
     this->Core->Prepare(ren, act,
-                        vtkGlobalIlluminationMapperCore::MakeCasters(
-                          this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()));
+      vtkGlobalIlluminationMapperCore::MakeCasters(
+        this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()));
   }
   this->Superclass::RenderPieceDraw(ren, act);
   this->Core->FinishDraw();
 }
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO,
-                                                                         vtkRenderer* ren,
-                                                                         vtkActor* act)
+bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildShaders(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
 {
   bool rebuild = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act);
   const std::string key = this->Shades(&cellBO, act) ? this->Core->ShaderKey(act) : "VTK";
@@ -110,8 +109,8 @@ void vtkGlobalIlluminationCompositeMapperHelper::SetLightingShaderParameters(
 }
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildBufferObjects(vtkRenderer* ren,
-                                                                               vtkActor* act)
+bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildBufferObjects(
+  vtkRenderer* ren, vtkActor* act)
 {
   const bool rebuild = this->Superclass::GetNeedToRebuildBufferObjects(ren, act);
   return rebuild || this->Core->BufferKey() != this->BufferKey;
@@ -139,8 +138,8 @@ void vtkGlobalIlluminationCompositeMapperHelper::BuildBufferObjects(vtkRenderer*
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationCompositeMapperHelper::AppendOneBufferObject(
-  vtkRenderer* ren, vtkActor* act, vtkCompositeMapperHelperData* hdata, vtkIdType& flatIndex,
+void vtkGlobalIlluminationCompositeMapperHelper::AppendOneBufferObject(vtkRenderer* ren,
+  vtkActor* act, vtkCompositeMapperHelperData* hdata, vtkIdType& flatIndex,
   std::vector<unsigned char>& colors, std::vector<float>& norms)
 {
   // Blocks that share their points with an earlier block share its vertices in the buffer

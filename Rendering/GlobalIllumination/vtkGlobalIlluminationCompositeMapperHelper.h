@@ -45,21 +45,20 @@ protected:
 
   void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
   bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
-  void ReplaceShaderLight(std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren,
-                          vtkActor* act) override;
-  void SetLightingShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren,
-                                   vtkActor* act) override;
+  void ReplaceShaderLight(
+    std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
+  void SetLightingShaderParameters(
+    vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
   bool GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   void AppendOneBufferObject(vtkRenderer* ren, vtkActor* act, vtkCompositeMapperHelperData* hdata,
-                             vtkIdType& flatIndex, std::vector<unsigned char>& colors,
-                             std::vector<float>& norms) override;
+    vtkIdType& flatIndex, std::vector<unsigned char>& colors, std::vector<float>& norms) override;
 
   bool Shades(const vtkOpenGLHelper* cellBO, vtkActor* act);
 
 private:
-  vtkGlobalIlluminationCompositeMapperHelper(const vtkGlobalIlluminationCompositeMapperHelper&) =
-    delete;
+  vtkGlobalIlluminationCompositeMapperHelper(
+    const vtkGlobalIlluminationCompositeMapperHelper&) = delete;
   void operator=(const vtkGlobalIlluminationCompositeMapperHelper&) = delete;
 
   std::unique_ptr<vtkGlobalIlluminationMapperCore> Core;

@@ -80,16 +80,16 @@ void vtkGlobalIlluminationMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* ac
   if (!ren->GetSelector())
   {
     this->Core->Prepare(ren, act,
-                        vtkGlobalIlluminationMapperCore::MakeCasters(
-                          this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()));
+      vtkGlobalIlluminationMapperCore::MakeCasters(
+        this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()));
   }
   this->Superclass::RenderPieceDraw(ren, act);
   this->Core->FinishDraw();
 }
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationMapper::GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren,
-                                                          vtkActor* act)
+bool vtkGlobalIlluminationMapper::GetNeedToRebuildShaders(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
 {
   bool rebuild = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act);
   const std::string key = this->Shades(&cellBO, act) ? this->Core->ShaderKey(act) : "VTK";
@@ -103,8 +103,8 @@ bool vtkGlobalIlluminationMapper::GetNeedToRebuildShaders(vtkOpenGLHelper& cellB
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapper::ReplaceShaderLight(std::map<vtkShader::Type, vtkShader*> shaders,
-                                                     vtkRenderer* ren, vtkActor* act)
+void vtkGlobalIlluminationMapper::ReplaceShaderLight(
+  std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act)
 {
   if (this->Shades(this->LastBoundBO, act))
   {
@@ -117,8 +117,8 @@ void vtkGlobalIlluminationMapper::ReplaceShaderLight(std::map<vtkShader::Type, v
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapper::SetLightingShaderParameters(vtkOpenGLHelper& cellBO,
-                                                              vtkRenderer* ren, vtkActor* act)
+void vtkGlobalIlluminationMapper::SetLightingShaderParameters(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
 {
   if (this->Shades(&cellBO, act))
   {
@@ -150,8 +150,8 @@ void vtkGlobalIlluminationMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*
   this->VBOs->CacheDataArray("giIndirectMC", attributes.Indirect, cache, VTK_FLOAT);
   this->VBOs->CacheDataArray("giEmissionMC", attributes.Emission, cache, VTK_FLOAT);
   this->Superclass::BuildBufferObjects(ren, act);
-  this->Core->SetLayout(attributes.Albedo != nullptr, attributes.Indirect != nullptr,
-                        attributes.Emission != nullptr);
+  this->Core->SetLayout(
+    attributes.Albedo != nullptr, attributes.Indirect != nullptr, attributes.Emission != nullptr);
   this->BufferKey = this->Core->BufferKey();
 }
 

@@ -72,10 +72,10 @@ protected:
 
   void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
   bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
-  void ReplaceShaderLight(std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren,
-                          vtkActor* act) override;
-  void SetLightingShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren,
-                                   vtkActor* act) override;
+  void ReplaceShaderLight(
+    std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
+  void SetLightingShaderParameters(
+    vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
   bool GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
 

@@ -119,8 +119,8 @@ vtkGlobalIlluminationMapperCore::vtkGlobalIlluminationMapperCore(vtkObject* owne
 vtkGlobalIlluminationMapperCore::~vtkGlobalIlluminationMapperCore() = default;
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationMapperCore::Shades(int primitiveType, int lightComplexity,
-                                             vtkActor* actor)
+bool vtkGlobalIlluminationMapperCore::Shades(
+  int primitiveType, int lightComplexity, vtkActor* actor)
 {
   const bool surface = primitiveType == vtkOpenGLPolyDataMapper::PrimitiveTris ||
     primitiveType == vtkOpenGLPolyDataMapper::PrimitiveTriStrips;
@@ -151,8 +151,8 @@ vtkGlobalIlluminationMapperCore::Attributes vtkGlobalIlluminationMapperCore::Mak
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapperCore::GetPresence(vtkPolyData* poly, bool& albedo, bool& indirect,
-                                                  bool& emission) const
+void vtkGlobalIlluminationMapperCore::GetPresence(
+  vtkPolyData* poly, bool& albedo, bool& indirect, bool& emission) const
 {
   const auto has = [poly](const char* name)
   {
@@ -216,7 +216,7 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::MakeCasters(
     vao->AddAttributeArray(program, vbo, "vertexMC", 0, false);
     const GLuint last = static_cast<GLuint>(std::max(vbo->GetNumberOfTuples(), 1u) - 1);
     for (int type :
-         { vtkOpenGLPolyDataMapper::PrimitiveTris, vtkOpenGLPolyDataMapper::PrimitiveTriStrips })
+      { vtkOpenGLPolyDataMapper::PrimitiveTris, vtkOpenGLPolyDataMapper::PrimitiveTriStrips })
     {
       vtkOpenGLIndexBufferObject* ibo = primitives[type].IBO;
       if (ibo->IndexCount == 0)
@@ -224,8 +224,8 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::MakeCasters(
         continue;
       }
       ibo->Bind();
-      glDrawRangeElements(GL_TRIANGLES, 0, last, static_cast<GLsizei>(ibo->IndexCount),
-                          GL_UNSIGNED_INT, nullptr);
+      glDrawRangeElements(
+        GL_TRIANGLES, 0, last, static_cast<GLsizei>(ibo->IndexCount), GL_UNSIGNED_INT, nullptr);
       ibo->Release();
     }
   };
@@ -233,8 +233,8 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::MakeCasters(
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapperCore::Prepare(vtkRenderer* renderer, vtkActor*,
-                                              const ShadowMaps::Casters& casters)
+void vtkGlobalIlluminationMapperCore::Prepare(
+  vtkRenderer* renderer, vtkActor*, const ShadowMaps::Casters& casters)
 {
   const double scale = this->Shading ? this->Shading->GetLightIntensityScale() : 1.0;
   const int maximum = vtkGlobalIlluminationShading::GetMaximumNumberOfLights();
@@ -272,13 +272,26 @@ void vtkGlobalIlluminationMapperCore::Prepare(vtkRenderer* renderer, vtkActor*,
 }
 
 //------------------------------------------------------------------------------
+std::string vtkGlobalIlluminationMapperCore::LightTypes() const
+{
+  std::string types;
+  for (std::size_t i = 0; i < this->Lights.size(); ++i)
+  {
+    types += (i > 0 ? ", " : "") + std::to_string(this->Lights[i].Type);
+  }
+  return types;
+}
+
+//------------------------------------------------------------------------------
 std::string vtkGlobalIlluminationMapperCore::ShaderKey(vtkActor* actor) const
 {
   std::ostringstream key;
-  key << this->Lights.size() << ' ' << this->HasAlbedo << this->HasIndirect << this->HasEmission;
+  key << this->LightTypes() << " / " << this->ShadowMaps.GetKinds(this->LightCount()) << " / "
+      << this->HasAlbedo << this->HasIndirect << this->HasEmission;
   if (this->Shading)
   {
-    key << ' ' << this->Shading->GetDisplayMode() << ' ' << this->Shading->GetToneMapping();
+    key << ' ' << this->Shading->GetDisplayMode() << ' ' << this->Shading->GetToneMapping() << ' '
+        << (this->Shading->GetShadowFilterRadius() > 0.0);
   }
   key << ' ' << (actor && actor->GetProperty()->GetSpecular() > 0.0);
   return key.str();
@@ -290,37 +303,36 @@ void vtkGlobalIlluminationMapperCore::ReplaceShaderLight(
 {
   std::ostringstream defines;
   defines << "#define GI_LIGHT_COUNT " << this->Lights.size() << "\n"
+          << "#define GI_LIGHT_TYPES " << this->LightTypes() << "\n"
+          << "#define GI_SHADOW_KINDS " << this->ShadowMaps.GetKinds(this->LightCount()) << "\n"
           << "#define GI_HAS_ALBEDO " << this->HasAlbedo << "\n"
           << "#define GI_HAS_INDIRECT " << this->HasIndirect << "\n"
           << "#define GI_HAS_EMISSION " << this->HasEmission << "\n"
           << "#define GI_GLOSSY " << (actor->GetProperty()->GetSpecular() > 0.0) << "\n"
           << "#define GI_MODE " << (this->Shading ? this->Shading->GetDisplayMode() : 0) << "\n"
           << "#define GI_TONE_MAPPING " << (this->Shading ? this->Shading->GetToneMapping() : 1)
-          << "\n";
+          << "\n"
+          << "#define GI_SOFT_SHADOWS "
+          << (this->Shading && this->Shading->GetShadowFilterRadius() > 0.0) << "\n";
   std::string vs = shaders[vtkShader::Vertex]->GetSource();
   std::string fs = shaders[vtkShader::Fragment]->GetSource();
   vtkShaderProgram::Substitute(vs, "//VTK::Light::Dec",
-                               defines.str() + vtkGlobalIlluminationVertexDec + "//VTK::Light::Dec",
-                               false);
-  vtkShaderProgram::Substitute(
-    vs, "//VTK::Light::Impl", std::string(vtkGlobalIlluminationVertexImpl) + "  //VTK::Light::Impl",
-    false);
+    defines.str() + vtkGlobalIlluminationVertexDec + "//VTK::Light::Dec", false);
+  vtkShaderProgram::Substitute(vs, "//VTK::Light::Impl",
+    std::string(vtkGlobalIlluminationVertexImpl) + "  //VTK::Light::Impl", false);
   vtkShaderProgram::Substitute(fs, "//VTK::Light::Dec",
-                               defines.str() + vtkGlobalIlluminationLightDec + "//VTK::Light::Dec",
-                               false);
-  vtkShaderProgram::Substitute(
-    fs, "//VTK::UniformFlow::Impl",
+    defines.str() + vtkGlobalIlluminationLightDec + "//VTK::Light::Dec", false);
+  vtkShaderProgram::Substitute(fs, "//VTK::UniformFlow::Impl",
     std::string(vtkGlobalIlluminationUniformFlow) + "  //VTK::UniformFlow::Impl", false);
   vtkShaderProgram::Substitute(fs, "//VTK::Light::Impl",
-                               std::string(vtkGlobalIlluminationLightImpl) + "  //VTK::Light::Impl",
-                               false);
+    std::string(vtkGlobalIlluminationLightImpl) + "  //VTK::Light::Impl", false);
   shaders[vtkShader::Vertex]->SetSource(vs);
   shaders[vtkShader::Fragment]->SetSource(fs);
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapperCore::SetShaderParameters(vtkShaderProgram* program,
-                                                          vtkRenderer* renderer)
+void vtkGlobalIlluminationMapperCore::SetShaderParameters(
+  vtkShaderProgram* program, vtkRenderer* renderer)
 {
   vtkGlobalIlluminationShading* s = this->Shading;
   program->SetUniformf("giExposure", static_cast<float>(s ? s->GetExposure() : 1.0));
@@ -351,12 +363,10 @@ void vtkGlobalIlluminationMapperCore::SetShaderParameters(vtkShaderProgram* prog
   program->SetUniform4fv("giCamera", 1, eye);
 
   const int n = static_cast<int>(this->Lights.size());
-  std::vector<int> types(n);
   std::vector<float> positions(3 * n), directions(3 * n), intensities(3 * n), cones(2 * n);
   for (int i = 0; i < n; ++i)
   {
     const ShadowMaps::Light& l = this->Lights[i];
-    types[i] = l.Type;
     for (int k = 0; k < 3; ++k)
     {
       positions[3 * i + k] = static_cast<float>(l.Position[k]);
@@ -368,7 +378,6 @@ void vtkGlobalIlluminationMapperCore::SetShaderParameters(vtkShaderProgram* prog
   }
   if (n > 0)
   {
-    program->SetUniform1iv("giLightType", n, types.data());
     program->SetUniform3fv("giLightPosition", n, positions.data());
     program->SetUniform3fv("giLightDirection", n, directions.data());
     program->SetUniform3fv("giLightIntensity", n, intensities.data());
@@ -378,8 +387,8 @@ void vtkGlobalIlluminationMapperCore::SetShaderParameters(vtkShaderProgram* prog
   {
     this->TextureActive = this->ShadowMaps.Activate();
   }
-  this->ShadowMaps.SetUniforms(program, n, s ? s->GetShadowFilterRadius() : 1.5,
-                               s ? s->GetShadowBias() : 1.0);
+  this->ShadowMaps.SetUniforms(
+    program, n, s ? s->GetShadowFilterRadius() : 1.5, s ? s->GetShadowBias() : 1.0);
 }
 
 //------------------------------------------------------------------------------

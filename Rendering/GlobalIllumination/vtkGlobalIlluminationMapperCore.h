@@ -97,7 +97,7 @@ public:
 
   /// Takes the renderer's lights and brings the shadow maps up to date. Call before drawing.
   void Prepare(vtkRenderer* renderer, vtkActor* actor,
-               const vtkGlobalIlluminationShadowMaps::Casters& casters);
+    const vtkGlobalIlluminationShadowMaps::Casters& casters);
 
   /// A key of everything the shader source depends on: a change rebuilds the shaders.
   std::string ShaderKey(vtkActor* actor) const;
@@ -115,6 +115,10 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
+  /// The lights' types, comma separated, for the shader source.
+  std::string LightTypes() const;
+  int LightCount() const { return static_cast<int>(this->Lights.size()); }
+
   vtkObject* Owner;
   vtkGlobalIlluminationShading* Shading = nullptr;
   std::vector<vtkGlobalIlluminationShadowMaps::Light> Lights;

@@ -150,8 +150,13 @@ public:
 
   ///@{
   /**
-   * Radius of the percentage-closer filter in shadow-map texels: larger values give
-   * softer shadow edges. 0 gives the hardware's 2x2 filter only. The default value is 1.5.
+   * Percentage-closer filtering, in shadow-map texels. Every lookup is a bilinear depth
+   * comparison, which blends the 2 x 2 nearest texels. A radius above 0 takes four such
+   * lookups at +-radius / 2 texels: a tent over radius + 2 texels, for soft shadow edges.
+   * 0 takes a single lookup: a quarter of the texture cost (what a software rasterizer
+   * such as Mesa llvmpipe spends most of its time on) for edges that are only
+   * anti-aliased. Changing between 0 and above 0 rebuilds the shader. The default value is
+   * 1.5.
    */
   vtkSetClampMacro(ShadowFilterRadius, double, 0.0, 16.0);
   vtkGetMacro(ShadowFilterRadius, double);
@@ -162,8 +167,10 @@ public:
    * Shadow bias, in shadow-map texels at the receiver: the shadow lookup moves off the
    * triangle along its normal by ShadowBias * (0.5 + sqrt(2) * (ShadowFilterRadius / 2 + 1)
    * * sin(angle of incidence)) texels, which is what the filter's footprint needs to be
-   * free of acne at any angle, without detaching shadows from their casters. The default
-   * value is 1.
+   * free of acne at any angle, without detaching shadows from their casters. Where a
+   * triangle turns edge-on to a light (the last ~6 degrees) its shadow fades out, so that
+   * coarse curved meshes do not shadow themselves at the terminator. The default value
+   * is 1.
    */
   vtkSetClampMacro(ShadowBias, double, 0.0, 64.0);
   vtkGetMacro(ShadowBias, double);

@@ -23,12 +23,12 @@ using Mat4 = std::array<double, 16>; // row-major
 
 // Cube faces in layer order +X -X +Y -Y +Z -Z: forward axis F and image axes U, V, as in
 // giFaceU / giFaceV of vtkGlobalIlluminationLightDec.glsl.
-const double FaceF[6][3] = { { 1, 0, 0 },  { -1, 0, 0 }, { 0, 1, 0 },
-                             { 0, -1, 0 }, { 0, 0, 1 },  { 0, 0, -1 } };
-const double FaceU[6][3] = { { 0, 0, -1 }, { 0, 0, 1 }, { 1, 0, 0 },
-                             { 1, 0, 0 },  { 1, 0, 0 }, { -1, 0, 0 } };
-const double FaceV[6][3] = { { 0, -1, 0 }, { 0, -1, 0 }, { 0, 0, 1 },
-                             { 0, 0, -1 }, { 0, -1, 0 }, { 0, -1, 0 } };
+const double FaceF[6][3] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 },
+  { 0, 0, -1 } };
+const double FaceU[6][3] = { { 0, 0, -1 }, { 0, 0, 1 }, { 1, 0, 0 }, { 1, 0, 0 }, { 1, 0, 0 },
+  { -1, 0, 0 } };
+const double FaceV[6][3] = { { 0, -1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 }, { 0, -1, 0 },
+  { 0, -1, 0 } };
 
 // Spot lights wider than this (half angle) get a cube map.
 const double MaxSpotMapAngle = 60.0;
@@ -41,7 +41,7 @@ double Dot(const double a[3], const double b[3])
 /// Rows x = U, y = V, w = F about the light at `eye`, z mapping the distance along F from
 /// [near, far] to [-1, 1]; `uvScale` divides x and y (1 / tan of the half field of view).
 Mat4 Perspective(const double eye[3], const double u[3], const double v[3], const double f[3],
-                 double uvScale, double nearZ, double farZ)
+  double uvScale, double nearZ, double farZ)
 {
   const double a = (farZ + nearZ) / (farZ - nearZ), b = -2.0 * farZ * nearZ / (farZ - nearZ);
   Mat4 m{};
@@ -63,7 +63,7 @@ Mat4 Perspective(const double eye[3], const double u[3], const double v[3], cons
 void Frame(const double f[3], double u[3], double v[3])
 {
   const double helper[3] = { std::abs(f[0]) < 0.9 ? 1.0 : 0.0, std::abs(f[0]) < 0.9 ? 0.0 : 1.0,
-                             0.0 };
+    0.0 };
   vtkMath::Cross(helper, f, u);
   vtkMath::Normalize(u);
   vtkMath::Cross(f, u, v);
@@ -76,7 +76,7 @@ double FarthestCorner(const double p[3], const double bounds[6])
   for (int c = 0; c < 8; ++c)
   {
     const double corner[3] = { bounds[c & 1], bounds[2 + ((c >> 1) & 1)],
-                               bounds[4 + ((c >> 2) & 1)] };
+      bounds[4 + ((c >> 2) & 1)] };
     farthest = std::max(farthest, std::sqrt(vtkMath::Distance2BetweenPoints(p, corner)));
   }
   return farthest;
@@ -90,7 +90,7 @@ void Extent(const double axis[3], const double bounds[6], double range[2])
   for (int c = 0; c < 8; ++c)
   {
     const double corner[3] = { bounds[c & 1], bounds[2 + ((c >> 1) & 1)],
-                               bounds[4 + ((c >> 2) & 1)] };
+      bounds[4 + ((c >> 2) & 1)] };
     const double x = Dot(axis, corner);
     range[0] = std::min(range[0], x);
     range[1] = std::max(range[1], x);
@@ -108,8 +108,8 @@ void ToColumnMajor(const Mat4& m, float* out)
   }
 }
 
-vtkGlobalIlluminationShadowMaps::Map CubeMap(const double eye[3], const double bounds[6],
-                                             int resolution)
+vtkGlobalIlluminationShadowMaps::Map CubeMap(
+  const double eye[3], const double bounds[6], int resolution)
 {
   vtkGlobalIlluminationShadowMaps::Map map;
   map.Kind = 1;
@@ -119,8 +119,8 @@ vtkGlobalIlluminationShadowMaps::Map CubeMap(const double eye[3], const double b
   return map;
 }
 
-vtkGlobalIlluminationShadowMaps::Map SpotMap(const vtkGlobalIlluminationShadowMaps::Light& light,
-                                             const double bounds[6], int resolution)
+vtkGlobalIlluminationShadowMaps::Map SpotMap(
+  const vtkGlobalIlluminationShadowMaps::Light& light, const double bounds[6], int resolution)
 {
   vtkGlobalIlluminationShadowMaps::Map map;
   map.Kind = 2;
@@ -252,8 +252,7 @@ std::vector<vtkGlobalIlluminationShadowMaps::Map> vtkGlobalIlluminationShadowMap
 
 //------------------------------------------------------------------------------
 bool vtkGlobalIlluminationShadowMaps::Update(vtkOpenGLRenderWindow* window,
-                                             const std::vector<Light>& lights, bool shadows,
-                                             const Casters& casters, int resolution)
+  const std::vector<Light>& lights, bool shadows, const Casters& casters, int resolution)
 {
   // Everything the depth images depend on; colours and intensities are not part of it.
   std::vector<double> signature{ shadows ? 1.0 : 0.0, double(resolution), double(casters.Version) };
@@ -290,8 +289,8 @@ bool vtkGlobalIlluminationShadowMaps::Update(vtkOpenGLRenderWindow* window,
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationShadowMaps::Allocate(vtkOpenGLRenderWindow* window, int layers,
-                                               int resolution)
+void vtkGlobalIlluminationShadowMaps::Allocate(
+  vtkOpenGLRenderWindow* window, int layers, int resolution)
 {
   if (this->TextureHandle && layers == this->Layers && resolution == this->Resolution)
   {
@@ -308,7 +307,7 @@ void vtkGlobalIlluminationShadowMaps::Allocate(vtkOpenGLRenderWindow* window, in
   this->Resolution = resolution;
   this->Texture->Activate();
   glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT32F, resolution, resolution, layers, 0,
-               GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+    GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
   // Linear filtering of a depth comparison gives a free 2x2 percentage-closer filter.
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -322,9 +321,8 @@ void vtkGlobalIlluminationShadowMaps::Allocate(vtkOpenGLRenderWindow* window, in
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationShadowMaps::Render(vtkOpenGLRenderWindow* window,
-                                             const std::vector<Light>& lights,
-                                             const Casters& casters)
+void vtkGlobalIlluminationShadowMaps::Render(
+  vtkOpenGLRenderWindow* window, const std::vector<Light>& lights, const Casters& casters)
 {
   vtkOpenGLState* state = window->GetState();
   state->PushFramebufferBindings();
@@ -349,8 +347,8 @@ void vtkGlobalIlluminationShadowMaps::Render(vtkOpenGLRenderWindow* window,
 
   vtkShaderProgram* program = lights.empty()
     ? nullptr
-    : window->GetShaderCache()->ReadyShaderProgram(vtkGlobalIlluminationShadowVS,
-                                                   vtkGlobalIlluminationShadowFS, "");
+    : window->GetShaderCache()->ReadyShaderProgram(
+        vtkGlobalIlluminationShadowVS, vtkGlobalIlluminationShadowFS, "");
   vtkNew<vtkOpenGLVertexArrayObject> vao;
   if (program)
   {
@@ -380,14 +378,14 @@ void vtkGlobalIlluminationShadowMaps::Render(vtkOpenGLRenderWindow* window,
       if (map.Kind == 1)
       {
         const double farZ = 1.0 / map.DepthMap[0];
-        worldToClip = Perspective(light.Position.data(), FaceU[face], FaceV[face], FaceF[face], 1.0,
-                                  farZ * 1e-4, farZ);
+        worldToClip = Perspective(
+          light.Position.data(), FaceU[face], FaceV[face], FaceF[face], 1.0, farZ * 1e-4, farZ);
       }
       float clip[16];
       ToColumnMajor(worldToClip, clip);
       program->SetUniformMatrix4x4("giWorldToClip", clip);
-      glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, this->TextureHandle, 0,
-                                map.Layer + face);
+      glFramebufferTextureLayer(
+        GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, this->TextureHandle, 0, map.Layer + face);
       casters.Draw(program, vao);
     }
   }
@@ -417,8 +415,8 @@ void vtkGlobalIlluminationShadowMaps::Deactivate()
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationShadowMaps::SetUniforms(vtkShaderProgram* program, int lightCount,
-                                                  double filterRadius, double bias)
+void vtkGlobalIlluminationShadowMaps::SetUniforms(
+  vtkShaderProgram* program, int lightCount, double filterRadius, double bias)
 {
   const int unit = this->TextureHandle ? this->Texture->GetTextureUnit() : -1;
   if (unit >= 0)
@@ -426,19 +424,17 @@ void vtkGlobalIlluminationShadowMaps::SetUniforms(vtkShaderProgram* program, int
     program->SetUniformi("giShadowMaps", unit);
   }
   const float filter[3] = { 1.f / float(std::max(this->Resolution, 1)), float(filterRadius),
-                            float(bias) };
+    float(bias) };
   program->SetUniform3f("giShadowFilter", filter);
   if (lightCount <= 0)
   {
     return;
   }
-  // Lights without a map (shadows off) get kind 0: the shader skips their lookup.
-  std::vector<int> kinds(lightCount, 0), layers(lightCount, 0);
+  std::vector<int> layers(lightCount, 0);
   std::vector<float> matrices(16 * lightCount, 0.f), depths(4 * lightCount, 0.f);
   for (int i = 0; i < lightCount && i < static_cast<int>(this->Maps.size()); ++i)
   {
     const Map& map = this->Maps[i];
-    kinds[i] = map.Kind;
     layers[i] = map.Layer;
     ToColumnMajor(map.WorldToClip, &matrices[16 * i]);
     depths[4 * i] = float(map.DepthMap[0]);
@@ -446,10 +442,22 @@ void vtkGlobalIlluminationShadowMaps::SetUniforms(vtkShaderProgram* program, int
     depths[4 * i + 2] = float(map.Texel[0]);
     depths[4 * i + 3] = float(map.Texel[1]);
   }
-  program->SetUniform1iv("giShadowKind", lightCount, kinds.data());
   program->SetUniform1iv("giShadowLayer", lightCount, layers.data());
   program->SetUniformMatrix4x4v("giShadowMatrix", lightCount, matrices.data());
   program->SetUniform4fv("giShadowDepth", lightCount, depths.data());
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGlobalIlluminationShadowMaps::GetKinds(int lightCount) const
+{
+  std::string kinds;
+  for (int i = 0; i < lightCount; ++i)
+  {
+    // Lights without a map (shadows off) are kind 0: the shader has no lookup for them.
+    const int kind = i < static_cast<int>(this->Maps.size()) ? this->Maps[i].Kind : 0;
+    kinds += (i > 0 ? ", " : "") + std::to_string(kind);
+  }
+  return kinds;
 }
 
 //------------------------------------------------------------------------------

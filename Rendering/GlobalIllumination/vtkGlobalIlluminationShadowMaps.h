@@ -24,6 +24,7 @@
 
 #include <array>      // for std::array
 #include <functional> // for std::function
+#include <string>     // for std::string
 #include <vector>     // for std::vector
 
 class vtkLight;
@@ -84,7 +85,7 @@ public:
    * only if something they depend on changed. Returns true if it rendered.
    */
   bool Update(vtkOpenGLRenderWindow* window, const std::vector<Light>& lights, bool shadows,
-              const Casters& casters, int resolution);
+    const Casters& casters, int resolution);
 
   ///@{
   /// Binds the depth texture array to a free texture unit for the lighting shader;
@@ -94,10 +95,15 @@ public:
   ///@}
 
   /**
-   * Sets the giShadow* uniforms of the `lightCount` lights of the last Update, the filter
-   * radius and the bias (in texels) and the texture unit. Call after Activate().
+   * Sets the giShadow* uniforms of the `lightCount` lights of the last Update (their kinds
+   * are compiled into the shader, see GetKinds), the filter radius and the bias (in
+   * texels) and the texture unit. Call after Activate().
    */
   void SetUniforms(vtkShaderProgram* program, int lightCount, double filterRadius, double bias);
+
+  /// The map kind of each of the first `lightCount` lights (0: none, 1: cube,
+  /// 2: perspective, 3: orthographic), comma separated, for the shader source.
+  std::string GetKinds(int lightCount) const;
 
   /// How many times the maps were rendered (tests check that frames reuse them).
   int GetRenderCount() const { return this->RenderCount; }
@@ -115,11 +121,11 @@ public:
   };
 
 private:
-  std::vector<Map> Plan(const std::vector<Light>& lights, const double bounds[6],
-                        int resolution) const;
+  std::vector<Map> Plan(
+    const std::vector<Light>& lights, const double bounds[6], int resolution) const;
   void Allocate(vtkOpenGLRenderWindow* window, int layers, int resolution);
-  void Render(vtkOpenGLRenderWindow* window, const std::vector<Light>& lights,
-              const Casters& casters);
+  void Render(
+    vtkOpenGLRenderWindow* window, const std::vector<Light>& lights, const Casters& casters);
 
   std::vector<Map> Maps;
   std::vector<double> Signature;

@@ -2,7 +2,8 @@
 // indirect light, in linear RGB and world coordinates. #defined before this text:
 // GI_LIGHT_COUNT, GI_HAS_ALBEDO, GI_HAS_INDIRECT, GI_HAS_EMISSION, GI_GLOSSY,
 // GI_MODE (0 combined, 1 direct, 2 indirect), GI_TONE_MAPPING (0 linear, 1 exponential,
-// 2 Reinhard).
+// 2 Reinhard), GI_SOFT_SHADOWS (four filter taps instead of one), and, with lights,
+// GI_LIGHT_TYPES and GI_SHADOW_KINDS (one integer per light).
 #define GI_PI 3.14159265358979
 
 uniform mat4 giViewToWorld;
@@ -23,117 +24,61 @@ in vec3 giEmissionVSOutput;
 #endif
 
 #if GI_LIGHT_COUNT > 0
-uniform int giLightType[GI_LIGHT_COUNT];      // 0 point, 1 spot, 2 directional
+// Light types and shadow map kinds are compiled in (they change rarely), so that the
+// unrolled light loop holds only the code each light needs.
+const int giLightType[GI_LIGHT_COUNT] = int[GI_LIGHT_COUNT](GI_LIGHT_TYPES); // 0 point, 1 spot, 2 directional
+const int giShadowKind[GI_LIGHT_COUNT] = int[GI_LIGHT_COUNT](GI_SHADOW_KINDS); // 0 none, 1 cube, 2 perspective, 3 orthographic
 uniform vec3 giLightPosition[GI_LIGHT_COUNT];
 uniform vec3 giLightDirection[GI_LIGHT_COUNT]; // unit direction of travel (spot axis)
 uniform vec3 giLightIntensity[GI_LIGHT_COUNT]; // W/sr (point, spot), W/m^2 (directional)
 uniform vec2 giLightCone[GI_LIGHT_COUNT];      // cos(cone angle), spot exponent
-uniform int giShadowKind[GI_LIGHT_COUNT];  // 0 none, 1 cube, 2 perspective, 3 orthographic
 uniform int giShadowLayer[GI_LIGHT_COUNT]; // first layer in giShadowMaps
 uniform mat4 giShadowMatrix[GI_LIGHT_COUNT]; // world to clip (kinds 2 and 3)
 uniform vec4 giShadowDepth[GI_LIGHT_COUNT];  // depth scale, offset; texel = z * distance + w
 
-// Cube faces in the layer order +X -X +Y -Y +Z -Z, and the image axes u, v of each face:
-// a direction d shows at (d.u, d.v) / |d|_max. The shadow-map renderer uses the same table.
-const vec3 giFaceU[6] = vec3[6](vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0), vec3(1.0, 0.0, 0.0),
-  vec3(1.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0), vec3(-1.0, 0.0, 0.0));
-const vec3 giFaceV[6] = vec3[6](vec3(0.0, -1.0, 0.0), vec3(0.0, -1.0, 0.0), vec3(0.0, 0.0, 1.0),
-  vec3(0.0, 0.0, -1.0), vec3(0.0, -1.0, 0.0), vec3(0.0, -1.0, 0.0));
-
-int giCubeFace(vec3 d)
+// Shadow-map coordinates (u, v, layer) of the direction d from a point light, its cube
+// map starting at `layer`. Faces in the layer order +X -X +Y -Y +Z -Z; a direction shows
+// on its major axis' face at (d.u, d.v) / |d|_max with the image axes u, v of
+// vtkGlobalIlluminationShadowMaps.cxx (FaceU, FaceV). Written without branches: software
+// rasterizers (Mesa llvmpipe) run both sides of a branch under a mask.
+vec3 giCubeCoordinates(vec3 d, float layer)
 {
   vec3 a = abs(d);
-  if (a.x >= a.y && a.x >= a.z)
-  {
-    return d.x > 0.0 ? 0 : 1;
-  }
-  if (a.y >= a.z)
-  {
-    return d.y > 0.0 ? 2 : 3;
-  }
-  return d.z > 0.0 ? 4 : 5;
+  vec3 s = sign(d);
+  bool xMajor = a.x >= a.y && a.x >= a.z;
+  bool yMajor = !xMajor && a.y >= a.z;
+  vec2 uv = xMajor ? vec2(-s.x * d.z, -d.y) / a.x
+                   : (yMajor ? vec2(d.x, s.y * d.z) / a.y : vec2(s.z * d.x, -d.y) / a.z);
+  float face = xMajor ? 0.5 - 0.5 * s.x : (yMajor ? 2.5 - 0.5 * s.y : 4.5 - 0.5 * s.z);
+  return vec3(0.5 * uv + 0.5, layer + face);
 }
 
-// One bilinear depth comparison (1 = lit). Every tap picks its own face, so filters that
-// straddle a cube edge need no seam handling.
-float giCubeTap(float layer, vec3 d, float depth)
+// Percentage-closer filter (1 = lit). The hardware's bilinear depth comparison blends the
+// 2 x 2 nearest texels, which smooths aliased edges; with GI_SOFT_SHADOWS, four such taps
+// at +-radius / 2 texels make a tent over radius + 2 texels for wider, softer edges (at
+// four times the texture cost, which dominates on software rasterizers). Cube faces are
+// not crossed: near a cube edge the taps clamp to the face.
+float giFilteredShadow(vec3 coordinates, float depth)
 {
-  int f = giCubeFace(d);
-  float major = max(max(abs(d.x), abs(d.y)), abs(d.z));
-  vec2 uv = vec2(dot(d, giFaceU[f]), dot(d, giFaceV[f])) / major;
-  return texture(giShadowMaps, vec4(0.5 * uv + 0.5, layer + float(f), depth));
-}
-
-// Percentage-closer filter over a (2 radius)^2 texel square. Four inner taps decide lit or
-// shadowed areas; only penumbrae pay for the eight outer ones.
-float giCubeShadow(float layer, vec3 d, float depth)
-{
-  int f = giCubeFace(d);
-  float major = max(max(abs(d.x), abs(d.y)), abs(d.z));
-  float texel = 2.0 * giShadowFilter.x * major;
-  vec3 du = giFaceU[f] * (texel * giShadowFilter.y), dv = giFaceV[f] * (texel * giShadowFilter.y);
-  float s = giCubeTap(layer, d + 0.5 * (du + dv), depth) + giCubeTap(layer, d + 0.5 * (du - dv), depth)
-    + giCubeTap(layer, d - 0.5 * (du + dv), depth) + giCubeTap(layer, d - 0.5 * (du - dv), depth);
-  if (s == 0.0 || s == 4.0)
-  {
-    return 0.25 * s;
-  }
-  s += giCubeTap(layer, d + du, depth) + giCubeTap(layer, d - du, depth)
-    + giCubeTap(layer, d + dv, depth) + giCubeTap(layer, d - dv, depth)
-    + giCubeTap(layer, d + du + dv, depth) + giCubeTap(layer, d + du - dv, depth)
-    + giCubeTap(layer, d - du + dv, depth) + giCubeTap(layer, d - du - dv, depth);
-  return s / 12.0;
-}
-
-float giImageTap(float layer, vec2 uv, float depth)
-{
-  return texture(giShadowMaps, vec4(uv, layer, depth));
-}
-
-// The same filter in a 2D layer (spot and directional lights).
-float giImageShadow(float layer, vec2 uv, float depth)
-{
-  vec2 du = vec2(giShadowFilter.x * giShadowFilter.y, 0.0), dv = du.yx;
-  float s = giImageTap(layer, uv + 0.5 * (du + dv), depth) + giImageTap(layer, uv + 0.5 * (du - dv), depth)
-    + giImageTap(layer, uv - 0.5 * (du + dv), depth) + giImageTap(layer, uv - 0.5 * (du - dv), depth);
-  if (s == 0.0 || s == 4.0)
-  {
-    return 0.25 * s;
-  }
-  s += giImageTap(layer, uv + du, depth) + giImageTap(layer, uv - du, depth)
-    + giImageTap(layer, uv + dv, depth) + giImageTap(layer, uv - dv, depth)
-    + giImageTap(layer, uv + du + dv, depth) + giImageTap(layer, uv + du - dv, depth)
-    + giImageTap(layer, uv - du + dv, depth) + giImageTap(layer, uv - du - dv, depth);
-  return s / 12.0;
-}
-
-// Filtered shadow-map lookup of light i at q (1 = lit).
-float giShadowLookup(int i, vec3 q)
-{
-  vec4 sd = giShadowDepth[i];
-  float layer = float(giShadowLayer[i]);
-  if (giShadowKind[i] == 1)
-  {
-    vec3 d = q - giLightPosition[i];
-    return giCubeShadow(layer, d, length(d) * sd.x + sd.y);
-  }
-  vec4 clip = giShadowMatrix[i] * vec4(q, 1.0);
-  vec2 uv = 0.5 * clip.xy / clip.w + 0.5;
-  if (clip.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
-  {
-    return 1.0; // outside the map: nothing there casts shadows
-  }
-  float x = giShadowKind[i] == 2 ? length(q - giLightPosition[i]) : dot(q, giLightDirection[i]);
-  return giImageShadow(layer, uv, x * sd.x + sd.y);
+#if GI_SOFT_SHADOWS
+  float h = 0.5 * giShadowFilter.y * giShadowFilter.x;
+  return 0.25 *
+    (texture(giShadowMaps, vec4(coordinates.xy + vec2(-h, -h), coordinates.z, depth)) +
+      texture(giShadowMaps, vec4(coordinates.xy + vec2(h, -h), coordinates.z, depth)) +
+      texture(giShadowMaps, vec4(coordinates.xy + vec2(-h, h), coordinates.z, depth)) +
+      texture(giShadowMaps, vec4(coordinates.xy + vec2(h, h), coordinates.z, depth)));
+#else
+  return texture(giShadowMaps, vec4(coordinates, depth));
+#endif
 }
 
 // Fraction of light i that reaches p, at distance dist, on a triangle of unit normal g
 // (the geometric normal: the shadow map holds the triangles, not the smooth surface that
-// the shading normals describe).
+// the shading normals describe); l is the unit direction to the light.
 //
 // Normal-offset bias: the lookup point moves off the triangle by
 // bias * (0.5 + sqrt(2) (radius / 2 + 1) sin(theta)) texels, theta the light's angle to
-// the triangle. The filter's inner taps reach radius / 2 texels along both axes, plus the
+// the triangle. The filter's taps reach radius / 2 texels along both axes, plus the
 // hardware's bilinear texel, so up to sqrt(2) (radius / 2 + 1) texels along the triangle's
 // slope, over which its stored depth changes by that many texels times tan(theta); an
 // offset along the normal buys 1 / cos(theta) of depth margin per unit. So the default bias
@@ -149,17 +94,25 @@ float giShadowLookup(int i, vec3 q)
 // terminator too.
 float giShadowFactor(int i, vec3 p, vec3 g, vec3 l, float dist)
 {
-  float cosTriangle = dot(g, l);
-  if (cosTriangle <= 0.0)
-  {
-    return 1.0;
-  }
   vec4 sd = giShadowDepth[i];
-  float texel = sd.z * dist + sd.w;
+  int kind = giShadowKind[i];
+  float cosTriangle = dot(g, l);
   float sinTriangle = sqrt(max(1.0 - cosTriangle * cosTriangle, 0.0));
+  float texel = sd.z * dist + sd.w;
   float offset = 0.5 + 1.41421 * (0.5 * giShadowFilter.y + 1.0) * sinTriangle;
   vec3 q = p + g * (texel * giShadowFilter.z * offset);
-  return mix(1.0, giShadowLookup(i, q), smoothstep(0.0, 0.1, cosTriangle));
+  vec3 fromLight = q - giLightPosition[i];
+  // Cube map (kind 1) or 2D map (2: perspective, 3: orthographic), chosen without branches.
+  vec4 clip = giShadowMatrix[i] * vec4(q, 1.0);
+  vec3 image = vec3(0.5 * clip.xy / clip.w + 0.5, float(giShadowLayer[i]));
+  vec3 coordinates = kind == 1 ? giCubeCoordinates(fromLight, image.z) : image;
+  float x = kind == 3 ? dot(q, giLightDirection[i]) : length(fromLight);
+  float lit = giFilteredShadow(coordinates, x * sd.x + sd.y);
+  // Outside a 2D map nothing casts shadows.
+  bool inside = kind == 1 ||
+    (clip.w > 0.0 && all(greaterThanEqual(image.xy, vec2(0.0))) && all(lessThanEqual(image.xy, vec2(1.0))));
+  lit = inside ? lit : 1.0;
+  return mix(1.0, lit, smoothstep(0.0, 0.1, cosTriangle) * float(kind != 0));
 }
 #endif
 
@@ -174,35 +127,17 @@ vec3 giDirectIrradiance(vec3 p, vec3 n, vec3 g, vec3 eye, float shininess, out v
 #if GI_LIGHT_COUNT > 0
   for (int i = 0; i < GI_LIGHT_COUNT; ++i)
   {
-    vec3 toLight = giLightType[i] == 2 ? -giLightDirection[i] : giLightPosition[i] - p;
+    bool directional = giLightType[i] == 2;
+    vec3 toLight = directional ? -giLightDirection[i] : giLightPosition[i] - p;
     float dist = length(toLight);
     vec3 l = toLight / dist;
-    float cosSurface = dot(n, l);
-    if (cosSurface <= 0.0)
-    {
-      continue;
-    }
-    vec3 e = giLightIntensity[i] * cosSurface;
-    if (giLightType[i] != 2)
-    {
-      e /= dist * dist;
-      if (giLightType[i] == 1)
-      {
-        float cosAxis = dot(-l, giLightDirection[i]);
-        if (cosAxis < giLightCone[i].x)
-        {
-          continue;
-        }
-        if (giLightCone[i].y > 0.0)
-        {
-          e *= pow(max(cosAxis, 0.0), giLightCone[i].y);
-        }
-      }
-    }
-    if (giShadowKind[i] != 0)
-    {
-      e *= giShadowFactor(i, p, g, l, dist);
-    }
+    float falloff = directional ? 1.0 : 1.0 / (dist * dist);
+    float cosAxis = dot(-l, giLightDirection[i]);
+    vec2 cone = giLightCone[i];
+    float spot = cosAxis < cone.x ? 0.0 : (cone.y > 0.0 ? pow(max(cosAxis, 1e-6), cone.y) : 1.0);
+    falloff *= giLightType[i] == 1 ? spot : 1.0;
+    vec3 e = giLightIntensity[i] * (max(dot(n, l), 0.0) * falloff);
+    e *= giShadowFactor(i, p, g, l, dist);
     irradiance += e;
 #if GI_GLOSSY
     vec3 h = normalize(l + eye);
