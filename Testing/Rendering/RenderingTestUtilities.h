@@ -142,8 +142,7 @@ inline void GroundCamera(vtkRenderer* renderer)
 
 /// A scene light: positional (spot if coneAngle < 90) or, with coneAngle 0, directional.
 inline vtkSmartPointer<vtkLight> SceneLight(const double position[3], const double focal[3],
-                                            double coneAngle, double intensity,
-                                            const double color[3], double exponent = 0.0)
+  double coneAngle, double intensity, const double color[3], double exponent = 0.0)
 {
   auto light = vtkSmartPointer<vtkLight>::New();
   light->SetLightTypeToSceneLight();
@@ -210,8 +209,8 @@ inline void IsosurfaceCamera(vtkRenderer* renderer)
 }
 
 /// Runs vtkGlobalIlluminationFilter on `input` with the renderer's lights.
-inline vtkSmartPointer<vtkPolyData> Illuminate(vtkPolyData* input, vtkRenderer* renderer,
-                                               int rays = 64, bool emission = true)
+inline vtkSmartPointer<vtkPolyData> Illuminate(
+  vtkPolyData* input, vtkRenderer* renderer, int rays = 64, bool emission = true)
 {
   vtkNew<vtkGlobalIlluminationFilter> gi;
   gi->SetInputData(input);
@@ -393,7 +392,7 @@ inline int CompareWithBaseline(int argc, char* argv[], vtkRenderWindow* window)
   }
   const double mean = total / (3.0 * n);
   std::printf("baseline %s: mean difference %.3f levels, %d of %d pixels differ by more than 16\n",
-              name.c_str(), mean, differing, n);
+    name.c_str(), mean, differing, n);
   if (mean <= 1.0 && differing <= n / 500)
   {
     return 0;

@@ -90,8 +90,8 @@ int TestGlobalIlluminationCompositeMapper(int, char*[])
     for (int k = 0; k < 3; ++k)
     {
       d = std::max(d,
-                   std::abs(whole->GetPointData()->GetScalars()->GetComponent(p, k) -
-                            cut->GetPointData()->GetScalars()->GetComponent(p, k)));
+        std::abs(whole->GetPointData()->GetScalars()->GetComponent(p, k) -
+          cut->GetPointData()->GetScalars()->GetComponent(p, k)));
     }
     worst = std::max(worst, d);
     total += d;
@@ -99,10 +99,10 @@ int TestGlobalIlluminationCompositeMapper(int, char*[])
   }
   std::printf("two blocks vs the whole: mean difference %.3f levels, %d pixels differ by more "
               "than 3 (largest %.0f), shadow map renders %d\n",
-              total / n, differing, worst, composite->GetShadowMapRenderCount());
+    total / n, differing, worst, composite->GetShadowMapRenderCount());
   bool ok = Check(total / n < 0.2 && differing < n / 500, "the blocks look unlike the whole");
-  ok = Check(composite->GetShadowMapRenderCount() == 1,
-             "expected one helper, one shadow map render") &&
+  ok = Check(
+         composite->GetShadowMapRenderCount() == 1, "expected one helper, one shadow map render") &&
     ok;
 
   // A sphere without shading arrays, hanging over the floor beside the tall block.
@@ -123,16 +123,16 @@ int TestGlobalIlluminationCompositeMapper(int, char*[])
   coordinate->SetCoordinateSystemToWorld();
   coordinate->SetValue(centre[0], centre[1] + 0.7 * radius, centre[2] - 0.7 * radius); // lit side
   const int d[2] = { coordinate->GetComputedDisplayValue(cutScene)[0],
-                     coordinate->GetComputedDisplayValue(cutScene)[1] };
+    coordinate->GetComputedDisplayValue(cutScene)[1] };
   const double r = Pixel(withSphere, d[0], d[1], 0), g = Pixel(withSphere, d[0], d[1], 1);
   const double s = light[1] / (light[1] - centre[1]); // the floor behind the sphere, from the light
-  coordinate->SetValue(light[0] + s * (centre[0] - light[0]), 0.0,
-                       light[2] + s * (centre[2] - light[2]));
+  coordinate->SetValue(
+    light[0] + s * (centre[0] - light[0]), 0.0, light[2] + s * (centre[2] - light[2]));
   const int* f = coordinate->GetComputedDisplayValue(cutScene);
   const double under = Pixel(withSphere, f[0], f[1], 1),
                before = Pixel(withoutSphere, f[0], f[1], 1);
   std::printf("sphere block: colour (%.0f, %.0f), its shadow on the floor %.0f (was %.0f)\n", r, g,
-              under, before);
+    under, before);
   ok =
     Check(g > 60.0 && g > 2.0 * r, "the block without arrays is not drawn in the actor's colour") &&
     ok;

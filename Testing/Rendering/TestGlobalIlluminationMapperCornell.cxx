@@ -12,8 +12,7 @@ int TestGlobalIlluminationMapperCornell(int argc, char* argv[])
 
   auto window = MakeWindow(3 * 300, 300);
   const int modes[3] = { vtkGlobalIlluminationShading::DIRECT,
-                         vtkGlobalIlluminationShading::INDIRECT,
-                         vtkGlobalIlluminationShading::COMBINED };
+    vtkGlobalIlluminationShading::INDIRECT, vtkGlobalIlluminationShading::COMBINED };
   for (int i = 0; i < 3; ++i)
   {
     vtkNew<vtkRenderer> renderer;

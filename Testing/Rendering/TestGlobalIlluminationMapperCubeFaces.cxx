@@ -107,8 +107,8 @@ bool ShadowInPlace(int face, vtkRenderer* renderer, vtkImageData* image)
     double mirrored[3] = { shadow[0], shadow[1], shadow[2] };
     mirrored[(face / 2 + k) % 3] *= -1.0;
     const double lit = LuminanceAt(renderer, image, mirrored);
-    std::printf("face %d: shadow %.1f, mirrored in axis %d %.1f\n", face, inShadow,
-                (face / 2 + k) % 3, lit);
+    std::printf(
+      "face %d: shadow %.1f, mirrored in axis %d %.1f\n", face, inShadow, (face / 2 + k) % 3, lit);
     ok =
       Check(lit > 60.0, "face " + std::to_string(face) + ": shadow also at a mirrored place") && ok;
   }

@@ -83,8 +83,8 @@ void AddUnshadowableLights(vtkRenderer* renderer)
 }
 
 /// L = albedo / pi * E per point, tone mapped like the shader (exponential, gamma 2.2).
-vtkSmartPointer<vtkUnsignedCharArray> ToneMapped(vtkPolyData* data, const char* irradiance,
-                                                 double exposure, bool irradianceIsRadiance)
+vtkSmartPointer<vtkUnsignedCharArray> ToneMapped(
+  vtkPolyData* data, const char* irradiance, double exposure, bool irradianceIsRadiance)
 {
   vtkDataArray* e = data->GetPointData()->GetArray(irradiance);
   vtkDataArray* albedo = data->GetPointData()->GetArray("Albedo");
@@ -130,8 +130,8 @@ vtkSmartPointer<vtkActor> VertexColorActor(vtkPolyData* data, vtkUnsignedCharArr
   return actor;
 }
 
-vtkSmartPointer<vtkActor> MapperActor(vtkPolyData* data, int mode, const char* indirect,
-                                      double exposure)
+vtkSmartPointer<vtkActor> MapperActor(
+  vtkPolyData* data, int mode, const char* indirect, double exposure)
 {
   vtkNew<vtkGlobalIlluminationMapper> mapper;
   mapper->SetInputData(data);
@@ -169,8 +169,8 @@ std::vector<double> Differences(vtkImageData* a, vtkImageData* b)
   return d;
 }
 
-bool Agree(vtkImageData* a, vtkImageData* b, const std::string& what, double median, double mean,
-           double p99)
+bool Agree(
+  vtkImageData* a, vtkImageData* b, const std::string& what, double median, double mean, double p99)
 {
   std::vector<double> d = Differences(a, b);
   if (!Check(d.size() > 50000, what + ": too few pixels cover the surface"))
@@ -184,7 +184,7 @@ bool Agree(vtkImageData* a, vtkImageData* b, const std::string& what, double med
   }
   const double m50 = d[d.size() / 2], m99 = d[d.size() * 99 / 100], avg = sum / d.size();
   std::printf("%s: %zu pixels, difference median %.1f, mean %.2f, 99th percentile %.1f levels\n",
-              what.c_str(), d.size(), m50, avg, m99);
+    what.c_str(), d.size(), m50, avg, m99);
   return Check(m50 <= median && avg <= mean && m99 <= p99, what + ": images differ");
 }
 }
@@ -207,13 +207,11 @@ int TestGlobalIlluminationMapperDirectParity(int, char*[])
   };
   auto direct = Snapshot(
     window, MapperActor(field, vtkGlobalIlluminationShading::DIRECT, "", exposure), fieldView);
-  auto perVertex = Snapshot(
-    window,
+  auto perVertex = Snapshot(window,
     MapperActor(field, vtkGlobalIlluminationShading::INDIRECT, "DirectIrradiance", exposure),
     fieldView);
-  auto cpu = Snapshot(
-    window, VertexColorActor(field, ToneMapped(field, "DirectIrradiance", exposure, false)),
-    fieldView);
+  auto cpu = Snapshot(window,
+    VertexColorActor(field, ToneMapped(field, "DirectIrradiance", exposure, false)), fieldView);
   bool ok =
     Agree(direct, perVertex, "height field, per pixel vs per vertex (shader)", 1.0, 0.5, 2.0);
   ok =
@@ -228,8 +226,7 @@ int TestGlobalIlluminationMapperDirectParity(int, char*[])
     AddLights(renderer, cornellLights->GetLights());
     CornellCamera(renderer);
   };
-  auto combined = Snapshot(
-    window,
+  auto combined = Snapshot(window,
     MapperActor(box, vtkGlobalIlluminationShading::COMBINED, "IndirectIrradiance", boxExposure),
     boxView);
   auto radiance = Snapshot(

@@ -16,10 +16,8 @@ std::vector<vtkSmartPointer<vtkLight>> EightLights()
 {
   std::vector<vtkSmartPointer<vtkLight>> lights;
   const double target[3] = { 0, 0, 0.3 };
-  const double colors[8][3] = {
-    { 1, 0.3, 0.3 }, { 0.3, 1, 0.3 }, { 0.3, 0.3, 1 }, { 1, 1, 0.3 },
-    { 1, 0.3, 1 },   { 0.3, 1, 1 },   { 1, 0.7, 0.4 }, { 0.5, 0.6, 1 }
-  };
+  const double colors[8][3] = { { 1, 0.3, 0.3 }, { 0.3, 1, 0.3 }, { 0.3, 0.3, 1 }, { 1, 1, 0.3 },
+    { 1, 0.3, 1 }, { 0.3, 1, 1 }, { 1, 0.7, 0.4 }, { 0.5, 0.6, 1 } };
   for (int i = 0; i < 8; ++i)
   {
     const double a = 2.0 * vtkMath::Pi() * i / 8.0;
@@ -31,8 +29,8 @@ std::vector<vtkSmartPointer<vtkLight>> EightLights()
   return lights;
 }
 
-vtkSmartPointer<vtkRenderer> Scene(vtkPolyData* data, const std::vector<vtkLight*>& lights,
-                                   bool linear, bool shadows = true)
+vtkSmartPointer<vtkRenderer> Scene(
+  vtkPolyData* data, const std::vector<vtkLight*>& lights, bool linear, bool shadows = true)
 {
   auto renderer = vtkSmartPointer<vtkRenderer>::New();
   for (vtkLight* light : lights)
@@ -97,7 +95,7 @@ int TestGlobalIlluminationMapperManyLights(int argc, char* argv[])
   }
   std::printf("8 lights vs the sum of single lights: largest difference %.1f, mean %.3f levels "
               "(brightest pixel %.0f)\n",
-              worst, total / (3.0 * n), brightest);
+    worst, total / (3.0 * n), brightest);
   ok = Check(brightest < 255.0, "the linear image clips; lower the exposure") && ok;
   ok = Check(worst <= 5.0 && total / (3.0 * n) <= 0.6, "light is not additive over 8 lights") && ok;
 

@@ -45,8 +45,8 @@ double MeanLuminanceAt(vtkImageData* image, const std::array<int, 2>& d)
   return sum / (49.0 * 3.0);
 }
 
-vtkSmartPointer<vtkRenderer> Box(vtkPolyData* box, vtkRenderer* lighting, vtkRenderPass* pass,
-                                 int toneMapping, double exposure)
+vtkSmartPointer<vtkRenderer> Box(
+  vtkPolyData* box, vtkRenderer* lighting, vtkRenderPass* pass, int toneMapping, double exposure)
 {
   auto renderer = vtkSmartPointer<vtkRenderer>::New();
   AddLights(renderer, lighting->GetLights());
@@ -93,14 +93,14 @@ bool CheckSSAO(vtkRenderWindow* window, vtkPolyData* box, vtkRenderer* lighting,
     }
   }
   std::printf("SSAO: ceiling edge %.1f -> %.1f, back wall %.1f -> %.1f, %d values brighter\n",
-              edgeBefore, edgeAfter, wallBefore, wallAfter, brighter);
+    edgeBefore, edgeAfter, wallBefore, wallAfter, brighter);
   bool ok = Check(edgeAfter < 0.9 * edgeBefore, "SSAO did not darken the concave edge");
   ok = Check(wallAfter > 0.95 * wallBefore, "SSAO darkened the open wall") && ok;
   return Check(brighter < before->GetNumberOfPoints() / 100, "SSAO brightened the image") && ok;
 }
 
-bool CheckToneMappingPass(vtkRenderWindow* window, vtkPolyData* box, vtkRenderer* lighting,
-                          double exposure)
+bool CheckToneMappingPass(
+  vtkRenderWindow* window, vtkPolyData* box, vtkRenderer* lighting, double exposure)
 {
   vtkSmartPointer<vtkImageData> own = RenderAlone(
     window, Box(box, lighting, nullptr, vtkGlobalIlluminationShading::EXPONENTIAL, exposure));
@@ -118,7 +118,7 @@ bool CheckToneMappingPass(vtkRenderWindow* window, vtkPolyData* box, vtkRenderer
     for (int k = 0; k < 3; ++k)
     {
       const double d = std::abs(own->GetPointData()->GetScalars()->GetComponent(p, k) -
-                                pass->GetPointData()->GetScalars()->GetComponent(p, k));
+        pass->GetPointData()->GetScalars()->GetComponent(p, k));
       worst = std::max(worst, d);
       total += d;
     }
@@ -127,7 +127,7 @@ bool CheckToneMappingPass(vtkRenderWindow* window, vtkPolyData* box, vtkRenderer
     "vtkToneMappingPass vs the mapper's own curve: largest difference %.0f, mean %.3f levels\n",
     worst, total / (3.0 * n));
   return Check(worst <= 3.0 && total / (3.0 * n) <= 0.5,
-               "vtkToneMappingPass disagrees with the mapper's curve");
+    "vtkToneMappingPass disagrees with the mapper's curve");
 }
 }
 

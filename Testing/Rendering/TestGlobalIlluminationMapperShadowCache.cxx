@@ -55,8 +55,8 @@ int TestGlobalIlluminationMapperShadowCache(int, char*[])
   light->GetPosition(p);
   light->SetPosition(p[0] + 0.05, p[1], p[2]);
   expect("light moved", 2);
-  box->GetPoints()->SetPoint(0, box->GetPoint(0)[0], box->GetPoint(0)[1] + 0.01,
-                             box->GetPoint(0)[2]);
+  box->GetPoints()->SetPoint(
+    0, box->GetPoint(0)[0], box->GetPoint(0)[1] + 0.01, box->GetPoint(0)[2]);
   box->Modified();
   expect("geometry changed", 3);
   actor->SetPosition(0.01, 0, 0);

@@ -23,8 +23,8 @@ int TestGlobalIlluminationMapperSpotDirectional(int argc, char* argv[])
     renderer->SetViewport(i / 2.0, 0.0, (i + 1) / 2.0, 1.0);
     AddLights(renderer, lighting->GetLights());
     vtkGlobalIlluminationMapper* mapper = AddMappedActor(renderer, scene);
-    mapper->GetShading()->SetDisplayMode(i == 0 ? vtkGlobalIlluminationShading::DIRECT
-                                                : vtkGlobalIlluminationShading::COMBINED);
+    mapper->GetShading()->SetDisplayMode(
+      i == 0 ? vtkGlobalIlluminationShading::DIRECT : vtkGlobalIlluminationShading::COMBINED);
     mapper->GetShading()->SetExposure(exposure);
     GroundCamera(renderer);
     window->AddRenderer(renderer);
