@@ -11,7 +11,7 @@ plugin_dir="$top/build/paraview-plugin/lib/paraview-5.11/plugins/LinkGI"
 export PYTHONPATH="$top/build/python3-paraview/usr/lib/python3/dist-packages"
 export DISPLAY=:87 LINKGI_PLUGIN="$plugin_dir/LinkGI.so"
 
-Xvfb "$DISPLAY" -screen 0 1600x1000x24 >/dev/null 2>&1 &
+Xvfb "$DISPLAY" -screen 0 1600x1000x24 -noreset >/dev/null 2>&1 &
 xvfb=$!
 paraview --dr --plugin-search-paths="$plugin_dir" --plugins=LinkGI \
   --script="$top/paraview-plugin/examples/cornell_box.py" >/dev/null 2>&1 &
