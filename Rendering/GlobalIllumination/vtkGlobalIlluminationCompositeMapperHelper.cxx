@@ -121,16 +121,16 @@ void vtkGlobalIlluminationCompositeMapperHelper::BuildBufferObjects(vtkRenderer*
 {
   // An attribute is in the buffer if any block has it; AppendOneBufferObject fills the
   // blocks that lack it.
-  bool albedo = false, indirect = false, emission = false;
+  vtkGlobalIlluminationMapperCore::Layout layout;
   for (const auto& entry : this->Data)
   {
-    bool a, i, e;
-    this->Core->GetPresence(entry.first, a, i, e);
-    albedo = albedo || a;
-    indirect = indirect || i;
-    emission = emission || e;
+    const vtkGlobalIlluminationMapperCore::Layout block = this->Core->GetLayout(entry.first);
+    layout.Albedo = layout.Albedo || block.Albedo;
+    layout.Indirect = layout.Indirect || block.Indirect;
+    layout.IndirectBack = layout.IndirectBack || block.IndirectBack;
+    layout.Emission = layout.Emission || block.Emission;
   }
-  this->Core->SetLayout(albedo, indirect, emission);
+  this->Core->SetLayout(layout);
   this->Core->ClearKept();
   this->Superclass::BuildBufferObjects(ren, act);
   this->Core->ClearKept();
@@ -155,15 +155,20 @@ void vtkGlobalIlluminationCompositeMapperHelper::AppendOneBufferObject(vtkRender
   }
   const auto attributes = this->Core->MakeAttributes(hdata->Data, true);
   this->Core->Keep(attributes);
-  if (this->Core->GetHasAlbedo())
+  const vtkGlobalIlluminationMapperCore::Layout& layout = this->Core->GetLayout();
+  if (layout.Albedo)
   {
     this->VBOs->AppendDataArray("giAlbedoMC", attributes.Albedo, VTK_FLOAT);
   }
-  if (this->Core->GetHasIndirect())
+  if (layout.Indirect)
   {
     this->VBOs->AppendDataArray("giIndirectMC", attributes.Indirect, VTK_FLOAT);
   }
-  if (this->Core->GetHasEmission())
+  if (layout.IndirectBack)
+  {
+    this->VBOs->AppendDataArray("giIndirectBackMC", attributes.IndirectBack, VTK_FLOAT);
+  }
+  if (layout.Emission)
   {
     this->VBOs->AppendDataArray("giEmissionMC", attributes.Emission, VTK_FLOAT);
   }

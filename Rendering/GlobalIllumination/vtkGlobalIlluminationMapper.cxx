@@ -148,10 +148,15 @@ void vtkGlobalIlluminationMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*
   auto* cache = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())->GetVBOCache();
   this->VBOs->CacheDataArray("giAlbedoMC", attributes.Albedo, cache, VTK_FLOAT);
   this->VBOs->CacheDataArray("giIndirectMC", attributes.Indirect, cache, VTK_FLOAT);
+  this->VBOs->CacheDataArray("giIndirectBackMC", attributes.IndirectBack, cache, VTK_FLOAT);
   this->VBOs->CacheDataArray("giEmissionMC", attributes.Emission, cache, VTK_FLOAT);
   this->Superclass::BuildBufferObjects(ren, act);
-  this->Core->SetLayout(
-    attributes.Albedo != nullptr, attributes.Indirect != nullptr, attributes.Emission != nullptr);
+  vtkGlobalIlluminationMapperCore::Layout layout;
+  layout.Albedo = attributes.Albedo != nullptr;
+  layout.Indirect = attributes.Indirect != nullptr;
+  layout.IndirectBack = attributes.IndirectBack != nullptr;
+  layout.Emission = attributes.Emission != nullptr;
+  this->Core->SetLayout(layout);
   this->BufferKey = this->Core->BufferKey();
 }
 

@@ -139,20 +139,29 @@ vtkGlobalIlluminationMapperCore::Attributes vtkGlobalIlluminationMapperCore::Mak
   }
   a.Albedo = ReadColors(poly, this->Shading->GetAlbedoArrayName(), true);
   a.Indirect = ReadColors(poly, this->Shading->GetIndirectIrradianceArrayName(), false);
+  a.IndirectBack = ReadColors(poly, this->BackName().c_str(), false);
   a.Emission = ReadColors(poly, this->Shading->GetEmissionArrayName(), false);
   if (fill)
   {
     const vtkIdType n = poly->GetNumberOfPoints();
     a.Albedo = a.Albedo ? a.Albedo : Zeros(n, 4);
     a.Indirect = a.Indirect ? a.Indirect : Zeros(n, 3);
+    a.IndirectBack = a.IndirectBack ? a.IndirectBack : a.Indirect;
     a.Emission = a.Emission ? a.Emission : Zeros(n, 3);
   }
   return a;
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapperCore::GetPresence(
-  vtkPolyData* poly, bool& albedo, bool& indirect, bool& emission) const
+std::string vtkGlobalIlluminationMapperCore::BackName() const
+{
+  const char* name = this->Shading ? this->Shading->GetIndirectIrradianceArrayName() : nullptr;
+  return name && *name ? std::string(name) + "Back" : std::string();
+}
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationMapperCore::Layout vtkGlobalIlluminationMapperCore::GetLayout(
+  vtkPolyData* poly) const
 {
   const auto has = [poly](const char* name)
   {
@@ -160,29 +169,25 @@ void vtkGlobalIlluminationMapperCore::GetPresence(
     return array && array->GetNumberOfTuples() >= poly->GetNumberOfPoints() &&
       array->GetNumberOfComponents() > 0;
   };
-  albedo = this->Shading && has(this->Shading->GetAlbedoArrayName());
-  indirect = this->Shading && has(this->Shading->GetIndirectIrradianceArrayName());
-  emission = this->Shading && has(this->Shading->GetEmissionArrayName());
+  Layout layout;
+  layout.Albedo = this->Shading && has(this->Shading->GetAlbedoArrayName());
+  layout.Indirect = this->Shading && has(this->Shading->GetIndirectIrradianceArrayName());
+  layout.IndirectBack = this->Shading && has(this->BackName().c_str());
+  layout.Emission = this->Shading && has(this->Shading->GetEmissionArrayName());
+  return layout;
 }
 
 //------------------------------------------------------------------------------
 void vtkGlobalIlluminationMapperCore::Keep(const Attributes& attributes)
 {
-  for (const auto& array : { attributes.Albedo, attributes.Indirect, attributes.Emission })
+  for (const auto& array :
+    { attributes.Albedo, attributes.Indirect, attributes.IndirectBack, attributes.Emission })
   {
     if (array)
     {
       this->Kept.push_back(array);
     }
   }
-}
-
-//------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapperCore::SetLayout(bool albedo, bool indirect, bool emission)
-{
-  this->HasAlbedo = albedo;
-  this->HasIndirect = indirect;
-  this->HasEmission = emission;
 }
 
 //------------------------------------------------------------------------------
@@ -287,7 +292,8 @@ std::string vtkGlobalIlluminationMapperCore::ShaderKey(vtkActor* actor) const
 {
   std::ostringstream key;
   key << this->LightTypes() << " / " << this->ShadowMaps.GetKinds(this->LightCount()) << " / "
-      << this->HasAlbedo << this->HasIndirect << this->HasEmission;
+      << this->Present.Albedo << this->Present.Indirect << this->Present.IndirectBack
+      << this->Present.Emission;
   if (this->Shading)
   {
     key << ' ' << this->Shading->GetDisplayMode() << ' ' << this->Shading->GetToneMapping() << ' '
@@ -305,9 +311,11 @@ void vtkGlobalIlluminationMapperCore::ReplaceShaderLight(
   defines << "#define GI_LIGHT_COUNT " << this->Lights.size() << "\n"
           << "#define GI_LIGHT_TYPES " << this->LightTypes() << "\n"
           << "#define GI_SHADOW_KINDS " << this->ShadowMaps.GetKinds(this->LightCount()) << "\n"
-          << "#define GI_HAS_ALBEDO " << this->HasAlbedo << "\n"
-          << "#define GI_HAS_INDIRECT " << this->HasIndirect << "\n"
-          << "#define GI_HAS_EMISSION " << this->HasEmission << "\n"
+          << "#define GI_HAS_ALBEDO " << this->Present.Albedo << "\n"
+          << "#define GI_HAS_INDIRECT " << this->Present.Indirect << "\n"
+          << "#define GI_HAS_INDIRECT_BACK "
+          << (this->Present.Indirect && this->Present.IndirectBack) << "\n"
+          << "#define GI_HAS_EMISSION " << this->Present.Emission << "\n"
           << "#define GI_GLOSSY " << (actor->GetProperty()->GetSpecular() > 0.0) << "\n"
           << "#define GI_MODE " << (this->Shading ? this->Shading->GetDisplayMode() : 0) << "\n"
           << "#define GI_TONE_MAPPING " << (this->Shading ? this->Shading->GetToneMapping() : 1)

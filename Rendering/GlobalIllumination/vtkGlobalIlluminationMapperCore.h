@@ -60,25 +60,43 @@ public:
   /// Float copies of the shading arrays of one polydata; null where the input has none.
   struct Attributes
   {
-    vtkSmartPointer<vtkFloatArray> Albedo;   ///< RGBA: albedo in [0,1], A = 1
-    vtkSmartPointer<vtkFloatArray> Indirect; ///< RGB irradiance
-    vtkSmartPointer<vtkFloatArray> Emission; ///< RGB radiance
+    vtkSmartPointer<vtkFloatArray> Albedo;       ///< RGBA: albedo in [0,1], A = 1
+    vtkSmartPointer<vtkFloatArray> Indirect;     ///< RGB irradiance
+    vtkSmartPointer<vtkFloatArray> IndirectBack; ///< RGB irradiance of back faces
+    vtkSmartPointer<vtkFloatArray> Emission;     ///< RGB radiance
+  };
+
+  /// Which attributes there are (in a polydata, or in the vertex buffers).
+  struct Layout
+  {
+    bool Albedo = false;
+    bool Indirect = false;
+    bool IndirectBack = false;
+    bool Emission = false;
+    bool operator==(const Layout& o) const
+    {
+      return this->Albedo == o.Albedo && this->Indirect == o.Indirect &&
+        this->IndirectBack == o.IndirectBack && this->Emission == o.Emission;
+    }
   };
 
   /**
-   * The attributes of `poly`. With `fill`, missing ones become zeros (albedo with A = 0,
-   * meaning "use the actor's colour"), so that blocks of a composite dataset line up.
+   * The attributes of `poly`. The back faces' indirect irradiance is the array named like
+   * the indirect one plus "Back" (vtkGlobalIlluminationFilter's TwoSided output). With
+   * `fill`, missing ones become zeros (albedo with A = 0, meaning "use the actor's
+   * colour"; the back faces take the front's values), so that blocks of a composite
+   * dataset line up.
    */
   Attributes MakeAttributes(vtkPolyData* poly, bool fill) const;
 
   /// Which of the attributes `poly` has.
-  void GetPresence(vtkPolyData* poly, bool& albedo, bool& indirect, bool& emission) const;
+  Layout GetLayout(vtkPolyData* poly) const;
 
+  ///@{
   /// Which attributes the shaders read; set when the vertex buffers are built.
-  void SetLayout(bool albedo, bool indirect, bool emission);
-  bool GetHasAlbedo() const { return this->HasAlbedo; }
-  bool GetHasIndirect() const { return this->HasIndirect; }
-  bool GetHasEmission() const { return this->HasEmission; }
+  void SetLayout(const Layout& layout) { this->Present = layout; }
+  const Layout& GetLayout() const { return this->Present; }
+  ///@}
 
   ///@{
   /// Keeps arrays handed to a VBO group alive until its next build (the group keeps only
@@ -115,6 +133,9 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
+  /// The name of the back faces' indirect irradiance array.
+  std::string BackName() const;
+
   /// The lights' types, comma separated, for the shader source.
   std::string LightTypes() const;
   int LightCount() const { return static_cast<int>(this->Lights.size()); }
@@ -124,9 +145,7 @@ private:
   std::vector<vtkGlobalIlluminationShadowMaps::Light> Lights;
   std::vector<vtkSmartPointer<vtkFloatArray>> Kept;
   vtkGlobalIlluminationShadowMaps ShadowMaps;
-  bool HasAlbedo = false;
-  bool HasIndirect = false;
-  bool HasEmission = false;
+  Layout Present;
   bool TextureActive = false;
   int IgnoredLightsWarned = 0;
 };

@@ -74,8 +74,10 @@ public:
   ///@{
   /**
    * Point array holding the indirect irradiance E_ind (float RGB), as written by
-   * vtkGlobalIlluminationFilter. Without it the indirect light is black. The default value
-   * is "IndirectIrradiance".
+   * vtkGlobalIlluminationFilter. Without it the indirect light is black. Back faces use the
+   * array of the same name plus "Back" where there is one (the filter's TwoSided output,
+   * for open surfaces), else the front's values. The default value is
+   * "IndirectIrradiance".
    */
   vtkSetStringMacro(IndirectIrradianceArrayName);
   vtkGetStringMacro(IndirectIrradianceArrayName);

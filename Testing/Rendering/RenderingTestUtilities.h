@@ -40,6 +40,7 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>

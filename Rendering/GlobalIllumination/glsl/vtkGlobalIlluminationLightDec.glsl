@@ -1,6 +1,6 @@
 // LinkGI (vtkGlobalIlluminationMapper): direct light with shadow maps plus per-vertex
 // indirect light, in linear RGB and world coordinates. #defined before this text:
-// GI_LIGHT_COUNT, GI_HAS_ALBEDO, GI_HAS_INDIRECT, GI_HAS_EMISSION, GI_GLOSSY,
+// GI_LIGHT_COUNT, GI_HAS_ALBEDO, GI_HAS_INDIRECT, GI_HAS_INDIRECT_BACK, GI_HAS_EMISSION, GI_GLOSSY,
 // GI_MODE (0 combined, 1 direct, 2 indirect), GI_TONE_MAPPING (0 linear, 1 exponential,
 // 2 Reinhard), GI_SOFT_SHADOWS (four filter taps instead of one), and, with lights,
 // GI_LIGHT_TYPES and GI_SHADOW_KINDS (one integer per light).
@@ -18,6 +18,9 @@ in vec4 giAlbedoVSOutput;
 #endif
 #if GI_HAS_INDIRECT
 in vec3 giIndirectVSOutput;
+#endif
+#if GI_HAS_INDIRECT_BACK
+in vec3 giIndirectBackVSOutput;
 #endif
 #if GI_HAS_EMISSION
 in vec3 giEmissionVSOutput;

@@ -22,6 +22,11 @@
 #endif
 #endif
 #if GI_MODE != 1 && GI_HAS_INDIRECT
-  giRadiance += giAlbedo * (1.0 / GI_PI) * giIndirectVSOutput;
+#if GI_HAS_INDIRECT_BACK
+  vec3 giIndirect = gl_FrontFacing ? giIndirectVSOutput : giIndirectBackVSOutput;
+#else
+  vec3 giIndirect = giIndirectVSOutput;
+#endif
+  giRadiance += giAlbedo * (1.0 / GI_PI) * giIndirect;
 #endif
   fragOutput0 = vec4(giToneMap(giRadiance), opacity);

@@ -5,6 +5,9 @@
 #if GI_HAS_INDIRECT
   giIndirectVSOutput = giIndirectMC;
 #endif
+#if GI_HAS_INDIRECT_BACK
+  giIndirectBackVSOutput = giIndirectBackMC;
+#endif
 #if GI_HAS_EMISSION
   giEmissionVSOutput = giEmissionMC;
 #endif
