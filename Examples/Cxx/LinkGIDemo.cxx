@@ -3,27 +3,28 @@
 //
 // Usage: linkgi-demo [output.png] [scene-name]
 //
-// Until the shadow-mapping mapper lands, the per-vertex outgoing radiance (direct light
-// with oversampled shadows + indirect light) is tone mapped and drawn as vertex colours.
+// vtkGlobalIlluminationMapper draws it: per pixel, the direct light of the scene's lights
+// with shadow maps, plus the filter's per-vertex indirect light (display mode "combined"),
+// tone mapped with an exposure taken from the filter's Radiance.
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkFieldData.h"
 #include "vtkDataArray.h"
 #include "vtkGlobalIlluminationFilter.h"
+#include "vtkGlobalIlluminationMapper.h"
 #include "vtkGlobalIlluminationSceneSource.h"
+#include "vtkGlobalIlluminationShading.h"
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -31,9 +32,9 @@
 
 namespace
 {
-/// Exposure so the 95th percentile of luminance lands at 0.85 after the 1 - exp(-x) curve,
-/// then the sRGB transfer function.
-vtkNew<vtkUnsignedCharArray> toneMap(vtkDataArray* radiance)
+/// Exposure so the 95th percentile of luminance lands at 0.85 after the 1 - exp(-x) curve
+/// (the mapper's default tone curve, followed by its display gamma).
+double exposureFor(vtkDataArray* radiance)
 {
   const vtkIdType n = radiance->GetNumberOfTuples();
   std::vector<double> lum(n);
@@ -43,22 +44,7 @@ vtkNew<vtkUnsignedCharArray> toneMap(vtkDataArray* radiance)
     lum[i] = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
   }
   std::nth_element(lum.begin(), lum.begin() + n * 95 / 100, lum.end());
-  const double exposure = -std::log(1.0 - 0.85) / std::max(lum[n * 95 / 100], 1e-12);
-  vtkNew<vtkUnsignedCharArray> colors;
-  colors->SetName("DisplayColor");
-  colors->SetNumberOfComponents(3);
-  colors->SetNumberOfTuples(n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const double* c = radiance->GetTuple3(i);
-    for (int k = 0; k < 3; ++k)
-    {
-      const double x = 1.0 - std::exp(-exposure * c[k]);
-      const double s = x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
-      colors->SetComponent(i, k, std::clamp(s * 255.0 + 0.5, 0.0, 255.0));
-    }
-  }
-  return colors;
+  return -std::log(1.0 - 0.85) / std::max(lum[n * 95 / 100], 1e-12);
 }
 
 void printTimings(vtkFieldData* fd)
@@ -116,16 +102,14 @@ int main(int argc, char* argv[])
   }
   printTimings(lit->GetFieldData());
 
-  vtkNew<vtkPolyData> shown;
-  shown->ShallowCopy(lit);
-  shown->GetPointData()->SetScalars(toneMap(radiance));
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputData(shown);
-  mapper->SetColorModeToDirectScalars();
+  // Shadows of the renderer's lights per pixel, indirect light from the filter's vertices.
+  vtkNew<vtkGlobalIlluminationMapper> mapper;
+  mapper->SetInputData(lit);
+  mapper->ScalarVisibilityOff();
+  mapper->GetShading()->SetDisplayModeToCombined();
+  mapper->GetShading()->SetExposure(exposureFor(radiance));
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
-  // The colours already are the lit result: no second, local lighting on top.
-  actor->GetProperty()->LightingOff();
   renderer->AddActor(actor);
 
   renderer->ResetCamera();
@@ -144,7 +128,12 @@ int main(int argc, char* argv[])
   window->SetSize(720, 720);
   window->SetMultiSamples(4);
   window->AddRenderer(renderer);
+  const auto start = std::chrono::steady_clock::now();
   window->Render();
+  window->WaitForCompletion();
+  const std::chrono::duration<double, std::milli> first = std::chrono::steady_clock::now() - start;
+  std::printf("render timings (ms): first frame (shaders and %d shadow map render) = %.1f\n",
+    mapper->GetShadowMapRenderCount(), first.count());
 
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
