@@ -8,10 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #else
-#include <atomic>
-#include <exception>
-#include <thread>
-#include <vector>
+#include "ThreadPool.h"
 #endif
 
 #include <algorithm>
@@ -32,9 +29,8 @@ void parallelRanges(std::size_t n, std::size_t grain,
 #else
 namespace
 {
-// Without TBB (the GPU machine): plain threads taking grain-sized ranges from a counter.
+// Without TBB (the GPU machine): a pool of threads started once (ThreadPool.cpp).
 thread_local int concurrencyLimit = 0;
-thread_local bool insideLoop = false;
 }
 
 void parallelRanges(std::size_t n, std::size_t grain,
@@ -42,8 +38,7 @@ void parallelRanges(std::size_t n, std::size_t grain,
 {
   grain = std::max<std::size_t>(grain, 1);
   const std::size_t chunks = (n + grain - 1) / grain;
-  const std::size_t threads = insideLoop ? 1 : std::min<std::size_t>(chunks, workerCount());
-  if (threads <= 1)
+  if (chunks <= 1)
   {
     if (n)
     {
@@ -51,41 +46,9 @@ void parallelRanges(std::size_t n, std::size_t grain,
     }
     return;
   }
-  std::atomic<std::size_t> next{ 0 };
-  std::vector<std::exception_ptr> errors(threads);
-  const auto run = [&](std::size_t t) {
-    insideLoop = true; // nested loops run serially on this worker
-    try
-    {
-      for (std::size_t c = next++; c < chunks; c = next++)
-      {
-        body(c * grain, std::min(n, (c + 1) * grain));
-      }
-    }
-    catch (...)
-    {
-      errors[t] = std::current_exception();
-      next = chunks;
-    }
-    insideLoop = false;
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < threads; ++t)
-  {
-    pool.emplace_back(run, t);
-  }
-  run(0);
-  for (std::thread& th : pool)
-  {
-    th.join();
-  }
-  for (const std::exception_ptr& e : errors)
-  {
-    if (e)
-    {
-      std::rethrow_exception(e);
-    }
-  }
+  const int helpers = int(std::min<std::size_t>(chunks, workerCount())) - 1;
+  detail::runChunks(chunks, helpers,
+    [&](std::size_t c) { body(c * grain, std::min(n, (c + 1) * grain)); });
 }
 #endif
 
@@ -131,8 +94,8 @@ void runWithConcurrency(int threads, const std::function<void()>& f)
 #else
 int workerCount()
 {
-  const int hardware = std::max(1, int(std::thread::hardware_concurrency()));
-  return concurrencyLimit > 0 ? std::min(concurrencyLimit, hardware) : hardware;
+  const int all = detail::poolConcurrency();
+  return concurrencyLimit > 0 ? std::min(concurrencyLimit, all) : all;
 }
 
 void runWithConcurrency(int threads, const std::function<void()>& f)

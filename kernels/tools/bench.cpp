@@ -223,7 +223,8 @@ void benchScene(const std::string& name, const Args& args)
   const Solution& solution = solver.solution();
   std::ostringstream extra;
   // Where the time of the best light-only update and of the full update went.
-  extra << ",\"ms_prepare\":" << full.msPrepare << ",\"light_update_ms\":{\"prepare\":"
+  extra << ",\"ms_prepare\":" << full.msPrepare << ",\"ms_topology\":" << full.msTopology
+        << ",\"light_update_ms\":{\"prepare\":"
         << light.msPrepare << ",\"upload\":" << light.msBvh << ",\"light_links\":"
         << light.msLightLinks << ",\"bounces\":" << light.msBounces << ",\"finish\":"
         << light.msSmoothing << "}";

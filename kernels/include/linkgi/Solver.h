@@ -83,6 +83,8 @@ struct SolverStats
          msSmoothing = 0, msTotal = 0;
   /// Of msTotal: copying and validating the scene and finding what changed (host).
   double msPrepare = 0;
+  /// Of msBvh: one-ring topology, ray origin shifts and face normals (host).
+  double msTopology = 0;
   std::vector<std::string> warnings; ///< from scene validation and backend fallbacks
   /// Which backend ran the last update ("cpu" or "cuda"), on what ("embree", "2 x NVIDIA
   /// H200"), and why that one (the Auto choice or the reason for a fallback to the CPU).

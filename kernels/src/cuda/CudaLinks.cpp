@@ -55,8 +55,17 @@ public:
     else
     {
       const double speed = devices[device]->elementsPerMs;
-      const double round = speedSum * kTargetMs;
-      size = left > round ? Index(speed * kTargetMs) : Index(std::ceil(left * speed / speedSum));
+      if (finalLeft == 0 && left > speedSum * kTargetMs)
+      {
+        size = Index(speed * kTargetMs);
+      }
+      else
+      {
+        // The last round: each device's share of what was left when it began, in
+        // proportion to its speed, so that all finish at about the same time.
+        finalLeft = finalLeft ? finalLeft : left;
+        size = Index(std::ceil(finalLeft * speed / speedSum));
+      }
     }
     count = std::max<Index>(1, std::min({ size, left, maxBatch }));
     first = cursor;
@@ -73,7 +82,7 @@ public:
 private:
   static constexpr double kTargetMs = 4.0;
   std::mutex mutex;
-  Index total, cursor = 0;
+  Index total, cursor = 0, finalLeft = 0;
   std::vector<EngineDevice*> devices;
   Index maxBatch;
   bool stop = false;

@@ -9,6 +9,8 @@
 #include <cub/block/block_radix_sort.cuh>
 #include <cub/block/block_scan.cuh>
 
+#include <algorithm>
+
 namespace linkgi::cuda
 {
 namespace
@@ -63,7 +65,26 @@ struct Compress
 };
 
 constexpr unsigned long long kNoKey = ~0ull;
-constexpr int kEnvBit = 32, kRowShift = 33; // key = row << 33 | environment << 32 | column
+
+/// Sort keys: (local row, environment?, column) packed into the fewest bits, since the block
+/// sort's passes grow with the key width: column in bits [0, columnBits), then the
+/// environment flag, then the row.
+struct KeyLayout
+{
+  int columnBits;
+  int endBit;
+  __device__ unsigned long long key(int row, bool env, Index column) const
+  {
+    return (static_cast<unsigned long long>(row) << (columnBits + 1)) |
+      (static_cast<unsigned long long>(env) << columnBits) | column;
+  }
+  /// Segment = (row, environment?) = key >> columnBits.
+  __device__ int segment(unsigned long long key) const { return int(key >> columnBits); }
+  __device__ Index column(unsigned long long key) const
+  {
+    return Index(key & ((1ull << columnBits) - 1));
+  }
+};
 
 /// One block merges the links of `rowsPerBlock` elements (R = 1: n_C <= 256 rays per
 /// element, one ray per thread; R = 4: one element of up to 1024 rays, rays t*4..t*4+3 in
@@ -71,7 +92,7 @@ constexpr int kEnvBit = 32, kRowShift = 33; // key = row << 33 | environment << 
 /// in ray order, so weights add up in the CPU's order.
 template <int R>
 __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
-  const LinkHit* hits, LinkRowsOut out, int rowsPerBlock, int endBit)
+  const LinkHit* hits, LinkRowsOut out, int rowsPerBlock, KeyLayout layout)
 {
   using C = Compress<R>;
   __shared__ typename C::Shared shared;
@@ -117,9 +138,7 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
     for (int j = 0; j < 3; ++j)
     {
       const bool valid = j < links.count;
-      keys[3 * r + j] = valid ? (static_cast<unsigned long long>(localRow) << kRowShift) |
-          (static_cast<unsigned long long>(links.environment) << kEnvBit) | links.column[j]
-                              : kNoKey;
+      keys[3 * r + j] = valid ? layout.key(localRow, links.environment, links.column[j]) : kNoKey;
       values[3 * r + j] = valid ? links.weight[j] : 0.f;
     }
   }
@@ -132,7 +151,7 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
     atomicAdd(out.rawLinks, static_cast<unsigned long long>(raw));
   }
 
-  typename C::Sort(shared.sort).Sort(keys, values, 0, endBit);
+  typename C::Sort(shared.sort).Sort(keys, values, 0, layout.endBit);
   __syncthreads(); // the sort's storage becomes the sorted arrays
   for (int i = 0; i < C::kItems; ++i)
   {
@@ -142,7 +161,7 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
   __syncthreads();
 
   // A head starts a run of equal keys; heads are numbered in order by a block scan.
-  const unsigned long long mask = (1ull << endBit) - 1;
+  const unsigned long long mask = (1ull << layout.endBit) - 1;
   const auto keyAt = [&](int i) { return shared.sorted.keys[i] & mask; };
   int heads = 0;
   for (int i = 0; i < C::kItems; ++i)
@@ -161,8 +180,8 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
     {
       continue;
     }
-    const int segment = int(key >> kEnvBit);
-    if (at == 0 || int(keyAt(at - 1) >> kEnvBit) != segment)
+    const int segment = layout.segment(key);
+    if (at == 0 || layout.segment(keyAt(at - 1)) != segment)
     {
       segmentStart[segment] = headIndex;
     }
@@ -184,11 +203,11 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
     {
       sum += shared.sorted.values[j];
     }
-    const int segment = int(key >> kEnvBit);
+    const int segment = layout.segment(key);
     const bool env = segment & 1;
     const Index row = firstRow + (segment >> 1);
     const std::size_t slot = std::size_t(row) * (env ? n : 3 * n) + (headIndex - segmentStart[segment]);
-    (env ? out.envColumns : out.columns)[slot] = Index(key & 0xffffffffu);
+    (env ? out.envColumns : out.columns)[slot] = layout.column(key);
     (env ? out.envWeights : out.weights)[slot] = sum;
     ++headIndex;
   }
@@ -230,10 +249,11 @@ __global__ void addKernel(Index* values, Index count, Index add)
   }
 }
 
+/// Number of bits that hold x (and so every value below it): 0 for 0, 1 for 1, 2 for 2..3.
 int bitsFor(unsigned x)
 {
   int b = 0;
-  while ((1u << b) <= x && b < 31)
+  while (b < 32 && (std::uint64_t(1) << b) <= x)
   {
     ++b;
   }
@@ -263,17 +283,23 @@ bool compressLinks(const LinkCompressParams& p, const LinkHit* hits, const LinkR
   {
     return true;
   }
+  // Columns are elements (< 2 x vertices) or environment texels.
+  const Index elements = p.twoSided ? 2 * p.trace.vertexCount : p.trace.vertexCount;
+  const unsigned texels = p.envWidth > 0 ? unsigned(p.envWidth) * unsigned(p.envHeight) : 1u;
+  KeyLayout layout;
+  layout.columnBits = bitsFor(std::max(unsigned(elements), texels));
   if (n <= kThreads)
   {
     const int rowsPerBlock = int(kThreads / n);
-    const int endBit = kRowShift + bitsFor(unsigned(rowsPerBlock - 1));
+    layout.endBit = layout.columnBits + 1 + bitsFor(unsigned(rowsPerBlock - 1));
     const unsigned blocks = unsigned((rows + rowsPerBlock - 1) / rowsPerBlock);
-    compressKernel<1><<<blocks, kThreads, 0, stream>>>(p, hits, out, rowsPerBlock, endBit);
+    compressKernel<1><<<blocks, kThreads, 0, stream>>>(p, hits, out, rowsPerBlock, layout);
     LINKGI_CUDA_CHECK_LAUNCH("compressKernel<1>");
   }
   else
   {
-    compressKernel<4><<<rows, kThreads, 0, stream>>>(p, hits, out, 1, kRowShift);
+    layout.endBit = layout.columnBits + 1;
+    compressKernel<4><<<rows, kThreads, 0, stream>>>(p, hits, out, 1, layout);
     LINKGI_CUDA_CHECK_LAUNCH("compressKernel<4>");
   }
   return true;
