@@ -67,6 +67,22 @@ vtkSmartPointer<vtkFloatArray> ReadColors(vtkPolyData* poly, const char* name, b
   return out;
 }
 
+/// Whether every value of `array` is 0 (an "Emission" array of a scene that emits
+/// nothing): such an attribute only costs interpolation.
+bool AllZero(vtkDataArray* array)
+{
+  for (int k = 0; k < array->GetNumberOfComponents(); ++k)
+  {
+    double range[2];
+    array->GetRange(range, k);
+    if (range[0] != 0.0 || range[1] != 0.0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 vtkSmartPointer<vtkFloatArray> Zeros(vtkIdType tuples, int components)
 {
   auto out = vtkSmartPointer<vtkFloatArray>::New();
@@ -140,7 +156,9 @@ vtkGlobalIlluminationMapperCore::Attributes vtkGlobalIlluminationMapperCore::Mak
   a.Albedo = ReadColors(poly, this->Shading->GetAlbedoArrayName(), true);
   a.Indirect = ReadColors(poly, this->Shading->GetIndirectIrradianceArrayName(), false);
   a.IndirectBack = ReadColors(poly, this->BackName().c_str(), false);
-  a.Emission = ReadColors(poly, this->Shading->GetEmissionArrayName(), false);
+  a.Emission = this->GetLayout(poly).Emission
+    ? ReadColors(poly, this->Shading->GetEmissionArrayName(), false)
+    : nullptr;
   if (fill)
   {
     const vtkIdType n = poly->GetNumberOfPoints();
@@ -173,7 +191,8 @@ vtkGlobalIlluminationMapperCore::Layout vtkGlobalIlluminationMapperCore::GetLayo
   layout.Albedo = this->Shading && has(this->Shading->GetAlbedoArrayName());
   layout.Indirect = this->Shading && has(this->Shading->GetIndirectIrradianceArrayName());
   layout.IndirectBack = this->Shading && has(this->BackName().c_str());
-  layout.Emission = this->Shading && has(this->Shading->GetEmissionArrayName());
+  layout.Emission = this->Shading && has(this->Shading->GetEmissionArrayName()) &&
+    !AllZero(poly->GetPointData()->GetArray(this->Shading->GetEmissionArrayName()));
   return layout;
 }
 

@@ -86,7 +86,8 @@ public:
   ///@{
   /**
    * Point array holding emitted radiance Le (linear RGB), drawn as part of the direct
-   * light. Without it nothing emits. The default value is "Emission".
+   * light. Without it (or with an array of zeros, which is skipped) nothing emits. The
+   * default value is "Emission".
    */
   vtkSetStringMacro(EmissionArrayName);
   vtkGetStringMacro(EmissionArrayName);
