@@ -183,11 +183,17 @@ void checkShadingSizes(const Scene& scene)
   }
 }
 
-/// The errors of albedo, emission, lights and environment.
-void checkShading(const Scene& scene)
+/// The errors of albedo, emission, lights and environment (of the arrays not known valid).
+void checkShading(const Scene& scene, bool albedoValid = false, bool emissionValid = false)
 {
-  checkArray(scene.albedo, "albedo", negativeOrNotFinite, "a negative or non-finite");
-  checkArray(scene.emission, "emission", negativeOrNotFinite, "a negative or non-finite");
+  if (!albedoValid)
+  {
+    checkArray(scene.albedo, "albedo", negativeOrNotFinite, "a negative or non-finite");
+  }
+  if (!emissionValid)
+  {
+    checkArray(scene.emission, "emission", negativeOrNotFinite, "a negative or non-finite");
+  }
   checkLights(scene.lights);
   if (!isFinite(scene.environment.color))
   {
@@ -202,11 +208,13 @@ void checkShading(const Scene& scene)
 }
 
 /// Albedo above 1 (clamped or rejected), and a scene without any light.
-void repairShading(Scene& scene, AlbedoPolicy policy, std::vector<std::string>& warnings)
+void repairShading(Scene& scene, AlbedoPolicy policy, std::vector<std::string>& warnings,
+  bool albedoValid = false)
 {
   std::size_t above = 0;
-  for (Vec3f& a : scene.albedo)
+  for (std::size_t i = 0; !albedoValid && i < scene.albedo.size(); ++i)
   {
+    Vec3f& a = scene.albedo[i];
     if (a.x > 1.f || a.y > 1.f || a.z > 1.f) // maxComponent(a) > 1, without libm's fmaxf
     {
       ++above;
@@ -224,17 +232,17 @@ void repairShading(Scene& scene, AlbedoPolicy policy, std::vector<std::string>& 
       " vertices to 1: an albedo above 1 would create energy.");
   }
 
-  bool anyEmission = false;
-  for (const Vec3f& e : scene.emission)
-  {
-    anyEmission = anyEmission || e.x > 0.f || e.y > 0.f || e.z > 0.f;
-  }
   bool anyLight = false;
   for (const Light& l : scene.lights)
   {
     anyLight = anyLight || maxComponent(l.intensity) > 0.f;
   }
-  if (!anyLight && !anyEmission && scene.environment.isBlack())
+  // The emission is scanned only when no light shines.
+  const auto anyEmission = [&scene] {
+    return std::any_of(scene.emission.begin(), scene.emission.end(),
+      [](const Vec3f& e) { return e.x > 0.f || e.y > 0.f || e.z > 0.f; });
+  };
+  if (!anyLight && scene.environment.isBlack() && !anyEmission())
   {
     warnings.push_back("The scene has no lights, no emission and a black environment: "
                        "all irradiance is zero.");
@@ -287,12 +295,13 @@ std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy)
   return warnings;
 }
 
-std::vector<std::string> validateShading(Scene& scene, AlbedoPolicy policy)
+std::vector<std::string> validateShading(
+  Scene& scene, AlbedoPolicy policy, bool albedoValidated, bool emissionValidated)
 {
   std::vector<std::string> warnings;
   checkShadingSizes(scene);
-  checkShading(scene);
-  repairShading(scene, policy, warnings);
+  checkShading(scene, albedoValidated, emissionValidated);
+  repairShading(scene, policy, warnings, albedoValidated);
   return warnings;
 }
 }

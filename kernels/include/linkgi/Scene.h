@@ -103,7 +103,10 @@ std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy = Albed
 /// The albedo, emission, light and environment half of validateScene, for a scene whose
 /// positions, normals and triangles passed validateScene unchanged before (the solver's
 /// light and material updates): the same errors, repairs and warnings for those arrays.
-std::vector<std::string> validateShading(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp);
+/// `albedoValidated` / `emissionValidated`: that array too passed unchanged before, and is
+/// not scanned again (on a large mesh the scans cost more than a light update's GPU work).
+std::vector<std::string> validateShading(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp,
+  bool albedoValidated = false, bool emissionValidated = false);
 
 /// True if every array, light and the environment of `a` and `b` are bitwise equal.
 bool sameScene(const Scene& a, const Scene& b);
