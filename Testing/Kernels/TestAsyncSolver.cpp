@@ -40,8 +40,8 @@ TEST(TestAsyncSolver, ResultsBelongToOneRequest)
   const Solution unit = reference.update(roomWithLight(1.f), options());
   // Requests arrive four times faster than a full solve takes.
   const auto spacing = std::chrono::duration<double, std::milli>(reference.stats().msTotal / 4);
+  std::atomic<int> published{ 0 }; // before the solver: outlives its worker's callbacks
   AsyncSolver async(1);
-  std::atomic<int> published{ 0 };
   async.setOnPublish([&](std::uint64_t) { ++published; });
   std::uint64_t last = 0;
   for (int k = 1; k <= 20; ++k)
@@ -70,14 +70,15 @@ TEST(TestAsyncSolver, ResultsBelongToOneRequest)
 
 TEST(TestAsyncSolver, AbortRunningPolicy)
 {
-  // A slow update followed at once by a quick one: by default the slow one is finished and
-  // published first; with setAbortRunning(true) it is abandoned for the newer request.
+  // A slow update followed by a quick one once the slow one runs: by default the slow one is
+  // finished and published first; with setAbortRunning(true) it is abandoned for the newer.
   for (const bool abort : { false, true })
   {
+    // Declared before the solver, so they outlive its worker's callbacks.
+    std::mutex m;
+    std::vector<std::uint64_t> shown;
     AsyncSolver async(1);
     async.setAbortRunning(abort);
-    std::vector<std::uint64_t> shown;
-    std::mutex m;
     async.setOnPublish([&](std::uint64_t id) {
       std::lock_guard<std::mutex> lock(m);
       shown.push_back(id);
@@ -85,9 +86,14 @@ TEST(TestAsyncSolver, AbortRunningPolicy)
     SolverOptions slow = options();
     slow.raysPerVertex = 1024;
     const std::uint64_t first = async.request(test::roomWithBlock(0.1f), slow);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (async.solving() != first && std::chrono::steady_clock::now() < deadline)
+    {
+      std::this_thread::yield();
+    }
+    ASSERT_EQ(async.solving(), first);
     const std::uint64_t second = async.request(test::roomWithBlock(0.25f), options());
-    ASSERT_TRUE(async.wait(second, 60.0));
+    ASSERT_TRUE(async.wait(second, 120.0));
     std::lock_guard<std::mutex> lock(m);
     if (abort)
     {

@@ -122,6 +122,12 @@ bool AsyncSolver::busy() const
   return impl->pending.has_value() || impl->running != 0;
 }
 
+std::uint64_t AsyncSolver::solving() const
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  return impl->running == ~std::uint64_t(0) ? 0 : impl->running;
+}
+
 bool AsyncSolver::wait(std::uint64_t request, double timeoutSeconds) const
 {
   std::unique_lock<std::mutex> lock(impl->mutex);

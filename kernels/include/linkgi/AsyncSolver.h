@@ -54,6 +54,8 @@ public:
   void cancel();
   /// True while a request is pending or being solved.
   bool busy() const;
+  /// The id of the request being solved, 0 when the worker is idle or waiting.
+  std::uint64_t solving() const;
   /// Blocks until `request` (or a newer request) has been published, the worker went idle
   /// without publishing it (superseded, cancelled or failed), or `timeoutSeconds` passed.
   /// Returns true if a result for `request` or newer is available.
