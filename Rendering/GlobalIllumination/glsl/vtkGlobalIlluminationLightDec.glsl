@@ -1,9 +1,9 @@
 // LinkGI (vtkGlobalIlluminationMapper): direct light with shadow maps plus per-vertex
 // indirect light, in linear RGB and world coordinates. #defined before this text:
-// GI_LIGHT_COUNT, GI_HAS_ALBEDO, GI_HAS_INDIRECT, GI_HAS_INDIRECT_BACK, GI_HAS_EMISSION, GI_GLOSSY,
-// GI_MODE (0 combined, 1 direct, 2 indirect), GI_TONE_MAPPING (0 linear, 1 exponential,
-// 2 Reinhard), GI_SOFT_SHADOWS (four filter taps instead of one), and, with lights,
-// GI_LIGHT_TYPES and GI_SHADOW_KINDS (one integer per light).
+// GI_LIGHT_COUNT, GI_HAS_ALBEDO, GI_HAS_INDIRECT, GI_HAS_INDIRECT_BACK, GI_HAS_EMISSION,
+// GI_GLOSSY, GI_MODE (0 combined, 1 direct, 2 indirect), GI_TONE_MAPPING (0 linear,
+// 1 exponential, 2 Reinhard), GI_SOFT_SHADOWS (four filter taps instead of one), and, with
+// lights, GI_LIGHT_TYPES and GI_SHADOW_KINDS (one integer per light).
 #define GI_PI 3.14159265358979
 
 uniform mat4 giViewToWorld;
@@ -27,10 +27,11 @@ in vec3 giEmissionVSOutput;
 #endif
 
 #if GI_LIGHT_COUNT > 0
-// Light types and shadow map kinds are compiled in (they change rarely), so that the
-// unrolled light loop holds only the code each light needs.
-const int giLightType[GI_LIGHT_COUNT] = int[GI_LIGHT_COUNT](GI_LIGHT_TYPES); // 0 point, 1 spot, 2 directional
-const int giShadowKind[GI_LIGHT_COUNT] = int[GI_LIGHT_COUNT](GI_SHADOW_KINDS); // 0 none, 1 cube, 2 perspective, 3 orthographic
+// Light types (0 point, 1 spot, 2 directional) and shadow map kinds (0 none, 1 cube,
+// 2 perspective, 3 orthographic) are compiled in: they change rarely, and the unrolled
+// light loop then holds only the code each light needs.
+const int giLightType[GI_LIGHT_COUNT] = int[GI_LIGHT_COUNT](GI_LIGHT_TYPES);
+const int giShadowKind[GI_LIGHT_COUNT] = int[GI_LIGHT_COUNT](GI_SHADOW_KINDS);
 uniform vec3 giLightPosition[GI_LIGHT_COUNT];
 uniform vec3 giLightDirection[GI_LIGHT_COUNT]; // unit direction of travel (spot axis)
 uniform vec3 giLightIntensity[GI_LIGHT_COUNT]; // W/sr (point, spot), W/m^2 (directional)
@@ -113,7 +114,8 @@ float giShadowFactor(int i, vec3 p, vec3 g, vec3 l, float dist)
   float lit = giFilteredShadow(coordinates, x * sd.x + sd.y);
   // Outside a 2D map nothing casts shadows.
   bool inside = kind == 1 ||
-    (clip.w > 0.0 && all(greaterThanEqual(image.xy, vec2(0.0))) && all(lessThanEqual(image.xy, vec2(1.0))));
+    (clip.w > 0.0 && all(greaterThanEqual(image.xy, vec2(0.0))) &&
+      all(lessThanEqual(image.xy, vec2(1.0))));
   lit = inside ? lit : 1.0;
   return mix(1.0, lit, smoothstep(0.0, 0.1, cosTriangle) * float(kind != 0));
 }

@@ -15,7 +15,8 @@
 #if GI_MODE != 2
   vec3 giEye = giCamera.w > 0.5 ? giCamera.xyz : normalize(giCamera.xyz - giPosition);
   vec3 giGlossy;
-  vec3 giDirect = giDirectIrradiance(giPosition, giNormal, giTriangle, giEye, specularPower, giGlossy);
+  vec3 giDirect =
+    giDirectIrradiance(giPosition, giNormal, giTriangle, giEye, specularPower, giGlossy);
   giRadiance += giAlbedo * (1.0 / GI_PI) * giDirect + specularColor * giGlossy;
 #if GI_HAS_EMISSION
   giRadiance += giEmissionVSOutput;
