@@ -94,6 +94,15 @@ TEST(TestAsyncSolver, AbortRunningPolicy)
     ASSERT_EQ(async.solving(), first);
     const std::uint64_t second = async.request(test::roomWithBlock(0.25f), options());
     ASSERT_TRUE(async.wait(second, 120.0));
+    // The publish callback runs on the worker just after the result is visible to wait().
+    const auto published = [&] {
+      std::lock_guard<std::mutex> lock(m);
+      return !shown.empty() && shown.back() == second;
+    };
+    while (!published() && std::chrono::steady_clock::now() < deadline)
+    {
+      std::this_thread::yield();
+    }
     std::lock_guard<std::mutex> lock(m);
     if (abort)
     {
