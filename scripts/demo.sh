@@ -6,5 +6,5 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 "$top/scripts/setup.sh"
 "$top/scripts/build.sh"
 out=$(realpath -m "${1:-$top/build/linkgi-demo.png}")
-# Offscreen rendering through Mesa under a virtual X server.
-xvfb-run -a -s "-screen 0 1280x1024x24" "$top/build/bin/linkgi-demo" "$out"
+# Offscreen rendering through Mesa under a virtual X server of its own.
+"$top/Testing/run_with_xvfb.sh" "$top/build/bin/linkgi-demo" "$out"
