@@ -406,7 +406,9 @@ bool Solver::Impl::solveCuda(const Scene& s, const SolverOptions& opt, const Cha
     st.backend = "cuda";
     st.device = engine->description();
     st.devices = engine->deviceCount();
-    st.linkedPerDevice.assign(engine->linkedElements().begin(), engine->linkedElements().end());
+    const std::vector<std::size_t> linked = engine->linkedElements();
+    st.linkedPerDevice.assign(linked.begin(), linked.end());
+    engine->linkProfile(st);
     st.gpuPeakBytes = engine->peakBytes();
     return true;
   }

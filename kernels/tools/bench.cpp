@@ -176,6 +176,12 @@ double peakHostMb()
   return usage.ru_maxrss / 1024.0;
 }
 
+double median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
 /// Moves every light a little: a light-only change.
 Scene movedLights(const Scene& scene)
 {
@@ -198,10 +204,13 @@ void benchScene(const std::string& name, const Args& args)
   // light-only updates; each figure is the best of `repeat`.
   SolverStats full = cold, light;
   double msLight = 1e30;
+  std::vector<double> fullTimes, linkTimes, lightTimes;
   for (int r = 0; r < args.repeat; ++r)
   {
     solver.reset();
     solver.update(scene, args.options);
+    fullTimes.push_back(solver.stats().msTotal);
+    linkTimes.push_back(solver.stats().msLinks + solver.stats().msCompress);
     if (solver.stats().msTotal < full.msTotal || r == 0)
     {
       full = solver.stats();
@@ -213,6 +222,7 @@ void benchScene(const std::string& name, const Args& args)
       {
         throw Error("A light-only change rebuilt the links.");
       }
+      lightTimes.push_back(solver.stats().msTotal);
       if (solver.stats().msTotal < msLight)
       {
         msLight = solver.stats().msTotal;
@@ -222,7 +232,11 @@ void benchScene(const std::string& name, const Args& args)
   }
   const Solution& solution = solver.solution();
   std::ostringstream extra;
-  // Where the time of the best light-only update and of the full update went.
+  // Medians next to the best runs (the best-of figures below), and where the time of the
+  // best light-only update and of the full update went.
+  extra << ",\"median_ms\":{\"full_update\":" << median(fullTimes) << ",\"link_generation\":"
+        << median(linkTimes) << ",\"light_update\":" << median(lightTimes)
+        << "},\"best_ms_link_generation\":" << *std::min_element(linkTimes.begin(), linkTimes.end());
   extra << ",\"ms_prepare\":" << full.msPrepare << ",\"ms_topology\":" << full.msTopology
         << ",\"light_update_ms\":{\"prepare\":"
         << light.msPrepare << ",\"upload\":" << light.msBvh << ",\"light_links\":"
@@ -281,6 +295,17 @@ void benchScene(const std::string& name, const Args& args)
   for (std::size_t i = 0; i < full.linkedPerDevice.size(); ++i)
   {
     perDevice << (i ? "," : "") << full.linkedPerDevice[i];
+  }
+  if (full.devices > 0)
+  {
+    extra << ",\"link_profile\":[";
+    for (std::size_t i = 0; i < full.batchesPerDevice.size(); ++i)
+    {
+      extra << (i ? "," : "") << "{\"batches\":" << full.batchesPerDevice[i] << ",\"ms_trace\":"
+            << full.msTracePerDevice[i] << ",\"ms_compress\":" << full.msCompressPerDevice[i]
+            << ",\"ms_wall\":" << full.msWallPerDevice[i] << "}";
+    }
+    extra << "]";
   }
   std::printf("{\"scene\":\"%s\",\"backend\":\"%s\",\"device\":\"%s\",\"devices\":%d,\"threads\":%d,"
               "\"vertices\":%zu,\"triangles\":%zu,\"rays_per_vertex\":%u,\"bounces\":%u,\"rays\":%llu,"

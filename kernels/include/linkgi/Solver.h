@@ -91,6 +91,10 @@ struct SolverStats
   std::string backend, device, backendNote;
   int devices = 0;                         ///< GPUs the link stage used (0 on the CPU)
   std::vector<std::uint64_t> linkedPerDevice; ///< elements each GPU linked, last link stage
+  /// Per GPU in the last link stage: batches, and milliseconds busy tracing, compressing
+  /// (GPU time) and in all (its thread's wall time) - how well the batches balanced.
+  std::vector<std::uint32_t> batchesPerDevice;
+  std::vector<double> msTracePerDevice, msCompressPerDevice, msWallPerDevice;
   std::uint64_t gpuPeakBytes = 0;          ///< most GPU memory in use during the update
 };
 

@@ -26,8 +26,8 @@ template <int Lanes>
 __device__ inline Vec3f gatherRow(const CsrView& m, const Rgba* __restrict__ x, Index row, int lane)
 {
   const bool active = row < m.rows;
-  const Index begin = active ? __ldg(m.rowOffsets + row) : 0;
-  const Index end = active ? __ldg(m.rowOffsets + row + 1) : 0;
+  const Index begin = active ? __ldg(m.rowStarts + row) : 0;
+  const Index end = active ? begin + __ldg(m.rowCounts + row) : 0;
   float r = 0.f, g = 0.f, b = 0.f;
   const float4* xs = reinterpret_cast<const float4*>(x);
   Index i = begin + lane;

@@ -37,11 +37,12 @@ void uploadVector(GPUBuffer<T>& buffer, const std::vector<T>& host, cudaStream_t
 CsrView DeviceCsr::view() const
 {
   CsrView v;
-  v.rowOffsets = rowOffsets.data();
+  v.rowStarts = rowStarts.data();
+  v.rowCounts = rowCounts.data();
   v.columns = columns.data();
   v.weights = weights.data();
-  v.rows = rowOffsets.size() ? Index(rowOffsets.size() - 1) : 0;
-  v.nonZeros = Index(columns.size());
+  v.rows = Index(rowStarts.size());
+  v.nonZeros = nonZeros;
   return v;
 }
 
@@ -53,11 +54,15 @@ EngineDevice::EngineDevice(int device) : id(device)
   {
     LINKGI_CUDA_CHECK(cudaEventCreate(&e));
   }
+  void* pinned = nullptr;
+  LINKGI_CUDA_CHECK(cudaMallocHost(&pinned, 4 * sizeof(Index)));
+  totals = static_cast<Index*>(pinned);
 }
 
 EngineDevice::~EngineDevice()
 {
   cudaSetDevice(id);
+  cudaFreeHost(totals);
   for (cudaEvent_t e : events)
   {
     cudaEventDestroy(e);
@@ -79,21 +84,16 @@ Engine::Engine(int maxDevices)
     devices.push_back(std::make_unique<EngineDevice>(found[d].index));
   }
   name = (use > 1 ? std::to_string(use) + " x " : std::string()) + found[0].name;
-  // Peer access lets the first device pull the other devices' link rows directly.
+  // Peer access lets the other devices write their link rows straight into the first
+  // device's matrix (over NVLink where there is one); without it they stage and copy.
   for (std::size_t d = 1; d < devices.size(); ++d)
   {
     int can = 0;
-    cudaDeviceCanAccessPeer(&can, devices[0]->id, devices[d]->id);
-    if (can)
-    {
-      devices[0]->use();
-      const cudaError_t status = cudaDeviceEnablePeerAccess(devices[d]->id, 0);
-      if (status != cudaSuccess && status != cudaErrorPeerAccessAlreadyEnabled)
-      {
-        LINKGI_CUDA_CHECK(status);
-      }
-      cudaGetLastError();
-    }
+    cudaDeviceCanAccessPeer(&can, devices[d]->id, devices[0]->id);
+    devices[d]->use();
+    const cudaError_t status = can ? cudaDeviceEnablePeerAccess(devices[0]->id, 0) : cudaErrorPeerAccessUnsupported;
+    devices[d]->writesFirst = status == cudaSuccess || status == cudaErrorPeerAccessAlreadyEnabled;
+    cudaGetLastError(); // a refusal is not an error here
   }
 }
 
@@ -112,6 +112,31 @@ std::string Engine::description() const
 CsrView Engine::transport() const
 {
   return devices[0]->transport.view();
+}
+
+void Engine::linkProfile(SolverStats& stats) const
+{
+  stats.batchesPerDevice.clear();
+  stats.msTracePerDevice.clear();
+  stats.msCompressPerDevice.clear();
+  stats.msWallPerDevice.clear();
+  for (const auto& d : devices)
+  {
+    stats.batchesPerDevice.push_back(d->batches);
+    stats.msTracePerDevice.push_back(d->msTrace);
+    stats.msCompressPerDevice.push_back(d->msCompress);
+    stats.msWallPerDevice.push_back(d->msWall);
+  }
+}
+
+std::vector<std::size_t> Engine::linkedElements() const
+{
+  std::vector<std::size_t> out;
+  for (const auto& d : devices)
+  {
+    out.push_back(d->linked);
+  }
+  return out;
 }
 
 void Engine::samplePeakMemory()
@@ -159,9 +184,8 @@ void Engine::update(const HostInputs& in, const SolverOptions& options, const St
   const EngineDevice& d0 = *devices[0];
   stats.rays = rays;
   stats.linksRaw = rawLinks;
-  stats.linksCompressed = d0.transport.columns.size();
-  stats.linkBytes = d0.transport.view().nonZeros * 8ull + d0.transport.rowOffsets.size() * 4ull +
-    d0.environment.columns.size() * 8ull + d0.environment.rowOffsets.size() * 4ull;
+  stats.linksCompressed = d0.transport.nonZeros;
+  stats.linkBytes = d0.transport.usedBytes() + d0.environment.usedBytes();
   stats.lightRays = lightRays;
 }
 

@@ -35,13 +35,16 @@ struct HostInputs
   const std::vector<Vec3f>& faceNormals;
 };
 
-/// A device CSR matrix.
+/// A device matrix in the row-start / row-count form of CsrView. The entry buffers keep the
+/// worst-case capacity (3 n_C or n_C per row), so GPUs can append rows without a merge.
 struct DeviceCsr
 {
-  GPUBuffer<Index> rowOffsets, columns;
+  GPUBuffer<Index> rowStarts, rowCounts, columns;
   GPUBuffer<float> weights;
+  Index nonZeros = 0;
   CsrView view() const;
-  std::size_t bytes() const { return rowOffsets.bytes() + columns.bytes() + weights.bytes(); }
+  /// The bytes of the matrix itself (what a bounce reads), not the reserve.
+  std::size_t usedBytes() const { return nonZeros * 8ull + rowStarts.size() * 8ull; }
 };
 
 /// One GPU's share of the work; the first device of the engine also holds everything after
@@ -69,7 +72,9 @@ public:
   /// Largest GPU memory in use on any of the engine's devices, sampled after each stage.
   std::size_t peakBytes() const { return peak; }
   /// Elements each device linked in the last link stage.
-  const std::vector<std::size_t>& linkedElements() const { return linked; }
+  std::vector<std::size_t> linkedElements() const;
+  /// Per device: batches and ms tracing, compressing and in all in the last link stage.
+  void linkProfile(SolverStats& stats) const;
   /// The transport matrix W on the first device (for benchmarks).
   CsrView transport() const;
 
@@ -86,7 +91,6 @@ private:
   std::vector<std::unique_ptr<EngineDevice>> devices;
   std::string name;
   std::size_t peak = 0;
-  std::vector<std::size_t> linked;
   std::uint64_t rawLinks = 0, rays = 0, lightRays = 0;
 };
 }

@@ -1,6 +1,7 @@
 // The link stage of the CUDA engine: the element range in batches across all devices,
 // each batch sized by its device's speed on its previous batch (paper, sec. 3.2), traced and
-// compressed where it was traced; the rows are then merged into one CSR on the first device.
+// compressed where it was traced, and its rows written straight into the first device's
+// matrix (peer stores over NVLink), so the devices' results need no merge pass.
 #include "EngineDevice.h"
 #include "Primitives.h"
 
@@ -50,7 +51,7 @@ public:
     }
     else if (!allMeasured)
     {
-      size = std::max<Index>(1024, total / Index(8 * devices.size())); // a first measurement
+      size = std::max<Index>(1024, total / Index(4 * devices.size())); // a first measurement
     }
     else
     {
@@ -80,7 +81,7 @@ public:
   }
 
 private:
-  static constexpr double kTargetMs = 4.0;
+  static constexpr double kTargetMs = 8.0;
   std::mutex mutex;
   Index total, cursor = 0, finalLeft = 0;
   std::vector<EngineDevice*> devices;
@@ -94,20 +95,80 @@ struct LinkJob
   Index elements = 0;
 };
 
+/// The first device's matrices and the next free entry of each, shared by all devices.
+class MatrixSink
+{
+public:
+  MatrixSink(EngineDevice& first) : first(first) {}
+  /// Room for a batch's entries: returns where they start in W and Wenv.
+  void reserve(Index nnz, Index envNnz, Index& base, Index& envBase)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    base = used;
+    envBase = envUsed;
+    used += nnz;
+    envUsed += envNnz;
+  }
+  PackedRows target(bool env) const
+  {
+    DeviceCsr& m = env ? first.environment : first.transport;
+    return PackedRows{ m.columns.data(), m.weights.data(), m.rowStarts.data(), m.rowCounts.data(), 0, 0 };
+  }
+  int device() const { return first.id; }
+  Index used = 0, envUsed = 0;
+
+private:
+  EngineDevice& first;
+  std::mutex mutex;
+};
+
 /// Largest batch whose scratch fits in about half of the device's free memory.
 Index maxBatchFor(const EngineDevice& d, Index raysPerVertex)
 {
   std::size_t freeBytes = 0, totalBytes = 0;
   LINKGI_CUDA_CHECK(cudaMemGetInfo(&freeBytes, &totalBytes));
   const std::size_t perElement = std::size_t(raysPerVertex) *
-      (sizeof(LinkHit) + 3 * (sizeof(Index) + sizeof(float)) + sizeof(Index) + sizeof(float)) +
-    64;
+      (sizeof(LinkHit) + 4 * (sizeof(Index) + sizeof(float))) + 64;
   return Index(std::max<std::size_t>(256, (freeBytes + d.scratch.bytes()) / 2 / perElement));
 }
 
-/// Traces and compresses elements [first, first + count) on `d`, appending the rows to its
-/// arena.
-LinkPiece linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
+/// Packs a batch's rows into the sink: directly where the device may write the first
+/// device's memory, else into staging buffers and copied over.
+void packInto(EngineDevice& d, MatrixSink& sink, bool env, Index n, Index first, Index count,
+  Index base, Index nnz)
+{
+  LinkScratch& s = d.scratch;
+  const Index* counts = env ? s.envCounts.data() : s.counts.data();
+  const Index* offsets = env ? s.envOffsets.data() : s.offsets.data();
+  const Index* columns = env ? s.envColumns.data() : s.columns.data();
+  const float* weights = env ? s.envWeights.data() : s.weights.data();
+  const Index capacity = env ? n : 3 * n;
+  PackedRows to = sink.target(env);
+  if (d.writesFirst)
+  {
+    to.entryOffset = to.startOffset = base;
+    packRows(columns, weights, capacity, counts, offsets, count, first, to, d.stream);
+    return;
+  }
+  s.stageColumns.resize(std::max<Index>(nnz, 1));
+  s.stageWeights.resize(std::max<Index>(nnz, 1));
+  s.stageStarts.resize(count);
+  s.stageCounts.resize(count);
+  const PackedRows staged{ s.stageColumns.data(), s.stageWeights.data(), s.stageStarts.data(),
+    s.stageCounts.data(), 0, base };
+  packRows(columns, weights, capacity, counts, offsets, count, 0, staged, d.stream);
+  const auto copy = [&](void* dst, const void* src, std::size_t bytes) {
+    LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(dst, sink.device(), src, d.id, bytes, d.stream));
+  };
+  copy(to.columns + base, staged.columns, nnz * sizeof(Index));
+  copy(to.weights + base, staged.weights, nnz * sizeof(float));
+  copy(to.rowStarts + first, staged.rowStarts, count * sizeof(Index));
+  copy(to.rowCounts + first, staged.rowCounts, count * sizeof(Index));
+  d.sync(); // the staging buffers are reused by the next batch
+}
+
+/// Traces and compresses elements [first, first + count) on `d` into the sink.
+void linkBatch(EngineDevice& d, const LinkJob& job, MatrixSink& sink, Index first, Index count)
 {
   const Index n = job.params.trace.raysPerVertex;
   LinkScratch& s = d.scratch;
@@ -116,9 +177,10 @@ LinkPiece linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index coun
   s.weights.resize(std::size_t(count) * 3 * n);
   s.envColumns.resize(std::size_t(count) * n);
   s.envWeights.resize(std::size_t(count) * n);
-  s.counts.resize(count);
-  s.envCounts.resize(count);
-  s.offsets.resize(count);
+  for (GPUBuffer<Index>* b : { &s.counts, &s.offsets, &s.envCounts, &s.envOffsets })
+  {
+    b->resize(count);
+  }
 
   LinkCompressParams p = job.params;
   p.trace.bvh = d.bvh.view();
@@ -137,39 +199,23 @@ LinkPiece linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index coun
   LinkRowsOut out{ s.columns.data(), s.weights.data(), s.counts.data(), s.envColumns.data(),
     s.envWeights.data(), s.envCounts.data(), s.rawLinks.data() };
   compressLinks(p, s.hits.data(), out, d.stream);
-
-  LinkPiece piece;
-  piece.first = first;
-  piece.count = count;
-  LinkArena& a = d.arena;
-  // Transport rows, then environment rows: scan the counts, read the total, append.
-  for (int env = 0; env < 2; ++env)
+  // Row offsets within the batch, and its entry totals in one read-back.
+  exclusiveSum(s.counts.data(), s.offsets.data(), count, s.temp, d.stream);
+  exclusiveSum(s.envCounts.data(), s.envOffsets.data(), count, s.temp, d.stream);
+  const Index last = count - 1;
+  const std::pair<Index*, const Index*> reads[] = { { d.totals + 0, s.offsets.data() + last },
+    { d.totals + 1, s.counts.data() + last }, { d.totals + 2, s.envOffsets.data() + last },
+    { d.totals + 3, s.envCounts.data() + last } };
+  for (const auto& [to, from] : reads)
   {
-    const Index* counts = env ? s.envCounts.data() : s.counts.data();
-    exclusiveSum(counts, s.offsets.data(), count, s.temp, d.stream);
-    Index last[2] = { 0, 0 };
-    LINKGI_CUDA_CHECK(cudaMemcpyAsync(&last[0], s.offsets.data() + count - 1, sizeof(Index),
-      cudaMemcpyDeviceToHost, d.stream));
-    LINKGI_CUDA_CHECK(cudaMemcpyAsync(&last[1], counts + count - 1, sizeof(Index),
-      cudaMemcpyDeviceToHost, d.stream));
-    d.sync();
-    const Index nnz = last[0] + last[1];
-    GPUBuffer<Index>& columns = env ? a.envColumns : a.columns;
-    GPUBuffer<float>& weights = env ? a.envWeights : a.weights;
-    GPUBuffer<Index>& rowCounts = env ? a.envCounts : a.counts;
-    const std::size_t base = columns.size(), rowBase = rowCounts.size();
-    columns.growKeep(base + nnz, d.stream);
-    weights.growKeep(base + nnz, d.stream);
-    rowCounts.growKeep(rowBase + count, d.stream);
-    LINKGI_CUDA_CHECK(cudaMemcpyAsync(rowCounts.data() + rowBase, counts, count * sizeof(Index),
-      cudaMemcpyDeviceToDevice, d.stream));
-    packRows(env ? s.envColumns.data() : s.columns.data(), env ? s.envWeights.data() : s.weights.data(),
-      env ? n : 3 * n, counts, s.offsets.data(), count, columns.data() + base, weights.data() + base,
-      d.stream);
-    (env ? piece.envBase : piece.base) = base;
-    (env ? piece.envNonZeros : piece.nonZeros) = nnz;
-    piece.rowBase = rowBase; // the same for both: one row count per element in each
+    LINKGI_CUDA_CHECK(cudaMemcpyAsync(to, from, sizeof(Index), cudaMemcpyDeviceToHost, d.stream));
   }
+  d.sync();
+  const Index nnz = d.totals[0] + d.totals[1], envNnz = d.totals[2] + d.totals[3];
+  Index base = 0, envBase = 0;
+  sink.reserve(nnz, envNnz, base, envBase);
+  packInto(d, sink, false, n, first, count, base, nnz);
+  packInto(d, sink, true, n, first, count, envBase, envNnz);
   LINKGI_CUDA_CHECK(cudaEventRecord(d.events[2], d.stream));
   d.sync();
   float trace = 0.f, compress = 0.f;
@@ -178,64 +224,8 @@ LinkPiece linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index coun
   d.msTrace += trace;
   d.msCompress += compress;
   d.elementsPerMs = count / std::max(1e-3, double(trace + compress));
-  return piece;
-}
-
-/// Concatenates the pieces (in element order) into `m` on the first device.
-void mergePieces(EngineDevice& d0, const std::vector<EngineDevice*>& devices,
-  std::vector<LinkPiece> pieces, Index rows, bool env, DeviceCsr& m)
-{
-  d0.use();
-  std::sort(pieces.begin(), pieces.end(), [](const LinkPiece& a, const LinkPiece& b) { return a.first < b.first; });
-  Index total = 0;
-  for (const LinkPiece& p : pieces)
-  {
-    total += env ? p.envNonZeros : p.nonZeros;
-  }
-  m.rowOffsets.resize(std::size_t(rows) + 1);
-  d0.rowCounts.resize(std::max<Index>(rows, 1));
-  for (const LinkPiece& p : pieces)
-  {
-    const LinkArena& a = devices[p.device]->arena;
-    LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(d0.rowCounts.data() + p.first, d0.id,
-      (env ? a.envCounts : a.counts).data() + p.rowBase, devices[p.device]->id,
-      p.count * sizeof(Index), d0.stream));
-  }
-  exclusiveSum(d0.rowCounts.data(), m.rowOffsets.data(), rows, d0.temp, d0.stream);
-  LINKGI_CUDA_CHECK(cudaMemcpyAsync(m.rowOffsets.data() + rows, &total, sizeof(Index),
-    cudaMemcpyHostToDevice, d0.stream));
-  LinkArena& a0 = d0.arena;
-  if (devices.size() == 1 || (pieces.size() == 1 && pieces[0].device == 0))
-  {
-    // Everything is already in order in the first device's arena: swap, don't copy (the
-    // old matrix's buffers become the arena of the next link stage).
-    m.columns.swapWith(env ? a0.envColumns : a0.columns);
-    m.weights.swapWith(env ? a0.envWeights : a0.weights);
-    m.columns.growKeep(total, d0.stream);
-    m.weights.growKeep(total, d0.stream);
-  }
-  else
-  {
-    m.columns.resize(total);
-    m.weights.resize(total);
-    Index at = 0;
-    for (const LinkPiece& p : pieces)
-    {
-      const LinkArena& a = devices[p.device]->arena;
-      const Index nnz = env ? p.envNonZeros : p.nonZeros;
-      const std::size_t from = env ? p.envBase : p.base;
-      const int src = devices[p.device]->id;
-      if (nnz)
-      {
-        LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(m.columns.data() + at, d0.id,
-          (env ? a.envColumns : a.columns).data() + from, src, nnz * sizeof(Index), d0.stream));
-        LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(m.weights.data() + at, d0.id,
-          (env ? a.envWeights : a.weights).data() + from, src, nnz * sizeof(float), d0.stream));
-      }
-      at += nnz;
-    }
-  }
-  d0.sync(); // `total` lives on this stack frame
+  d.linked += count;
+  ++d.batches;
 }
 }
 
@@ -246,12 +236,12 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
   const auto start = clock::now();
   const Scene& s = in.scene;
   const Elements elements{ s.vertexCount(), options.twoSided };
-  const Index ne = Index(elements.count());
-  const std::vector<Vec3f> dirs = makeDirectionSet(options.raysPerVertex);
+  const Index ne = Index(elements.count()), n = options.raysPerVertex;
+  const std::vector<Vec3f> dirs = makeDirectionSet(n);
   LinkJob job;
   job.elements = ne;
   LinkTraceParams& t = job.params.trace;
-  t.raysPerVertex = options.raysPerVertex;
+  t.raysPerVertex = n;
   t.vertexCount = Index(s.vertexCount());
   t.twist = options.twist;
   t.seed = options.seed;
@@ -259,6 +249,20 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
   job.params.twoSided = options.twoSided;
   job.params.envWidth = s.environment.hasTexture() ? s.environment.width : 0;
   job.params.envHeight = s.environment.hasTexture() ? s.environment.height : 0;
+
+  // The matrices on the first device, at their worst-case size: every device appends its
+  // rows there as its batches finish, so there is nothing to merge afterwards.
+  EngineDevice& d0 = *devices[0];
+  d0.use();
+  for (DeviceCsr* m : { &d0.transport, &d0.environment })
+  {
+    const std::size_t perRow = m == &d0.transport ? 3 * n : n;
+    m->columns.resize(std::size_t(ne) * perRow);
+    m->weights.resize(std::size_t(ne) * perRow);
+    m->rowStarts.resize(ne);
+    m->rowCounts.resize(ne);
+  }
+  MatrixSink sink(d0);
 
   std::vector<EngineDevice*> all;
   Index maxBatch = ne;
@@ -268,10 +272,10 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
     d->directions.upload(dirs, d->stream);
     d->scratch.rawLinks.resize(1);
     d->scratch.rawLinks.fillZero(d->stream);
-    d->pieces.clear();
-    d->arena.clear();
-    d->msTrace = d->msCompress = 0.0;
-    maxBatch = std::min(maxBatch, maxBatchFor(*d, options.raysPerVertex));
+    d->msTrace = d->msCompress = d->msWall = 0.0;
+    d->linked = 0;
+    d->batches = 0;
+    maxBatch = std::min(maxBatch, maxBatchFor(*d, n));
     all.push_back(d.get());
   }
   BatchScheduler scheduler(ne, all, std::max<Index>(1, maxBatch));
@@ -285,17 +289,18 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
     {
       EngineDevice& d = *devices[i];
       d.use();
+      const auto began = clock::now();
       Index first = 0, count = 0;
       while (scheduler.next(i, first, count))
       {
-        d.pieces.push_back(linkBatch(d, job, first, count));
-        d.pieces.back().device = int(i);
+        linkBatch(d, job, sink, first, count);
         done += count;
         if (ask && progress && !progress("links", 0.75 * double(done) / std::max<Index>(ne, 1)))
         {
           throw Aborted();
         }
       }
+      d.msWall = std::chrono::duration<double, std::milli>(clock::now() - began).count();
     }
     catch (...)
     {
@@ -321,32 +326,22 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
     }
   }
 
-  const auto merge = clock::now();
-  std::vector<LinkPiece> pieces;
-  linked.assign(devices.size(), 0);
   rawLinks = 0;
   double msCompress = 0.0;
-  for (std::size_t i = 0; i < devices.size(); ++i)
+  for (auto& d : devices)
   {
-    EngineDevice& d = *devices[i];
-    for (const LinkPiece& p : d.pieces)
-    {
-      pieces.push_back(p);
-      linked[i] += p.count;
-    }
-    d.use();
+    d->use();
     unsigned long long raw = 0;
-    d.scratch.rawLinks.download(&raw, 1);
+    d->scratch.rawLinks.download(&raw, 1);
     rawLinks += raw;
-    msCompress = std::max(msCompress, d.msCompress);
+    msCompress = std::max(msCompress, d->msCompress);
   }
-  EngineDevice& d0 = *devices[0];
-  mergePieces(d0, all, pieces, ne, false, d0.transport);
-  mergePieces(d0, all, pieces, ne, true, d0.environment);
-  rays = std::uint64_t(ne) * options.raysPerVertex;
-  const double msMerge = std::chrono::duration<double, std::milli>(clock::now() - merge).count();
+  d0.use();
+  d0.transport.nonZeros = sink.used;
+  d0.environment.nonZeros = sink.envUsed;
+  rays = std::uint64_t(ne) * n;
   const double msAll = std::chrono::duration<double, std::milli>(clock::now() - start).count();
-  stats.msCompress = msCompress + msMerge;
-  stats.msLinks = std::max(0.0, msAll - stats.msCompress);
+  stats.msCompress = std::min(msCompress, msAll);
+  stats.msLinks = msAll - stats.msCompress;
 }
 }

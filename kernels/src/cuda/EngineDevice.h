@@ -5,45 +5,22 @@
 
 namespace linkgi::cuda
 {
-/// Rows [first, first + count) of W and Wenv, compressed on one device: their row counts
-/// and entries sit in that device's LinkArena at the given bases.
-struct LinkPiece
-{
-  Index first = 0, count = 0;
-  int device = 0; ///< index into the engine's devices
-  std::size_t rowBase = 0, base = 0, envBase = 0;
-  Index nonZeros = 0, envNonZeros = 0;
-};
-
-/// The compressed rows of all batches a device ran, appended batch after batch. Buffers
-/// only grow, so steady-state updates allocate nothing.
-struct LinkArena
-{
-  GPUBuffer<Index> counts, columns, envCounts, envColumns;
-  GPUBuffer<float> weights, envWeights;
-  void clear()
-  {
-    for (GPUBuffer<Index>* b : { &counts, &columns, &envCounts, &envColumns })
-    {
-      b->growKeep(0, nullptr);
-    }
-    weights.growKeep(0, nullptr);
-    envWeights.growKeep(0, nullptr);
-  }
-};
-
-/// Scratch of one link batch: hits and fixed-capacity rows.
+/// Scratch of one link batch on its device: hits, fixed-capacity rows and their counts.
 struct LinkScratch
 {
   GPUBuffer<LinkHit> hits;
-  GPUBuffer<Index> columns, counts, envColumns, envCounts, offsets;
+  GPUBuffer<Index> columns, counts, offsets, envColumns, envCounts, envOffsets;
   GPUBuffer<float> weights, envWeights;
   GPUBuffer<unsigned long long> rawLinks;
   GPUBuffer<unsigned char> temp;
+  // Packed rows of a device that cannot write into the first device's memory: copied there.
+  GPUBuffer<Index> stageColumns, stageStarts, stageCounts;
+  GPUBuffer<float> stageWeights;
   std::size_t bytes() const
   {
-    return hits.bytes() + columns.bytes() + counts.bytes() + envColumns.bytes() +
-      envCounts.bytes() + offsets.bytes() + weights.bytes() + envWeights.bytes() + temp.bytes();
+    return hits.bytes() + columns.bytes() + counts.bytes() + offsets.bytes() + envColumns.bytes() +
+      envCounts.bytes() + envOffsets.bytes() + weights.bytes() + envWeights.bytes() + temp.bytes() +
+      stageColumns.bytes() + stageStarts.bytes() + stageCounts.bytes() + stageWeights.bytes();
   }
 };
 
@@ -52,6 +29,8 @@ struct EngineDevice
   int id = 0;
   cudaStream_t stream = nullptr;
   cudaEvent_t events[3] = {};
+  Index* totals = nullptr; ///< pinned host memory: a batch's entry counts, read back at once
+  bool writesFirst = true; ///< kernels here may store into the first device's memory
 
   // Geometry (every device).
   GPUBuffer<Vec3f> positions, normals, shifts, faceNormals, directions;
@@ -61,10 +40,10 @@ struct EngineDevice
 
   // Links (every device).
   LinkScratch scratch;
-  LinkArena arena;
-  std::vector<LinkPiece> pieces;
   double elementsPerMs = 0.0; ///< speed of the last link batch, for the scheduler
-  double msTrace = 0.0, msCompress = 0.0;
+  double msTrace = 0.0, msCompress = 0.0, msWall = 0.0;
+  std::size_t linked = 0; ///< elements linked in the last link stage
+  std::uint32_t batches = 0;
 
   // First device only: topology, shading inputs, link matrices, light and bounce buffers.
   GPUBuffer<Index> neighbourOffsets, neighbours, edges, vertexEdges;
@@ -72,7 +51,6 @@ struct EngineDevice
   GPUBuffer<float> vertexVisible, edgeVisible;
   GPUBuffer<Light> lights;
   GPUBuffer<unsigned long long> counter;
-  GPUBuffer<Index> rowCounts;
   DeviceCsr transport, environment;
   GPUBuffer<Rgba> texelRadiance, envIrradiance, fixedIrradiance, radiance[2], indirect;
   GPUBuffer<unsigned char> temp;

@@ -28,10 +28,15 @@ struct LinkHit
   float u, v;
 };
 
-/// A CSR matrix in device memory (row = receiving element).
+/// A sparse matrix in device memory (row = receiving element), CSR with each row's start
+/// and length stored apart: row r is entries [rowStarts[r], rowStarts[r] + rowCounts[r]).
+/// Rows need not lie in row order, so GPUs that link different rows append them wherever
+/// the first GPU's buffer has room, with no merge pass. One GPU writes them in order
+/// (rowStarts is then a CSR offset array).
 struct CsrView
 {
-  const Index* rowOffsets = nullptr;
+  const Index* rowStarts = nullptr;
+  const Index* rowCounts = nullptr;
   const Index* columns = nullptr;
   const float* weights = nullptr;
   Index rows = 0;
@@ -88,13 +93,22 @@ constexpr Index kMaxCompressRays = 1024;
 bool compressLinks(const LinkCompressParams& p, const LinkHit* hits, const LinkRowsOut& out,
   cudaStream_t stream);
 
-/// Copies fixed-capacity rows into CSR arrays: row r's `counts[r]` entries from
-/// src + r * capacity to dst + offsets[r].
+/// Where packRows puts a batch's rows: entries from `base` on, in the batch's row order,
+/// and each row's start and count at its element index. May be another GPU's memory (peer
+/// access).
+struct PackedRows
+{
+  Index* columns = nullptr;
+  float* weights = nullptr;
+  Index* rowStarts = nullptr;
+  Index* rowCounts = nullptr;
+  Index entryOffset = 0; ///< where the batch's first entry goes in columns / weights
+  Index startOffset = 0; ///< what rowStarts count from (differs when staging elsewhere)
+};
+/// Row r of the batch: `counts[r]` entries from src + r * capacity to
+/// dst.columns + dst.entryOffset + offsets[r]; dst.rowStarts / rowCounts[firstElement + r].
 void packRows(const Index* srcColumns, const float* srcWeights, Index capacity, const Index* counts,
-  const Index* offsets, Index rows, Index* dstColumns, float* dstWeights, cudaStream_t stream);
-
-/// offsets[i] += add for i < count.
-void addToAll(Index* offsets, Index count, Index add, cudaStream_t stream);
+  const Index* offsets, Index rows, Index firstElement, const PackedRows& dst, cudaStream_t stream);
 
 // ---- light links ----
 struct DirectLightParams

@@ -222,30 +222,26 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
 }
 
 __global__ void packRowsKernel(const Index* srcColumns, const float* srcWeights, Index capacity,
-  const Index* counts, const Index* offsets, Index rows, Index* dstColumns, float* dstWeights)
+  const Index* counts, const Index* offsets, Index rows, Index firstElement, PackedRows dst)
 {
   // One warp per row.
-  const Index row = (std::size_t(blockIdx.x) * blockDim.x + threadIdx.x) / 32;
+  const Index row = Index((std::size_t(blockIdx.x) * blockDim.x + threadIdx.x) / 32);
   const int lane = threadIdx.x & 31;
   if (row >= rows)
   {
     return;
   }
   const std::size_t src = std::size_t(row) * capacity;
-  const Index dst = offsets[row], count = counts[row];
+  const Index at = dst.entryOffset + offsets[row], count = counts[row];
   for (Index i = lane; i < count; i += 32)
   {
-    dstColumns[dst + i] = srcColumns[src + i];
-    dstWeights[dst + i] = srcWeights[src + i];
+    dst.columns[at + i] = srcColumns[src + i];
+    dst.weights[at + i] = srcWeights[src + i];
   }
-}
-
-__global__ void addKernel(Index* values, Index count, Index add)
-{
-  const Index i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < count)
+  if (lane == 0)
   {
-    values[i] += add;
+    dst.rowStarts[firstElement + row] = dst.startOffset + offsets[row];
+    dst.rowCounts[firstElement + row] = count;
   }
 }
 
@@ -306,23 +302,14 @@ bool compressLinks(const LinkCompressParams& p, const LinkHit* hits, const LinkR
 }
 
 void packRows(const Index* srcColumns, const float* srcWeights, Index capacity, const Index* counts,
-  const Index* offsets, Index rows, Index* dstColumns, float* dstWeights, cudaStream_t stream)
+  const Index* offsets, Index rows, Index firstElement, const PackedRows& dst, cudaStream_t stream)
 {
   if (rows)
   {
     const std::size_t threads = std::size_t(rows) * 32;
     packRowsKernel<<<unsigned((threads + kThreads - 1) / kThreads), kThreads, 0, stream>>>(
-      srcColumns, srcWeights, capacity, counts, offsets, rows, dstColumns, dstWeights);
+      srcColumns, srcWeights, capacity, counts, offsets, rows, firstElement, dst);
     LINKGI_CUDA_CHECK_LAUNCH("packRowsKernel");
-  }
-}
-
-void addToAll(Index* offsets, Index count, Index add, cudaStream_t stream)
-{
-  if (count && add)
-  {
-    addKernel<<<(count + kThreads - 1) / kThreads, kThreads, 0, stream>>>(offsets, count, add);
-    LINKGI_CUDA_CHECK_LAUNCH("addKernel");
   }
 }
 }
