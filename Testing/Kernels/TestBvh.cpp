@@ -206,3 +206,13 @@ TEST(Bvh, CpuTracerOfThisBuildTraces)
     EXPECT_GE(agree, int(rays.size()) - 2) << tracer->name();
   }
 }
+
+TEST(Bvh, SahTreeIsWellFormedAndFindsTheSameHits)
+{
+  const Scene s = test::roomWithBlock();
+  HostBvh sah, linear;
+  sah.buildSah(s.positions, s.triangles);
+  linear.build(s.positions, s.triangles);
+  expectWellFormed(sah);
+  expectSameHitsAsBruteForce(s, sah, 4);
+}

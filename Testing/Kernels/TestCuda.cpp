@@ -203,6 +203,20 @@ TEST(Cuda, AutoBvhUpdateRefitsSmallAndRebuildsLargeDeformations)
   expectIdentical(twisted, fresh.update(s, o));
 }
 
+TEST(Cuda, HostSahTreeTracesLikeTheGpuTree)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  const Scene s = makeStandardScene("tearoom");
+  SolverOptions sah = onBackend(Backend::Cuda, fast()), lbvh = sah;
+  sah.cudaBvhBuild = CudaBvhBuild::HostSah;
+  Solver a, b;
+  const Solution& x = a.update(s, sah);
+  const Solution& y = b.update(s, lbvh);
+  EXPECT_LE(relativeError(x.radiance, y.radiance), 1e-3f);
+  EXPECT_NEAR(double(a.stats().linksCompressed), double(b.stats().linksCompressed),
+    1e-4 * b.stats().linksCompressed);
+}
+
 TEST(Cuda, AllGpusGiveTheSameLinksAsOne)
 {
   LINKGI_REQUIRE_CUDA_DEVICE();

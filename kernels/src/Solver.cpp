@@ -313,7 +313,9 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
 
   const Changes c = detect(s, opt, lent);
   st.msPrepare = msSince(start);
-  if (!c.rebounce && opt.backend == options.backend && opt.cudaDevices == options.cudaDevices)
+  const bool sameBackend = opt.backend == options.backend && opt.cudaDevices == options.cudaDevices &&
+    opt.cudaBvhBuild == options.cudaBvhBuild;
+  if (!c.rebounce && sameBackend)
   {
     st.msTotal = msSince(start);
     stats = std::move(st);
@@ -389,7 +391,7 @@ bool Solver::Impl::solveCuda(const Scene& s, const SolverOptions& opt, const Cha
       engine = std::make_unique<cuda::Engine>(opt.cudaDevices);
       engineDevices = opt.cudaDevices;
     }
-    const bool all = !cudaValid;
+    const bool all = !cudaValid || opt.cudaBvhBuild != options.cudaBvhBuild;
     cuda::StageMask mask;
     mask.topology = all || c.topology;
     mask.positions = all || c.positions;

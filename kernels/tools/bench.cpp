@@ -96,6 +96,8 @@ Args parse(int argc, char** argv)
         : mode == "rebuild"                     ? CudaBvhUpdate::Rebuild
                                                 : CudaBvhUpdate::Auto;
     }
+    else if (arg == "--bvh-build")
+      a.options.cudaBvhBuild = value() == "sah" ? CudaBvhBuild::HostSah : CudaBvhBuild::Gpu;
     else if (arg == "--dump")
       a.dump = value();
     else if (arg == "--compare")
@@ -107,7 +109,7 @@ Args parse(int argc, char** argv)
     else
     {
       throw Error("Usage: linkgi-bench [--scenes a,b] [--rays 256] [--bounces 3] [--repeat 3] "
-                  "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] "
+                  "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] [--bvh-build gpu|sah] "
                   "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather]; unknown argument " +
         arg + ".");
     }

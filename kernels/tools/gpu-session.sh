@@ -53,8 +53,11 @@ if has bench; then
   stamp bench
   "$build/bin/linkgi-bench" --backend cuda --scenes cornell,tearoom,torso,colorlamp,iphi,conference \
     --repeat 5 ${ref:+--compare $ref} > "$out/bench.jsonl" 2>> "$out/steps.log"
-  # Deforming meshes: refit the GPU's BVH instead of rebuilding it.
-  "$build/bin/linkgi-bench" --backend cuda --scenes torso,conference --bvh-update refit \
+  # BVH choices for deforming meshes: always rebuild the linear BVH (default: refit until its
+  # boxes swell), and a CPU-built SAH tree (refit on the GPU after deformation).
+  "$build/bin/linkgi-bench" --backend cuda --scenes torso,conference --bvh-update rebuild \
+    --repeat 3 --no-gather >> "$out/bench.jsonl" 2>> "$out/steps.log"
+  "$build/bin/linkgi-bench" --backend cuda --scenes torso,iphi,conference --bvh-build sah \
     --repeat 3 --no-gather >> "$out/bench.jsonl" 2>> "$out/steps.log"
   cat "$out/bench.jsonl"
 fi

@@ -19,13 +19,14 @@ struct Box
 
   LINKGI_HOST_DEVICE void grow(const Vec3f& p)
   {
-    lo = { fminf(lo.x, p.x), fminf(lo.y, p.y), fminf(lo.z, p.z) };
-    hi = { fmaxf(hi.x, p.x), fmaxf(hi.y, p.y), fmaxf(hi.z, p.z) };
+    lo = { minOf(lo.x, p.x), minOf(lo.y, p.y), minOf(lo.z, p.z) };
+    hi = { maxOf(hi.x, p.x), maxOf(hi.y, p.y), maxOf(hi.z, p.z) };
   }
+  /// Union; an empty b leaves the box as it is.
   LINKGI_HOST_DEVICE void grow(const Box& b)
   {
-    grow(b.lo);
-    grow(b.hi);
+    lo = { minOf(lo.x, b.lo.x), minOf(lo.y, b.lo.y), minOf(lo.z, b.lo.z) };
+    hi = { maxOf(hi.x, b.hi.x), maxOf(hi.y, b.hi.y), maxOf(hi.z, b.hi.z) };
   }
 };
 
@@ -238,7 +239,11 @@ struct HostBvh
   std::vector<BvhTriangle> triangles;
   std::vector<int> leafParents;
 
+  /// The linear BVH (Morton order), step for step as the GPU builds it.
   void build(const std::vector<Vec3f>& positions, const std::vector<Triangle>& triangles);
+  /// A binned surface-area-heuristic tree instead (SahBuilder.cpp): slower to build,
+  /// fewer nodes per ray.
+  void buildSah(const std::vector<Vec3f>& positions, const std::vector<Triangle>& triangles);
   /// New positions, same triangles as the last build.
   void refit(const std::vector<Vec3f>& positions, const std::vector<Triangle>& triangles);
   BvhView view() const;

@@ -193,6 +193,7 @@ void Engine::uploadGeometry(const HostInputs& in, const StageMask& mask, SolverS
   const SolverOptions& options)
 {
   const Scene& s = in.scene;
+  HostBvh sah; // CudaBvhBuild::HostSah: built once here, uploaded to every device
   for (std::size_t i = 0; i < devices.size(); ++i)
   {
     EngineDevice& d = *devices[i];
@@ -218,7 +219,16 @@ void Engine::uploadGeometry(const HostInputs& in, const StageMask& mask, SolverS
       // Auto: a refit tree whose boxes have swollen by half is rebuilt (one cost pass).
       rebuild = options.cudaBvhUpdate == CudaBvhUpdate::Auto && d.bvh.cost(d.stream) > kRebuildGrowth * d.bvhBuildCost;
     }
-    if (rebuild)
+    if (rebuild && options.cudaBvhBuild == CudaBvhBuild::HostSah)
+    {
+      if (sah.triangles.empty())
+      {
+        sah.buildSah(s.positions, s.triangles);
+      }
+      d.bvh.upload(sah, d.positions.data(), d.triangles.data(), d.stream);
+      d.bvhBuildCost = options.cudaBvhUpdate == CudaBvhUpdate::Auto ? d.bvh.cost(d.stream) : 0.0;
+    }
+    else if (rebuild)
     {
       d.bvh.build(d.positions.data(), Index(s.vertexCount()), d.triangles.data(),
         Index(s.triangleCount()), d.stream);

@@ -3,6 +3,8 @@
 #include "Kernels.h"
 #include "Primitives.h"
 
+#include <vector>
+
 namespace linkgi::cuda
 {
 namespace
@@ -204,6 +206,23 @@ void DeviceBvh::build(const Vec3f* positions, Index vertexCount, const Triangle*
     LINKGI_CUDA_CHECK_LAUNCH("hierarchyKernel");
   }
   gatherAndBound(positions, tris, stream);
+}
+
+void DeviceBvh::upload(const HostBvh& tree, const Vec3f* positions, const Triangle* tris,
+  cudaStream_t stream)
+{
+  count = Index(tree.triangles.size());
+  std::vector<Index> leaves(count);
+  for (Index p = 0; p < count; ++p)
+  {
+    leaves[p] = tree.triangles[p].id;
+  }
+  order.upload(leaves, stream);
+  nodes.upload(tree.nodes, stream);
+  leafParents.upload(tree.leafParents, stream);
+  arrivals.resize(nodes.size());
+  gatherAndBound(positions, tris, stream);
+  LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream)); // `leaves` lives on this stack frame
 }
 
 void DeviceBvh::refit(const Vec3f* positions, const Triangle* tris, cudaStream_t stream)

@@ -14,6 +14,10 @@ public:
   /// positions / triangles are device arrays; they may change or go away after the call.
   void build(const Vec3f* positions, Index vertexCount, const Triangle* triangles,
     Index triangleCount, cudaStream_t stream);
+  /// Takes the hierarchy of a tree built on the host (e.g. HostBvh::buildSah); the boxes are
+  /// computed here from `positions`, as a refit does.
+  void upload(const HostBvh& tree, const Vec3f* positions, const Triangle* triangles,
+    cudaStream_t stream);
   /// Same triangles as the last build, moved positions: new boxes, same tree.
   void refit(const Vec3f* positions, const Triangle* triangles, cudaStream_t stream);
   /// Surface-area cost of the tree: the summed box areas of all children over the root
