@@ -238,7 +238,13 @@ void benchScene(const std::string& name, const Args& args)
   // best light-only update and of the full update went.
   extra << ",\"median_ms\":{\"full_update\":" << median(fullTimes) << ",\"link_generation\":"
         << median(linkTimes) << ",\"light_update\":" << median(lightTimes)
-        << "},\"best_ms_link_generation\":" << *std::min_element(linkTimes.begin(), linkTimes.end());
+        << "},\"best_ms_link_generation\":" << *std::min_element(linkTimes.begin(), linkTimes.end())
+        << ",\"ms_link_generation_runs\":[";
+  for (std::size_t i = 0; i < linkTimes.size(); ++i)
+  {
+    extra << (i ? "," : "") << linkTimes[i];
+  }
+  extra << "]";
   extra << ",\"ms_prepare\":" << full.msPrepare << ",\"ms_topology\":" << full.msTopology
         << ",\"light_update_ms\":{\"prepare\":"
         << light.msPrepare << ",\"upload\":" << light.msBvh << ",\"light_links\":"

@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <mutex>
 
 namespace linkgi::cuda
 {
@@ -16,6 +18,31 @@ double msSince(std::chrono::steady_clock::time_point start)
 }
 
 /// Asks the caller whether to go on; the fractions follow the CPU path's stage ranges.
+/// Lets kernels on `from` access `to`'s memory; once per process and pair (enabling it
+/// twice is an error that compute-sanitizer reports).
+bool enablePeerAccess(int from, int to)
+{
+  static std::mutex mutex;
+  static std::map<std::pair<int, int>, bool> enabled;
+  std::lock_guard<std::mutex> lock(mutex);
+  const auto known = enabled.find({ from, to });
+  if (known != enabled.end())
+  {
+    return known->second;
+  }
+  int can = 0;
+  LINKGI_CUDA_CHECK(cudaDeviceCanAccessPeer(&can, from, to));
+  bool ok = false;
+  if (can)
+  {
+    LINKGI_CUDA_CHECK(cudaSetDevice(from));
+    ok = cudaDeviceEnablePeerAccess(to, 0) == cudaSuccess;
+    cudaGetLastError(); // a refusal only means staging copies
+  }
+  enabled[{ from, to }] = ok;
+  return ok;
+}
+
 /// CudaBvhUpdate::Auto rebuilds a refit tree whose surface-area cost grew by this factor.
 constexpr double kRebuildGrowth = 1.5;
 
@@ -32,6 +59,66 @@ void uploadVector(GPUBuffer<T>& buffer, const std::vector<T>& host, cudaStream_t
 {
   buffer.upload(host, stream);
 }
+}
+
+DeviceWorker::DeviceWorker() : thread([this] { loop(); }) {}
+
+DeviceWorker::~DeviceWorker()
+{
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    stop = true;
+  }
+  changed.notify_all();
+  thread.join();
+}
+
+void DeviceWorker::start(std::function<void()> next)
+{
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    job = std::move(next);
+    error = nullptr;
+    pending = true;
+  }
+  changed.notify_all();
+}
+
+void DeviceWorker::wait()
+{
+  std::unique_lock<std::mutex> lock(mutex);
+  changed.wait(lock, [this] { return !pending; });
+  if (error)
+  {
+    std::rethrow_exception(error);
+  }
+}
+
+void DeviceWorker::loop()
+{
+  std::unique_lock<std::mutex> lock(mutex);
+  for (;;)
+  {
+    changed.wait(lock, [this] { return stop || pending; });
+    if (stop)
+    {
+      return;
+    }
+    lock.unlock();
+    std::exception_ptr failure;
+    try
+    {
+      job();
+    }
+    catch (...)
+    {
+      failure = std::current_exception();
+    }
+    lock.lock();
+    error = failure;
+    pending = false;
+    changed.notify_all();
+  }
 }
 
 CsrView DeviceCsr::view() const
@@ -88,12 +175,7 @@ Engine::Engine(int maxDevices)
   // device's matrix (over NVLink where there is one); without it they stage and copy.
   for (std::size_t d = 1; d < devices.size(); ++d)
   {
-    int can = 0;
-    cudaDeviceCanAccessPeer(&can, devices[d]->id, devices[0]->id);
-    devices[d]->use();
-    const cudaError_t status = can ? cudaDeviceEnablePeerAccess(devices[0]->id, 0) : cudaErrorPeerAccessUnsupported;
-    devices[d]->writesFirst = status == cudaSuccess || status == cudaErrorPeerAccessAlreadyEnabled;
-    cudaGetLastError(); // a refusal is not an error here
+    devices[d]->writesFirst = enablePeerAccess(devices[d]->id, devices[0]->id);
   }
 }
 

@@ -12,7 +12,6 @@
 #include <chrono>
 #include <exception>
 #include <mutex>
-#include <thread>
 
 namespace linkgi::cuda
 {
@@ -24,9 +23,16 @@ namespace
 class BatchScheduler
 {
 public:
-  BatchScheduler(Index total, std::vector<EngineDevice*> devices, Index maxBatch)
-    : total(total), devices(std::move(devices)), maxBatch(maxBatch)
+  BatchScheduler(Index total, std::vector<EngineDevice*> devices)
+    : total(total), devices(std::move(devices)), maxBatch(this->devices.size(), total)
   {
+  }
+
+  /// The largest batch `device` has memory for.
+  void limit(std::size_t device, Index most)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    maxBatch[device] = std::max<Index>(1, most);
   }
 
   bool next(std::size_t device, Index& first, Index& count)
@@ -68,7 +74,7 @@ public:
         size = Index(std::ceil(finalLeft * speed / speedSum));
       }
     }
-    count = std::max<Index>(1, std::min({ size, left, maxBatch }));
+    count = std::max<Index>(1, std::min({ size, left, maxBatch[device] }));
     first = cursor;
     cursor += count;
     return true;
@@ -85,7 +91,7 @@ private:
   std::mutex mutex;
   Index total, cursor = 0, finalLeft = 0;
   std::vector<EngineDevice*> devices;
-  Index maxBatch;
+  std::vector<Index> maxBatch;
   bool stop = false;
 };
 
@@ -265,75 +271,82 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
   MatrixSink sink(d0);
 
   std::vector<EngineDevice*> all;
-  Index maxBatch = ne;
   for (auto& d : devices)
   {
-    d->use();
-    d->directions.upload(dirs, d->stream);
-    d->scratch.rawLinks.resize(1);
-    d->scratch.rawLinks.fillZero(d->stream);
-    d->msTrace = d->msCompress = d->msWall = 0.0;
-    d->linked = 0;
-    d->batches = 0;
-    maxBatch = std::min(maxBatch, maxBatchFor(*d, n));
     all.push_back(d.get());
   }
-  BatchScheduler scheduler(ne, all, std::max<Index>(1, maxBatch));
+  BatchScheduler scheduler(ne, all);
 
-  // Devices after the first run on their own threads; the first runs here, between batches
-  // asking `progress` (which may touch GUI state, so only from this thread).
-  std::vector<std::exception_ptr> errors(devices.size());
+  // Every device sets itself up and runs batches until none are left: the first here,
+  // between batches asking `progress` (which may touch GUI state, so only from this
+  // thread), the others on their own worker threads.
   std::atomic<Index> done{ 0 };
-  const auto work = [&](std::size_t i, bool ask) {
+  const auto work = [&](std::size_t i) {
+    EngineDevice& d = *devices[i];
+    const auto began = clock::now();
     try
     {
-      EngineDevice& d = *devices[i];
       d.use();
-      const auto began = clock::now();
+      d.directions.upload(dirs, d.stream);
+      d.scratch.rawLinks.resize(1);
+      d.scratch.rawLinks.fillZero(d.stream);
+      d.msTrace = d.msCompress = 0.0;
+      d.linked = 0;
+      d.batches = 0;
+      scheduler.limit(i, maxBatchFor(d, n));
       Index first = 0, count = 0;
       while (scheduler.next(i, first, count))
       {
         linkBatch(d, job, sink, first, count);
         done += count;
-        if (ask && progress && !progress("links", 0.75 * double(done) / std::max<Index>(ne, 1)))
+        if (i == 0 && progress && !progress("links", 0.75 * double(done) / std::max<Index>(ne, 1)))
         {
           throw Aborted();
         }
       }
-      d.msWall = std::chrono::duration<double, std::milli>(clock::now() - began).count();
+      d.scratch.rawLinks.download(&d.rawLinks, 1);
     }
     catch (...)
     {
-      errors[i] = std::current_exception();
       scheduler.cancel();
+      throw;
     }
+    d.msWall = std::chrono::duration<double, std::milli>(clock::now() - began).count();
   };
-  std::vector<std::thread> threads;
   for (std::size_t i = 1; i < devices.size(); ++i)
   {
-    threads.emplace_back(work, i, false);
+    devices[i]->worker.start([&work, i] { work(i); });
   }
-  work(0, true);
-  for (std::thread& th : threads)
+  std::exception_ptr error;
+  try
   {
-    th.join();
+    work(0);
   }
-  for (const std::exception_ptr& e : errors)
+  catch (...)
   {
-    if (e)
+    error = std::current_exception();
+  }
+  for (std::size_t i = 1; i < devices.size(); ++i)
+  {
+    try
     {
-      std::rethrow_exception(e);
+      devices[i]->worker.wait();
     }
+    catch (...)
+    {
+      error = error ? error : std::current_exception();
+    }
+  }
+  if (error)
+  {
+    std::rethrow_exception(error);
   }
 
   rawLinks = 0;
   double msCompress = 0.0;
   for (auto& d : devices)
   {
-    d->use();
-    unsigned long long raw = 0;
-    d->scratch.rawLinks.download(&raw, 1);
-    rawLinks += raw;
+    rawLinks += d->rawLinks;
     msCompress = std::max(msCompress, d->msCompress);
   }
   d0.use();
