@@ -207,12 +207,22 @@ void benchScene(const std::string& name, const Args& args)
   SolverStats full = cold, light;
   double msLight = 1e30;
   std::vector<double> fullTimes, linkTimes, lightTimes;
+  std::ostringstream runProfile; // per run and GPU: [gpu, elements, batches, ms wall, trace, compress]
+  runProfile << "[";
   for (int r = 0; r < args.repeat; ++r)
   {
     solver.reset();
     solver.update(scene, args.options);
     fullTimes.push_back(solver.stats().msTotal);
     linkTimes.push_back(solver.stats().msLinks + solver.stats().msCompress);
+    for (std::size_t d = 0; d < solver.stats().msWallPerDevice.size(); ++d)
+    {
+      runProfile << (runProfile.tellp() > 1 ? "," : "") << "[" << d << ","
+                 << solver.stats().linkedPerDevice[d] << "," << solver.stats().batchesPerDevice[d]
+                 << "," << solver.stats().msWallPerDevice[d] << ","
+                 << solver.stats().msTracePerDevice[d] << "," << solver.stats().msCompressPerDevice[d]
+                 << "]";
+    }
     if (solver.stats().msTotal < full.msTotal || r == 0)
     {
       full = solver.stats();
@@ -244,7 +254,7 @@ void benchScene(const std::string& name, const Args& args)
   {
     extra << (i ? "," : "") << linkTimes[i];
   }
-  extra << "]";
+  extra << "],\"link_profile_runs\":" << runProfile.str() << "]";
   extra << ",\"ms_prepare\":" << full.msPrepare << ",\"ms_topology\":" << full.msTopology
         << ",\"light_update_ms\":{\"prepare\":"
         << light.msPrepare << ",\"upload\":" << light.msBvh << ",\"light_links\":"

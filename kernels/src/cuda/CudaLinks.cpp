@@ -229,7 +229,10 @@ void linkBatch(EngineDevice& d, const LinkJob& job, MatrixSink& sink, Index firs
   LINKGI_CUDA_CHECK(cudaEventElapsedTime(&compress, d.events[1], d.events[2]));
   d.msTrace += trace;
   d.msCompress += compress;
-  d.elementsPerMs = count / std::max(1e-3, double(trace + compress));
+  // Elements cost differently in different parts of a scene, so one batch's speed is a
+  // noisy estimate; averaging with the previous one keeps splits from oscillating.
+  const double speed = count / std::max(1e-3, double(trace + compress));
+  d.elementsPerMs = d.elementsPerMs > 0.0 ? 0.5 * (d.elementsPerMs + speed) : speed;
   d.linked += count;
   ++d.batches;
 }
