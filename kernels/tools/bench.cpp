@@ -195,37 +195,48 @@ Scene movedLights(const Scene& scene)
   return moved;
 }
 
-void benchScene(const std::string& name, const Args& args)
+/// The updates of one scene: the cold first one, `repeat` warm full ones (reset() forgets
+/// every cached stage but keeps allocations), each followed by two light-only ones.
+struct UpdateRuns
 {
-  const Scene scene = bench::makeScene(name);
+  SolverStats cold, full, light; ///< full and light: the fastest of their kind
+  std::vector<double> fullTimes, linkTimes, lightTimes;
+  std::string profile; ///< per run and GPU: [gpu, elements, batches, ms wall, trace, compress]
+  Solution solution;
+};
+
+std::string linkProfile(const SolverStats& s)
+{
+  std::ostringstream out;
+  for (std::size_t d = 0; d < s.msWallPerDevice.size(); ++d)
+  {
+    out << (d ? "," : "") << "[" << d << "," << s.linkedPerDevice[d] << "," << s.batchesPerDevice[d]
+        << "," << s.msWallPerDevice[d] << "," << s.msTracePerDevice[d] << ","
+        << s.msCompressPerDevice[d] << "]";
+  }
+  return out.str();
+}
+
+UpdateRuns runUpdates(const Scene& scene, const Args& args)
+{
   const Scene moved = movedLights(scene);
+  UpdateRuns runs;
   Solver solver;
   solver.update(scene, args.options);
-  const SolverStats cold = solver.stats();
-  // Warm full updates (reset() forgets every cached stage but keeps allocations), then
-  // light-only updates; each figure is the best of `repeat`.
-  SolverStats full = cold, light;
+  runs.cold = runs.full = solver.stats();
   double msLight = 1e30;
-  std::vector<double> fullTimes, linkTimes, lightTimes;
-  std::ostringstream runProfile; // per run and GPU: [gpu, elements, batches, ms wall, trace, compress]
-  runProfile << "[";
   for (int r = 0; r < args.repeat; ++r)
   {
     solver.reset();
     solver.update(scene, args.options);
-    fullTimes.push_back(solver.stats().msTotal);
-    linkTimes.push_back(solver.stats().msLinks + solver.stats().msCompress);
-    for (std::size_t d = 0; d < solver.stats().msWallPerDevice.size(); ++d)
+    const SolverStats& st = solver.stats();
+    runs.fullTimes.push_back(st.msTotal);
+    runs.linkTimes.push_back(st.msLinks + st.msCompress);
+    const std::string profile = linkProfile(st);
+    runs.profile += (runs.profile.empty() || profile.empty() ? "" : ",") + profile;
+    if (st.msTotal < runs.full.msTotal || r == 0)
     {
-      runProfile << (runProfile.tellp() > 1 ? "," : "") << "[" << d << ","
-                 << solver.stats().linkedPerDevice[d] << "," << solver.stats().batchesPerDevice[d]
-                 << "," << solver.stats().msWallPerDevice[d] << ","
-                 << solver.stats().msTracePerDevice[d] << "," << solver.stats().msCompressPerDevice[d]
-                 << "]";
-    }
-    if (solver.stats().msTotal < full.msTotal || r == 0)
-    {
-      full = solver.stats();
+      runs.full = st;
     }
     for (const Scene* s : { &moved, &scene })
     {
@@ -234,96 +245,106 @@ void benchScene(const std::string& name, const Args& args)
       {
         throw Error("A light-only change rebuilt the links.");
       }
-      lightTimes.push_back(solver.stats().msTotal);
+      runs.lightTimes.push_back(solver.stats().msTotal);
       if (solver.stats().msTotal < msLight)
       {
         msLight = solver.stats().msTotal;
-        light = solver.stats();
+        runs.light = solver.stats();
       }
     }
   }
-  const Solution& solution = solver.solution();
-  std::ostringstream extra;
-  // Medians next to the best runs (the best-of figures below), and where the time of the
-  // best light-only update and of the full update went.
-  extra << ",\"median_ms\":{\"full_update\":" << median(fullTimes) << ",\"link_generation\":"
-        << median(linkTimes) << ",\"light_update\":" << median(lightTimes)
-        << "},\"best_ms_link_generation\":" << *std::min_element(linkTimes.begin(), linkTimes.end())
-        << ",\"ms_link_generation_runs\":[";
-  for (std::size_t i = 0; i < linkTimes.size(); ++i)
+  runs.solution = solver.solution();
+  return runs;
+}
+
+/// Medians next to the best runs, and where the time of the best light-only update and of
+/// the full update went.
+std::string timingJson(const UpdateRuns& runs)
+{
+  std::ostringstream out;
+  out << ",\"median_ms\":{\"full_update\":" << median(runs.fullTimes) << ",\"link_generation\":"
+      << median(runs.linkTimes) << ",\"light_update\":" << median(runs.lightTimes)
+      << "},\"best_ms_link_generation\":"
+      << *std::min_element(runs.linkTimes.begin(), runs.linkTimes.end())
+      << ",\"ms_link_generation_runs\":[";
+  for (std::size_t i = 0; i < runs.linkTimes.size(); ++i)
   {
-    extra << (i ? "," : "") << linkTimes[i];
+    out << (i ? "," : "") << runs.linkTimes[i];
   }
-  extra << "],\"link_profile_runs\":" << runProfile.str() << "]";
-  extra << ",\"ms_prepare\":" << full.msPrepare << ",\"ms_topology\":" << full.msTopology
-        << ",\"light_update_ms\":{\"prepare\":"
-        << light.msPrepare << ",\"upload\":" << light.msBvh << ",\"light_links\":"
-        << light.msLightLinks << ",\"bounces\":" << light.msBounces << ",\"finish\":"
-        << light.msSmoothing << "}";
+  const SolverStats& l = runs.light;
+  out << "],\"link_profile_runs\":[" << runs.profile << "],\"ms_prepare\":" << runs.full.msPrepare
+      << ",\"ms_topology\":" << runs.full.msTopology << ",\"light_update_ms\":{\"prepare\":"
+      << l.msPrepare << ",\"upload\":" << l.msBvh << ",\"light_links\":" << l.msLightLinks
+      << ",\"bounces\":" << l.msBounces << ",\"finish\":" << l.msSmoothing << "}";
+  if (runs.full.devices > 0)
   {
-    // A deformation: same triangles, moved vertices (BVH refit or rebuild, links, all after):
-    // the torso bends; other scenes stretch by 3% vertically.
-    SceneParams bent;
-    bent.deformation = 0.5f;
-    Scene deformed = name == "torso" ? makeStandardScene("torso", bent) : scene;
-    if (name != "torso")
+    out << ",\"link_profile\":[" << linkProfile(runs.full) << "]";
+  }
+  return out.str();
+}
+
+/// A deformation: same triangles, moved vertices (BVH refit or rebuild, links, all after):
+/// the torso bends; other scenes stretch by 3% vertically.
+std::string deformationJson(const std::string& name, const Scene& scene, const Args& args)
+{
+  SceneParams bent;
+  bent.deformation = 0.5f;
+  Scene deformed = name == "torso" ? makeStandardScene("torso", bent) : scene;
+  if (name != "torso")
+  {
+    for (Vec3f& p : deformed.positions)
     {
-      for (Vec3f& p : deformed.positions)
-      {
-        p.y *= 1.03f;
-      }
+      p.y *= 1.03f;
     }
-    Solver deforming;
-    deforming.update(scene, args.options);
-    deforming.update(deformed, args.options);
-    const SolverStats& d = deforming.stats();
-    extra << ",\"ms_deform_update\":" << d.msTotal << ",\"deform_bvh\":\""
-          << (d.builtBvh ? "rebuild" : "refit") << "\",\"deform_ms_bvh\":" << d.msBvh
-          << ",\"deform_rays_per_s\":" << d.rays / (d.msLinks * 1e-3);
   }
-  if (!args.dump.empty())
-  {
-    writeSolution(args.dump + "/" + name + ".bin", solution);
-  }
-  if (!args.compare.empty() && std::ifstream(args.compare + "/" + name + ".bin"))
-  {
-    extra << ",\"agreement\":" << agreement(scene, solution, readSolution(args.compare + "/" + name + ".bin"));
-  }
+  Solver deforming;
+  deforming.update(scene, args.options);
+  deforming.update(deformed, args.options);
+  const SolverStats& d = deforming.stats();
+  std::ostringstream out;
+  out << ",\"ms_deform_update\":" << d.msTotal << ",\"deform_bvh\":\""
+      << (d.builtBvh ? "rebuild" : "refit") << "\",\"deform_ms_bvh\":" << d.msBvh
+      << ",\"deform_rays_per_s\":" << d.rays / (d.msLinks * 1e-3);
+  return out.str();
+}
+
+/// The yardsticks measured in the same run: our bounce gather against cuSPARSE on the GPU,
+/// a bare Embree loop on the CPU.
+std::string yardstickJson(const Scene& scene, const SolverStats& full, const Args& args)
+{
+  std::ostringstream out;
 #if LINKGI_HAVE_CUDA
   if (full.backend == "cuda" && args.gather)
   {
     const bench::GatherBenchmark g = bench::benchmarkGather(scene, args.options, 20);
-    extra << ",\"gather\":{\"rows\":" << g.rows << ",\"nnz\":" << g.nonZeros
-          << ",\"useful_mb\":" << g.usefulBytes / 1e6 << ",\"ms_gather\":" << g.msGather
-          << ",\"tb_per_s\":" << g.usefulBytes / (g.msGather * 1e-3) / 1e12
-          << ",\"ms_fused_bounce\":" << g.msBounce << ",\"ms_cusparse_3spmv\":" << g.msCusparse
-          << ",\"speedup_vs_cusparse\":" << g.msCusparse / g.msGather
-          << ",\"max_rel_diff\":" << g.maxRelativeDifference << "}";
+    out << ",\"gather\":{\"rows\":" << g.rows << ",\"nnz\":" << g.nonZeros
+        << ",\"useful_mb\":" << g.usefulBytes / 1e6 << ",\"ms_gather\":" << g.msGather
+        << ",\"tb_per_s\":" << g.usefulBytes / (g.msGather * 1e-3) / 1e12
+        << ",\"ms_fused_bounce\":" << g.msBounce << ",\"ms_cusparse_3spmv\":" << g.msCusparse
+        << ",\"speedup_vs_cusparse\":" << g.msCusparse / g.msGather
+        << ",\"max_rel_diff\":" << g.maxRelativeDifference << "}";
   }
 #endif
 #if LINKGI_HAVE_EMBREE
   if (full.backend == "cpu" && args.bare)
   {
     const double bare = bench::bareEmbreeRaysPerSecond(scene, args.options);
-    extra << ",\"bare_embree_rays_per_s\":" << bare << ",\"ray_rate_ratio\":"
-          << full.rays / (full.msLinks * 1e-3) / bare;
+    out << ",\"bare_embree_rays_per_s\":" << bare << ",\"ray_rate_ratio\":"
+        << full.rays / (full.msLinks * 1e-3) / bare;
   }
 #endif
+  (void)scene, (void)full, (void)args;
+  return out.str();
+}
+
+void printRecord(const std::string& name, const Scene& scene, const UpdateRuns& runs,
+  const Args& args, const std::string& extra)
+{
+  const SolverStats& full = runs.full;
   std::ostringstream perDevice;
   for (std::size_t i = 0; i < full.linkedPerDevice.size(); ++i)
   {
     perDevice << (i ? "," : "") << full.linkedPerDevice[i];
-  }
-  if (full.devices > 0)
-  {
-    extra << ",\"link_profile\":[";
-    for (std::size_t i = 0; i < full.batchesPerDevice.size(); ++i)
-    {
-      extra << (i ? "," : "") << "{\"batches\":" << full.batchesPerDevice[i] << ",\"ms_trace\":"
-            << full.msTracePerDevice[i] << ",\"ms_compress\":" << full.msCompressPerDevice[i]
-            << ",\"ms_wall\":" << full.msWallPerDevice[i] << "}";
-    }
-    extra << "]";
   }
   std::printf("{\"scene\":\"%s\",\"backend\":\"%s\",\"device\":\"%s\",\"devices\":%d,\"threads\":%d,"
               "\"vertices\":%zu,\"triangles\":%zu,\"rays_per_vertex\":%u,\"bounces\":%u,\"rays\":%llu,"
@@ -339,14 +360,31 @@ void benchScene(const std::string& name, const Args& args)
     (unsigned long long)full.linksRaw, (unsigned long long)full.linksCompressed,
     (unsigned long long)full.linkBytes, (unsigned long long)full.lightRays, full.msBvh,
     full.msLinks, full.msCompress, full.msLinks + full.msCompress, full.msLightLinks,
-    full.msBounces, full.msSmoothing, full.msTotal, cold.msTotal, msLight,
-    full.gpuPeakBytes / 1048576.0, peakHostMb(), perDevice.str().c_str(), extra.str().c_str(),
+    full.msBounces, full.msSmoothing, full.msTotal, runs.cold.msTotal, runs.light.msTotal,
+    full.gpuPeakBytes / 1048576.0, peakHostMb(), perDevice.str().c_str(), extra.c_str(),
     full.backendNote.c_str());
   for (const std::string& w : full.warnings)
   {
     std::fprintf(stderr, "linkgi-bench: %s: %s\n", name.c_str(), w.c_str());
   }
   std::fflush(stdout);
+}
+
+void benchScene(const std::string& name, const Args& args)
+{
+  const Scene scene = bench::makeScene(name);
+  const UpdateRuns runs = runUpdates(scene, args);
+  std::string extra = timingJson(runs) + deformationJson(name, scene, args);
+  if (!args.dump.empty())
+  {
+    writeSolution(args.dump + "/" + name + ".bin", runs.solution);
+  }
+  if (!args.compare.empty() && std::ifstream(args.compare + "/" + name + ".bin"))
+  {
+    extra += ",\"agreement\":" + agreement(scene, runs.solution, readSolution(args.compare + "/" + name + ".bin"));
+  }
+  extra += yardstickJson(scene, runs.full, args);
+  printRecord(name, scene, runs, args, extra);
 }
 }
 

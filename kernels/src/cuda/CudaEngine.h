@@ -9,6 +9,7 @@
 #include "linkgi/Solver.h"
 #include "linkgi/Topology.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -87,6 +88,9 @@ private:
   void bounceAndFinish(const HostInputs& in, const SolverOptions& options, Solution& solution,
     SolverStats& stats, const ProgressCallback& progress);
   void samplePeakMemory();
+  /// work(device, index) on every device at once: the first on this thread, the others on
+  /// their workers; rethrows the first exception after all have finished.
+  void runOnAllDevices(const std::function<void(EngineDevice&, std::size_t)>& work);
 
   std::vector<std::unique_ptr<EngineDevice>> devices;
   std::string name;

@@ -238,19 +238,14 @@ void linkBatch(EngineDevice& d, const LinkJob& job, MatrixSink& sink, Index firs
 }
 }
 
-void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, SolverStats& stats,
-  const ProgressCallback& progress)
+namespace
 {
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  const Scene& s = in.scene;
-  const Elements elements{ s.vertexCount(), options.twoSided };
-  const Index ne = Index(elements.count()), n = options.raysPerVertex;
-  const std::vector<Vec3f> dirs = makeDirectionSet(n);
+LinkJob makeJob(const Scene& s, const SolverOptions& options)
+{
   LinkJob job;
-  job.elements = ne;
+  job.elements = Index(Elements{ s.vertexCount(), options.twoSided }.count());
   LinkTraceParams& t = job.params.trace;
-  t.raysPerVertex = n;
+  t.raysPerVertex = options.raysPerVertex;
   t.vertexCount = Index(s.vertexCount());
   t.twist = options.twist;
   t.seed = options.seed;
@@ -258,39 +253,44 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
   job.params.twoSided = options.twoSided;
   job.params.envWidth = s.environment.hasTexture() ? s.environment.width : 0;
   job.params.envHeight = s.environment.hasTexture() ? s.environment.height : 0;
+  return job;
+}
 
-  // The matrices on the first device, at their worst-case size: every device appends its
-  // rows there as its batches finish, so there is nothing to merge afterwards.
-  EngineDevice& d0 = *devices[0];
+/// The matrices on the first device, at their worst-case size: every device appends its
+/// rows there as its batches finish, so there is nothing to merge afterwards.
+void reserveMatrices(EngineDevice& d0, Index elements, Index raysPerVertex)
+{
   d0.use();
   for (DeviceCsr* m : { &d0.transport, &d0.environment })
   {
-    const std::size_t perRow = m == &d0.transport ? 3 * n : n;
-    m->columns.resize(std::size_t(ne) * perRow);
-    m->weights.resize(std::size_t(ne) * perRow);
-    m->rowStarts.resize(ne);
-    m->rowCounts.resize(ne);
+    const std::size_t perRow = m == &d0.transport ? 3 * raysPerVertex : raysPerVertex;
+    m->columns.resize(std::size_t(elements) * perRow);
+    m->weights.resize(std::size_t(elements) * perRow);
+    m->rowStarts.resize(elements);
+    m->rowCounts.resize(elements);
   }
-  MatrixSink sink(d0);
+}
 
-  std::vector<EngineDevice*> all;
-  for (auto& d : devices)
-  {
-    all.push_back(d.get());
-  }
-  BatchScheduler scheduler(ne, all);
-
-  // Every device sets itself up and runs batches until none are left: the first here,
-  // between batches asking `progress` (which may touch GUI state, so only from this
-  // thread), the others on their own worker threads.
+/// One link stage over all devices: each sets itself up and runs batches until none are
+/// left.
+struct LinkStage
+{
+  const LinkJob& job;
+  const std::vector<Vec3f>& directions;
+  MatrixSink& sink;
+  BatchScheduler& scheduler;
+  const ProgressCallback& progress;
   std::atomic<Index> done{ 0 };
-  const auto work = [&](std::size_t i) {
-    EngineDevice& d = *devices[i];
+
+  void run(EngineDevice& d, std::size_t i)
+  {
+    using clock = std::chrono::steady_clock;
     const auto began = clock::now();
+    const Index n = job.params.trace.raysPerVertex;
     try
     {
       d.use();
-      d.directions.upload(dirs, d.stream);
+      d.directions.upload(directions, d.stream);
       d.scratch.rawLinks.resize(1);
       d.scratch.rawLinks.fillZero(d.stream);
       d.msTrace = d.msCompress = 0.0;
@@ -302,7 +302,8 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
       {
         linkBatch(d, job, sink, first, count);
         done += count;
-        if (i == 0 && progress && !progress("links", 0.75 * double(done) / std::max<Index>(ne, 1)))
+        // Only the caller's thread may ask: the callback may touch GUI state.
+        if (i == 0 && progress && !progress("links", 0.75 * double(done) / std::max<Index>(job.elements, 1)))
         {
           throw Aborted();
         }
@@ -315,15 +316,21 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
       throw;
     }
     d.msWall = std::chrono::duration<double, std::milli>(clock::now() - began).count();
-  };
+  }
+};
+}
+
+void Engine::runOnAllDevices(const std::function<void(EngineDevice&, std::size_t)>& work)
+{
   for (std::size_t i = 1; i < devices.size(); ++i)
   {
-    devices[i]->worker.start([&work, i] { work(i); });
+    EngineDevice& d = *devices[i];
+    d.worker.start([&work, &d, i] { work(d, i); });
   }
   std::exception_ptr error;
   try
   {
-    work(0);
+    work(*devices[0], 0);
   }
   catch (...)
   {
@@ -344,6 +351,26 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
   {
     std::rethrow_exception(error);
   }
+}
+
+void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, SolverStats& stats,
+  const ProgressCallback& progress)
+{
+  const auto start = std::chrono::steady_clock::now();
+  const LinkJob job = makeJob(in.scene, options);
+  const Index ne = job.elements, n = options.raysPerVertex;
+  const std::vector<Vec3f> dirs = makeDirectionSet(n);
+  EngineDevice& d0 = *devices[0];
+  reserveMatrices(d0, ne, n);
+  MatrixSink sink(d0);
+  std::vector<EngineDevice*> all;
+  for (auto& d : devices)
+  {
+    all.push_back(d.get());
+  }
+  BatchScheduler scheduler(ne, all);
+  LinkStage stage{ job, dirs, sink, scheduler, progress };
+  runOnAllDevices([&stage](EngineDevice& d, std::size_t i) { stage.run(d, i); });
 
   rawLinks = 0;
   double msCompress = 0.0;
@@ -356,7 +383,7 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
   d0.transport.nonZeros = sink.used;
   d0.environment.nonZeros = sink.envUsed;
   rays = std::uint64_t(ne) * n;
-  const double msAll = std::chrono::duration<double, std::milli>(clock::now() - start).count();
+  const double msAll = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   stats.msCompress = std::min(msCompress, msAll);
   stats.msLinks = msAll - stats.msCompress;
 }
