@@ -3,7 +3,6 @@
 #include "vtkGlobalIlluminationSceneBuilder.h"
 
 #include "vtkDataObject.h"
-#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -20,8 +19,6 @@
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
-#include "vtkStringArray.h"
-#include "vtkTypeUInt64Array.h"
 #include "vtkVersionMacros.h"
 
 #include "linkgi/AsyncSolver.h"
@@ -51,30 +48,6 @@ bool AbortRequested(vtkAlgorithm* self)
 linkgi::Vec3f ToVec3f(const double v[3])
 {
   return { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
-}
-
-void AddValue(vtkFieldData* fd, const std::string& name, std::uint64_t value)
-{
-  vtkNew<vtkTypeUInt64Array> array;
-  array->SetName(("LinkGI." + name).c_str());
-  array->InsertNextValue(value);
-  fd->AddArray(array);
-}
-
-void AddValue(vtkFieldData* fd, const std::string& name, double value)
-{
-  vtkNew<vtkDoubleArray> array;
-  array->SetName(("LinkGI." + name).c_str());
-  array->InsertNextValue(value);
-  fd->AddArray(array);
-}
-
-void AddValue(vtkFieldData* fd, const std::string& name, const std::string& value)
-{
-  vtkNew<vtkStringArray> array;
-  array->SetName(("LinkGI." + name).c_str());
-  array->InsertNextValue(value);
-  fd->AddArray(array);
 }
 
 linkgi::Backend ToEngineBackend(int backend)
@@ -239,41 +212,7 @@ void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(vtkGlobalIlluminat
     pd->AddArray(Builder::MapToPoints(this->Mesh, solution.radiance, offset, ("Radiance" + suffix).c_str()));
   }
 
-  vtkFieldData* fd = output->GetFieldData();
-  const std::pair<const char*, std::uint64_t> counters[] = { { "BvhBuilds", s.bvhBuilds },
-    { "BvhRefits", s.bvhRefits }, { "LinkBuilds", s.linkBuilds },
-    { "LightLinkBuilds", s.lightLinkBuilds }, { "BounceRuns", s.bounceRuns },
-    { "Elements", s.elements }, { "Rays", s.rays }, { "LightRays", s.lightRays },
-    { "LinksRaw", s.linksRaw }, { "LinksCompressed", s.linksCompressed },
-    { "LinkBytes", s.linkBytes } };
-  for (const auto& c : counters)
-  {
-    AddValue(fd, c.first, c.second);
-  }
-  const std::pair<const char*, double> times[] = { { "MsBvh", s.msBvh }, { "MsLinks", s.msLinks },
-    { "MsCompress", s.msCompress }, { "MsLightLinks", s.msLightLinks },
-    { "MsBounces", s.msBounces }, { "MsSmoothing", s.msSmoothing }, { "MsTotal", s.msTotal },
-    { "MsFilter", msFilter } };
-  for (const auto& t : times)
-  {
-    AddValue(fd, t.first, t.second);
-  }
-  // Which backend ran ("cpu" or "cuda"), on what, and why (Auto's choice or a fallback).
-  AddValue(fd, "Backend", s.backend);
-  AddValue(fd, "Device", s.device);
-  AddValue(fd, "BackendNote", s.backendNote);
-  AddValue(fd, "Gpus", static_cast<std::uint64_t>(s.devices));
-  vtkNew<vtkStringArray> warnings;
-  warnings->SetName("LinkGI.Warnings");
-  const std::vector<std::string>* lists[] = { &this->Warnings, &s.warnings };
-  for (const std::vector<std::string>* list : lists)
-  {
-    for (const std::string& w : *list)
-    {
-      warnings->InsertNextValue(w);
-    }
-  }
-  fd->AddArray(warnings);
+  Builder::AddStatistics(output->GetFieldData(), s, msFilter, this->Warnings);
 }
 
 //------------------------------------------------------------------------------
@@ -313,8 +252,8 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   }
   const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
   this->AttachResults(self, output, elapsed.count(), shown, stats);
-  AddValue(output->GetFieldData(), "Pending", std::uint64_t(this->Async->busy() ? 1 : 0));
-  AddValue(output->GetFieldData(), "ShownRequest", std::uint64_t(this->ShownRequest));
+  Builder::AddFieldValue(output->GetFieldData(), "Pending", std::uint64_t(this->Async->busy() ? 1 : 0));
+  Builder::AddFieldValue(output->GetFieldData(), "ShownRequest", this->ShownRequest);
   return true;
 }
 

@@ -5,6 +5,8 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
@@ -14,7 +16,9 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
+#include "vtkStringArray.h"
 #include "vtkTriangleFilter.h"
+#include "vtkTypeUInt64Array.h"
 
 #include "linkgi/Error.h"
 
@@ -414,4 +418,73 @@ vtkSmartPointer<vtkFloatArray> vtkGlobalIlluminationSceneBuilder::MapToPoints(co
     }
   }
   return array;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationSceneBuilder::AddFieldValue(
+  vtkFieldData* fieldData, const std::string& name, std::uint64_t value)
+{
+  vtkNew<vtkTypeUInt64Array> array;
+  array->SetName(("LinkGI." + name).c_str());
+  array->InsertNextValue(value);
+  fieldData->AddArray(array);
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationSceneBuilder::AddFieldValue(
+  vtkFieldData* fieldData, const std::string& name, double value)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(("LinkGI." + name).c_str());
+  array->InsertNextValue(value);
+  fieldData->AddArray(array);
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationSceneBuilder::AddFieldValue(
+  vtkFieldData* fieldData, const std::string& name, const std::string& value)
+{
+  vtkNew<vtkStringArray> array;
+  array->SetName(("LinkGI." + name).c_str());
+  array->InsertNextValue(value);
+  fieldData->AddArray(array);
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationSceneBuilder::AddStatistics(vtkFieldData* fd,
+  const linkgi::SolverStats& s, double msFilter, const std::vector<std::string>& filterWarnings)
+{
+  const std::pair<const char*, std::uint64_t> counters[] = { { "BvhBuilds", s.bvhBuilds },
+    { "BvhRefits", s.bvhRefits }, { "LinkBuilds", s.linkBuilds },
+    { "LightLinkBuilds", s.lightLinkBuilds }, { "BounceRuns", s.bounceRuns },
+    { "Elements", s.elements }, { "Rays", s.rays }, { "LightRays", s.lightRays },
+    { "LinksRaw", s.linksRaw }, { "LinksCompressed", s.linksCompressed },
+    { "LinkBytes", s.linkBytes } };
+  for (const auto& c : counters)
+  {
+    AddFieldValue(fd, c.first, c.second);
+  }
+  const std::pair<const char*, double> times[] = { { "MsBvh", s.msBvh }, { "MsLinks", s.msLinks },
+    { "MsCompress", s.msCompress }, { "MsLightLinks", s.msLightLinks },
+    { "MsBounces", s.msBounces }, { "MsSmoothing", s.msSmoothing }, { "MsTotal", s.msTotal },
+    { "MsFilter", msFilter } };
+  for (const auto& t : times)
+  {
+    AddFieldValue(fd, t.first, t.second);
+  }
+  // Which backend ran ("cpu" or "cuda"), on what, and why (Auto's choice or a fallback).
+  AddFieldValue(fd, "Backend", s.backend);
+  AddFieldValue(fd, "Device", s.device);
+  AddFieldValue(fd, "BackendNote", s.backendNote);
+  AddFieldValue(fd, "Gpus", static_cast<std::uint64_t>(s.devices));
+  vtkNew<vtkStringArray> warnings;
+  warnings->SetName("LinkGI.Warnings");
+  for (const std::vector<std::string>* list : { &filterWarnings, &s.warnings })
+  {
+    for (const std::string& w : *list)
+    {
+      warnings->InsertNextValue(w);
+    }
+  }
+  fd->AddArray(warnings);
 }

@@ -22,12 +22,16 @@
 #include "vtkSmartPointer.h"                       // for vtkSmartPointer
 #include "vtkType.h"                               // for vtkIdType
 
-#include "linkgi/Scene.h" // for linkgi::Scene
+#include "linkgi/Scene.h"  // for linkgi::Scene
+#include "linkgi/Solver.h" // for linkgi::SolverStats
 
 #include <cstddef>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 class vtkDataArray;
+class vtkFieldData;
 class vtkFloatArray;
 class vtkImageData;
 class vtkLight;
@@ -93,6 +97,19 @@ public:
    */
   static vtkSmartPointer<vtkFloatArray> MapToPoints(const Mesh& mesh,
     const std::vector<linkgi::Vec3f>& values, std::size_t offset, const char* name);
+
+  /**
+   * The solver's counters and stage times, the backend that ran, `msFilter` (all of
+   * RequestData) and the warnings (`filterWarnings`, then the engine's) as one-tuple field
+   * arrays named "LinkGI.<name>".
+   */
+  static void AddStatistics(vtkFieldData* fieldData, const linkgi::SolverStats& stats,
+    double msFilter, const std::vector<std::string>& filterWarnings);
+
+  /// One-tuple field array "LinkGI.<name>": unsigned 64-bit, double or string.
+  static void AddFieldValue(vtkFieldData* fieldData, const std::string& name, std::uint64_t value);
+  static void AddFieldValue(vtkFieldData* fieldData, const std::string& name, double value);
+  static void AddFieldValue(vtkFieldData* fieldData, const std::string& name, const std::string& value);
 };
 
 #endif
