@@ -92,13 +92,27 @@ std::vector<Vec3f> frontFaceNormals(const Scene& scene)
 LinkHits traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
   const RayTracer& tracer, const LinkOptions& options, const ProgressCallback& progress)
 {
+  LinkHits out;
+  traceLinkRays(scene, shifts, tracer, options, out, progress);
+  return out;
+}
+
+void traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
+  const RayTracer& tracer, const LinkOptions& options, LinkHits& out,
+  const ProgressCallback& progress)
+{
   const std::vector<Vec3f> dirs = makeDirectionSet(options.raysPerVertex);
   const Elements elements{ scene.vertexCount(), options.twoSided };
   const std::size_t n = dirs.size();
   const float eps = rayEpsilon(scene);
-  LinkHits out;
   out.raysPerVertex = options.raysPerVertex;
-  out.hits.resize(elements.count() * n);
+  // Every hit is overwritten below; a buffer of the right size from the last update is
+  // reused as it is (no fill, no fresh pages: that was ~12% of link generation).
+  if (out.hits.size() != elements.count() * n)
+  {
+    out.hits.clear();
+    out.hits.resize(elements.count() * n);
+  }
   parallelFor("links", elements.count(), 8,
     [&](std::size_t begin, std::size_t end) {
       std::vector<Ray> rays(n);
@@ -117,7 +131,6 @@ LinkHits traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
       }
     },
     progress);
-  return out;
 }
 
 namespace

@@ -158,6 +158,7 @@ struct Solver::Impl
   bool tracerMatchesScene = false;
   LinkStructure links;
   DirectLightResult direct;
+  LinkHits hitScratch; // link rays' hits, kept so the next relink reuses the buffer
 
 #if LINKGI_HAVE_CUDA
   // CUDA backend; its device caches are valid for `scene` only if cudaValid.
@@ -462,10 +463,10 @@ void Solver::Impl::solveCpu(const Scene& s, const SolverOptions& opt, Changes c,
   {
     const LinkOptions linkOptions{ opt.raysPerVertex, opt.twoSided, opt.twist, opt.seed };
     t = clock::now();
-    LinkHits hits = traceLinkRays(s, *g.shifts, *tracer, linkOptions, stageProgress(progress, 0.0, 0.75));
+    traceLinkRays(s, *g.shifts, *tracer, linkOptions, hitScratch, stageProgress(progress, 0.0, 0.75));
     st.msLinks = msSince(t);
     t = clock::now();
-    newLinks = compressLinks(s, hits, *g.faceNormals, linkOptions, stageProgress(progress, 0.75, 0.85));
+    newLinks = compressLinks(s, hitScratch, *g.faceNormals, linkOptions, stageProgress(progress, 0.75, 0.85));
     st.msCompress = msSince(t);
     st.builtLinks = true;
     ++st.linkBuilds;

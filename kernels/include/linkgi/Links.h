@@ -140,6 +140,10 @@ std::vector<Vec3f> frontFaceNormals(const Scene& scene);
 /// Stage 1: shoots raysPerVertex rays from every element.
 LinkHits traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
   const RayTracer& tracer, const LinkOptions& options, const ProgressCallback& progress = {});
+/// The same into `out`, whose hit buffer is reused when it already has the right size.
+void traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
+  const RayTracer& tracer, const LinkOptions& options, LinkHits& out,
+  const ProgressCallback& progress = {});
 
 /// Stage 2: turns hits into links and merges links with the same (x, y) into CSR rows
 /// (each column once per row; columns in first-hit order, not sorted).
