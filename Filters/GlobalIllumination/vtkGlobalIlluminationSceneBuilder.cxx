@@ -455,23 +455,25 @@ void vtkGlobalIlluminationSceneBuilder::AddStatistics(vtkFieldData* fd,
   const linkgi::SolverStats& s, double msFilter, const std::vector<std::string>& filterWarnings)
 {
   const std::pair<const char*, std::uint64_t> counters[] = { { "BvhBuilds", s.bvhBuilds },
-    { "BvhRefits", s.bvhRefits }, { "LinkBuilds", s.linkBuilds },
-    { "LightLinkBuilds", s.lightLinkBuilds }, { "BounceRuns", s.bounceRuns },
-    { "Elements", s.elements }, { "Rays", s.rays }, { "LightRays", s.lightRays },
-    { "LinksRaw", s.linksRaw }, { "LinksCompressed", s.linksCompressed },
-    { "LinkBytes", s.linkBytes } };
+    { "BvhRefits", s.bvhRefits }, { "Elements", s.elements }, { "Rays", s.rays },
+    { "LightRays", s.lightRays }, { "LinksRaw", s.linksRaw },
+    { "LinksCompressed", s.linksCompressed }, { "LinkBytes", s.linkBytes } };
   for (const auto& c : counters)
   {
     AddFieldValue(fd, c.first, c.second);
   }
-  const std::pair<const char*, double> times[] = { { "MsBvh", s.msBvh }, { "MsLinks", s.msLinks },
-    { "MsCompress", s.msCompress }, { "MsLightLinks", s.msLightLinks },
-    { "MsBounces", s.msBounces }, { "MsSmoothing", s.msSmoothing }, { "MsTotal", s.msTotal },
-    { "MsFilter", msFilter } };
-  for (const auto& t : times)
+  // The method's own stages and parts: LinkGI.MsLinks, LinkGI.LinkBuilds, ...
+  for (const linkgi::StageStats& stage : s.stages)
   {
-    AddFieldValue(fd, t.first, t.second);
+    AddFieldValue(fd, "Ms" + stage.name, stage.ms);
+    if (!stage.counter.empty())
+    {
+      AddFieldValue(fd, stage.counter, stage.runs);
+    }
   }
+  AddFieldValue(fd, "MsTotal", s.msTotal);
+  AddFieldValue(fd, "MsFilter", msFilter);
+  AddFieldValue(fd, "Method", s.method);
   // Which backend ran ("cpu" or "cuda"), on what, and why (Auto's choice or a fallback).
   AddFieldValue(fd, "Backend", s.backend);
   AddFieldValue(fd, "Device", s.device);

@@ -67,7 +67,9 @@ TEST(TestBadInput, BadIndicesAndSizes)
   s = test::roomWithBlock();
   s.albedo.pop_back();
   expectError(s, "one value per vertex");
-  expectError(test::roomWithBlock(), "perfect square", SolverOptions{ 200 });
+  SolverOptions rays200;
+  rays200.raysPerVertex = 200;
+  expectError(test::roomWithBlock(), "perfect square", rays200);
 }
 
 TEST(TestBadInput, DegenerateTrianglesAreRemoved)

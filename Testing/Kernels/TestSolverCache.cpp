@@ -39,14 +39,14 @@ TEST(TestSolverCache, LightOnlyChangeRebuildsNoLinks)
   Scene s = test::roomWithBlock();
   Solver solver;
   solver.update(s, fastOptions());
-  ASSERT_EQ(solver.stats().linkBuilds, 1u);
+  ASSERT_EQ(solver.stats().runs("LinkBuilds"), 1u);
   s.lights[0].position = { -0.7f, 2.2f, 0.1f };
   s.lights[0].intensity = { 3.f, 5.f, 9.f };
   const Solution& moved = solver.update(s, fastOptions());
-  EXPECT_EQ(solver.stats().linkBuilds, 1u);
+  EXPECT_EQ(solver.stats().runs("LinkBuilds"), 1u);
   EXPECT_EQ(solver.stats().bvhBuilds, 1u);
-  EXPECT_FALSE(solver.stats().builtLinks);
-  EXPECT_TRUE(solver.stats().builtLightLinks);
+  EXPECT_FALSE(solver.stats().ran("Links"));
+  EXPECT_TRUE(solver.stats().ran("LightLinks"));
   // Bit-identical to solving the moved-light scene from scratch.
   expectSameSolution(moved, freshSolve(s, fastOptions()));
 }
@@ -62,9 +62,9 @@ TEST(TestSolverCache, MaterialChangeOnlyRebounces)
   }
   s.environment.color = Vec3f(0.1f);
   const Solution& changed = solver.update(s, fastOptions());
-  EXPECT_FALSE(solver.stats().builtLinks);
-  EXPECT_FALSE(solver.stats().builtLightLinks);
-  EXPECT_TRUE(solver.stats().ranBounces);
+  EXPECT_FALSE(solver.stats().ran("Links"));
+  EXPECT_FALSE(solver.stats().ran("LightLinks"));
+  EXPECT_TRUE(solver.stats().ran("Bounces"));
   expectSameSolution(changed, freshSolve(s, fastOptions()));
 }
 
@@ -80,7 +80,7 @@ TEST(TestSolverCache, MovedVerticesRefitAndRelink)
   const Solution& refit = solver.update(s, fastOptions());
   EXPECT_TRUE(solver.stats().refitBvh);
   EXPECT_FALSE(solver.stats().builtBvh);
-  EXPECT_TRUE(solver.stats().builtLinks);
+  EXPECT_TRUE(solver.stats().ran("Links"));
   // A refit BVH finds the same closest hits as a fresh build.
   expectSameSolution(refit, freshSolve(s, fastOptions()));
 }
@@ -91,8 +91,8 @@ TEST(TestSolverCache, TopologyChangeRebuildsAndNoChangeDoesNothing)
   Solver solver;
   solver.update(s, fastOptions());
   solver.update(s, fastOptions());
-  EXPECT_FALSE(solver.stats().ranBounces);
-  EXPECT_EQ(solver.stats().bounceRuns, 1u);
+  EXPECT_FALSE(solver.stats().ran("Bounces"));
+  EXPECT_EQ(solver.stats().runs("BounceRuns"), 1u);
   s.triangles.pop_back();
   solver.update(s, fastOptions());
   EXPECT_TRUE(solver.stats().builtBvh);

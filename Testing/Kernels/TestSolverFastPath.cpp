@@ -62,7 +62,7 @@ TEST(SolverFastPath, BadLightOrAlbedoIsAnErrorThatKeepsTheCache)
   // gives a fresh solve's answer.
   s.lights[0].position = { -0.5f, 2.4f, 0.3f };
   const Solution& moved = solver.update(s, fast());
-  EXPECT_FALSE(solver.stats().builtLinks);
+  EXPECT_FALSE(solver.stats().ran("Links"));
   EXPECT_EQ(solver.stats().bvhBuilds, 1u);
   Solver fresh;
   expectSame(moved, fresh.update(s, fast()));

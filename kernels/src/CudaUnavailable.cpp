@@ -1,6 +1,8 @@
 // The CUDA entry points of builds without the CUDA backend (LINKGI_ENABLE_CUDA=OFF).
 #include "linkgi/Cuda.h"
 
+#include "links/LinksBackends.h"
+
 namespace linkgi::cuda
 {
 bool compiled()
@@ -18,6 +20,14 @@ std::vector<DeviceInfo> devices(std::string* why)
 }
 
 std::unique_ptr<RayTracer> createRayTracer(int)
+{
+  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
+}
+}
+
+namespace linkgi::links
+{
+std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
 {
   throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
 }

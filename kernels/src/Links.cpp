@@ -41,6 +41,20 @@ std::vector<Vec3f> makeDirectionSet(std::uint32_t n)
   return dirs;
 }
 
+std::vector<Vec3f> environmentTexelRadiance(const Environment& env)
+{
+  if (!env.hasTexture())
+  {
+    return { env.color };
+  }
+  std::vector<Vec3f> radiance(env.texels.size());
+  for (std::size_t i = 0; i < radiance.size(); ++i)
+  {
+    radiance[i] = env.color * env.texels[i];
+  }
+  return radiance;
+}
+
 float rayEpsilon(const Scene& scene)
 {
   return 1e-4f * boundingDiagonal(scene.positions);

@@ -1,84 +1,31 @@
+// The orchestrator: validation, what changed, which stages are stale, backend choice and
+// fallback, progress, abort, timing and the commit - once, for every method and backend.
+// It never knows a method's formulas (engine/Pipeline.h, Documentation/Engine.md).
 #include "linkgi/Solver.h"
 
-#include "linkgi/Bounce.h"
+#include "engine/Pipeline.h"
+
 #include "linkgi/Cuda.h"
-#include "linkgi/DirectLight.h"
 #include "linkgi/Error.h"
-#include "linkgi/Links.h"
-#include "linkgi/Sampling.h"
 
-#if LINKGI_HAVE_CUDA
-#include "cuda/CudaEngine.h"
-#endif
-
+#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstring>
 
 namespace linkgi
 {
 namespace
 {
-/// Bitwise equality. One thread: on the 16-core GPU machine splitting the comparison over
-/// the thread pool measured twice as slow as a single memcmp of conference's 8 MB.
 template <typename T>
 bool sameArray(const std::vector<T>& a, const std::vector<T>& b)
 {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), sizeof(T) * a.size()) == 0);
 }
 
-bool sameEnvironmentLayout(const Environment& a, const Environment& b)
-{
-  return a.hasTexture() == b.hasTexture() && a.width == b.width && a.height == b.height;
-}
-
-bool sameEnvironment(const Environment& a, const Environment& b)
-{
-  return sameEnvironmentLayout(a, b) && a.color == b.color && sameArray(a.texels, b.texels);
-}
-
 double msSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
-
-/// Maps a stage's own progress in [0,1] onto [lo, hi] of the whole update.
-ProgressCallback stageProgress(const ProgressCallback& progress, double lo, double hi)
-{
-  if (!progress)
-  {
-    return {};
-  }
-  return [&progress, lo, hi](const char* stage, double f) { return progress(stage, lo + (hi - lo) * f); };
-}
-
-/// E_env per element: the environment texels' radiance gathered through Wenv.
-std::vector<Vec3f> environmentIrradiance(const SparseMatrix& wenv, const Environment& env)
-{
-  std::vector<Vec3f> texelRadiance;
-  if (env.hasTexture())
-  {
-    texelRadiance.resize(env.texels.size());
-    for (std::size_t i = 0; i < texelRadiance.size(); ++i)
-    {
-      texelRadiance[i] = env.color * env.texels[i];
-    }
-  }
-  else
-  {
-    texelRadiance.push_back(env.color);
-  }
-  std::vector<Vec3f> irradiance(wenv.rows());
-  gatherRgb(wenv, texelRadiance.data(), irradiance.data());
-  return irradiance;
-}
-
-/// What an update must redo, relative to the last successful one.
-struct Changes
-{
-  bool topology = true, positions = true, geometry = true, relink = true, relight = true,
-       materials = true, rebounce = true;
-};
 
 /// Lends the cached scene's unchanged arrays to the scene of an update (no copy), and takes
 /// them back unless the update commits, so an error or abort leaves the cache whole.
@@ -126,19 +73,51 @@ private:
   bool committed = false;
 };
 
-/// Which of the input's arrays equal the cached (validated) scene's, and are lent from it.
-struct Lent
+/// One backend's implementation of the current method, and whether its caches follow the
+/// last committed update.
+struct BackendSlot
 {
-  bool geometry = false, albedo = false, emission = false;
+  std::unique_ptr<engine::MethodBackend> impl;
+  bool synced = false;
+  Method method = Method::Links;
+  int cudaDevices = 0;
+
+  bool fits(const SolverOptions& o, bool cuda) const
+  {
+    return impl && method == o.method && (!cuda || cudaDevices == o.cudaDevices);
+  }
 };
 
-/// The host-side geometry data both backends read: new where the geometry changed.
-struct HostGeometry
+/// The stages of `spec` that `changes` (or an upstream stage) make stale: bit i for stage i.
+std::uint32_t staleStages(const engine::MethodSpec& spec, engine::Changes changes)
 {
-  const Topology* topology = nullptr;
-  const std::vector<Vec3f>* shifts = nullptr;
-  const std::vector<Vec3f>* faceNormals = nullptr;
-};
+  std::uint32_t stale = 0;
+  const std::vector<engine::StageSpec>& stages = spec.stages();
+  for (std::size_t i = 0; i < stages.size(); ++i)
+  {
+    if ((stages[i].dependsOn & changes) || (stages[i].after & stale))
+    {
+      stale |= 1u << i;
+    }
+  }
+  return stale;
+}
+
+/// Fresh per-update records of the method's stages; lifetime run counts carry over.
+std::vector<StageStats> stageRecords(const engine::MethodSpec& spec, const SolverStats& before)
+{
+  std::vector<StageStats> records;
+  for (const engine::StageSpec& s : spec.stages())
+  {
+    StageStats r;
+    r.name = s.name;
+    r.counter = s.counter;
+    const StageStats* old = before.stage(s.name);
+    r.runs = old && before.method == spec.name() ? old->runs : 0;
+    records.push_back(std::move(r));
+  }
+  return records;
+}
 }
 
 struct Solver::Impl
@@ -147,35 +126,19 @@ struct Solver::Impl
   bool valid = false;
   Scene scene; // validated copy
   SolverOptions options;
-  Topology topology;
-  std::vector<Vec3f> shifts, faceNormals;
   Solution solution;
   SolverStats stats;
-
-  // CPU backend caches; valid for `scene` only if cpuValid.
-  bool cpuValid = false;
-  std::unique_ptr<RayTracer> tracer;
-  bool tracerMatchesScene = false;
-  LinkStructure links;
-  DirectLightResult direct;
-  LinkHits hitScratch; // link rays' hits, kept so the next relink reuses the buffer
-
-#if LINKGI_HAVE_CUDA
-  // CUDA backend; its device caches are valid for `scene` only if cudaValid.
-  std::unique_ptr<cuda::Engine> engine;
-  int engineDevices = -1;
-  bool cudaValid = false;
-#endif
-
   Solution spare; // the solution before last: its buffers are reused by the next update
 
+  BackendSlot cpu, cuda;
+  int cudaDevicesFound = -1; // devices seen for cudaDevicesFor; -1 = not asked yet
+  int cudaDevicesFor = -1;   // the cudaDevices option they were counted for
+
   void solve(const Scene& input, const SolverOptions& options, const ProgressCallback& progress);
-  Changes detect(const Scene& s, const SolverOptions& opt, const Lent& lent) const;
-  Backend choose(const SolverOptions& opt, SolverStats& st);
-  void solveCpu(const Scene& s, const SolverOptions& opt, Changes c, const HostGeometry& g,
-    Solution& sol, SolverStats& st, const ProgressCallback& progress);
-  bool solveCuda(const Scene& s, const SolverOptions& opt, const Changes& c,
-    const HostGeometry& g, Solution& sol, SolverStats& st, const ProgressCallback& progress);
+  bool chooseCuda(const SolverOptions& opt, SolverStats& st);
+  void runStages(BackendSlot& slot, bool onCuda, const engine::MethodSpec& spec,
+    engine::Changes changes, const Scene& s, const SolverOptions& opt, Solution& sol,
+    SolverStats& st, const ProgressCallback& progress);
 };
 
 Solver::Solver() : impl(std::make_unique<Impl>()) {}
@@ -194,117 +157,146 @@ const SolverStats& Solver::stats() const
 void Solver::reset()
 {
   impl->valid = false;
-  impl->cpuValid = false;
-  impl->tracerMatchesScene = false;
-#if LINKGI_HAVE_CUDA
-  impl->cudaValid = false;
-#endif
+  impl->cpu.synced = impl->cuda.synced = false;
 }
 
 const Solution& Solver::update(const Scene& scene, const SolverOptions& options, const ProgressCallback& progress)
 {
-  if (options.bounces > 1000)
-  {
-    throw Error("The number of bounces must be at most 1000.");
-  }
-  if (!isPerfectSquare(options.raysPerVertex))
-  {
-    throw Error("The number of rays per vertex must be a perfect square (k*k, e.g. 64, 256, "
-                "1024); got " + std::to_string(options.raysPerVertex) + ".");
-  }
-  if (!std::isfinite(options.featureAngleDegrees))
-  {
-    throw Error("The feature angle must be a finite number of degrees.");
-  }
+  validateOptions(options);
   impl->solve(scene, options, progress);
   return impl->solution;
 }
 
-Changes Solver::Impl::detect(const Scene& s, const SolverOptions& opt, const Lent& lent) const
-{
-  // Lent arrays are the cached ones (the cache's own are empty meanwhile); the others are
-  // compared after validation, as validation may have repaired them.
-  Changes c;
-  c.topology = !lent.geometry &&
-    (!valid || s.vertexCount() != scene.vertexCount() || !sameArray(s.triangles, scene.triangles));
-  c.positions = c.topology || (!lent.geometry && !sameArray(s.positions, scene.positions));
-  c.geometry = c.positions || (!lent.geometry && !sameArray(s.normals, scene.normals));
-  c.relink = c.geometry || opt.raysPerVertex != options.raysPerVertex ||
-    opt.twoSided != options.twoSided || opt.twist != options.twist || opt.seed != options.seed ||
-    !sameEnvironmentLayout(s.environment, scene.environment);
-  c.relight = c.relink || !sameArray(s.lights, scene.lights) ||
-    opt.lightOversampling != options.lightOversampling;
-  c.materials = c.topology || (!lent.albedo && !sameArray(s.albedo, scene.albedo)) ||
-    (!lent.emission && !sameArray(s.emission, scene.emission));
-  c.rebounce = c.relight || c.materials || !sameEnvironment(s.environment, scene.environment) ||
-    opt.bounces != options.bounces || opt.smoothing != options.smoothing ||
-    opt.featureAngleDegrees != options.featureAngleDegrees;
-  return c;
-}
-
-Backend Solver::Impl::choose(const SolverOptions& opt, SolverStats& st)
+bool Solver::Impl::chooseCuda(const SolverOptions& opt, SolverStats& st)
 {
   if (opt.backend == Backend::Cpu)
   {
     st.backendNote = "CPU requested.";
-    return Backend::Cpu;
+    return false;
   }
-#if LINKGI_HAVE_CUDA
-  if (engine && engineDevices == opt.cudaDevices)
+  const std::string who = opt.backend == Backend::Auto ? "Auto" : "CUDA requested";
+  if (cuda.fits(opt, true))
   {
-    // The devices were found when the engine was made (asking again costs milliseconds).
-    st.backendNote = std::string(opt.backend == Backend::Auto ? "Auto: " : "CUDA requested: ") +
-      std::to_string(engine->deviceCount()) + " CUDA device(s) in use; using the GPU.";
-    return Backend::Cuda;
+    // The devices were found when the backend was made (asking again costs milliseconds).
+    st.backendNote = who + ": " + std::to_string(cudaDevicesFound) + " CUDA device(s) in use; using the GPU.";
+    return true;
   }
-#endif
   std::string why;
-  const std::vector<cuda::DeviceInfo> gpus = cuda::devices(&why);
-  if (gpus.empty())
+  const std::size_t found = cuda::devices(&why).size();
+  if (found == 0)
   {
     if (opt.backend == Backend::Cuda)
     {
       st.warnings.push_back("CUDA backend not available in this build; using the CPU (" + why + ").");
     }
-    st.backendNote = std::string(opt.backend == Backend::Auto ? "Auto" : "CUDA requested") +
-      ": " + why + "; using the CPU.";
-    return Backend::Cpu;
+    st.backendNote = who + ": " + why + "; using the CPU.";
+    return false;
   }
-  st.backendNote = std::string(opt.backend == Backend::Auto ? "Auto: " : "CUDA requested: ") +
-    std::to_string(gpus.size()) + " CUDA device(s) found; using the GPU.";
-  return Backend::Cuda;
+  cudaDevicesFound = int(opt.cudaDevices > 0 ? std::min<std::size_t>(found, opt.cudaDevices) : found);
+  st.backendNote = who + ": " + std::to_string(found) + " CUDA device(s) found; using the GPU.";
+  return true;
+}
+
+void Solver::Impl::runStages(BackendSlot& slot, bool onCuda, const engine::MethodSpec& spec,
+  engine::Changes changes, const Scene& s, const SolverOptions& opt, Solution& sol,
+  SolverStats& st, const ProgressCallback& progress)
+{
+  if (!slot.fits(opt, onCuda))
+  {
+    slot.impl.reset(); // frees the old one's memory before the new one allocates
+    slot.synced = false;
+    slot.impl = onCuda ? spec.createCuda(opt) : spec.createCpu(opt);
+    slot.method = opt.method;
+    slot.cudaDevices = opt.cudaDevices;
+  }
+  const engine::Changes seen = slot.synced ? changes : engine::kEverything;
+  const std::uint32_t stale = staleStages(spec, seen);
+  const std::vector<engine::StageSpec>& stages = spec.stages();
+  double shareSum = 0.0, shareDone = 0.0;
+  for (std::size_t i = 0; i < stages.size(); ++i)
+  {
+    shareSum += (stale >> i & 1u) ? stages[i].progressShare : 0.0;
+  }
+  st.stages = stageRecords(spec, st);
+  slot.synced = false; // until this update has committed
+  try
+  {
+    for (std::size_t i = 0; i < stages.size(); ++i)
+    {
+      if (!(stale >> i & 1u))
+      {
+        continue;
+      }
+      const double lo = shareDone / shareSum, hi = (shareDone += stages[i].progressShare) / shareSum;
+      ProgressCallback window;
+      if (progress)
+      {
+        window = [&progress, lo, hi](const char* stage, double f) { return progress(stage, lo + (hi - lo) * f); };
+      }
+      const engine::StageContext context(s, opt, seen, std::move(window), sol, st, stages[i].name);
+      const std::size_t partsBefore = st.stages.size();
+      const auto start = std::chrono::steady_clock::now();
+      context.check(0.0);
+      slot.impl->run(i, context);
+      double ms = msSince(start);
+      for (std::size_t p = partsBefore; p < st.stages.size(); ++p)
+      {
+        ms -= st.stages[p].ms;
+      }
+      st.stages[i].ran = true;
+      st.stages[i].ms = ms;
+    }
+  }
+  catch (...)
+  {
+    slot.synced = slot.impl->discard();
+    throw;
+  }
+  slot.impl->commit();
+  slot.synced = true;
+  for (StageStats& r : st.stages)
+  {
+    r.runs += r.ran && r.parent.empty();
+  }
+  slot.impl->describe(st);
 }
 
 void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const ProgressCallback& progress)
 {
   const auto start = std::chrono::steady_clock::now();
-  SolverStats st = stats; // lifetime counters carry over; per-update fields reset below
-  st.builtBvh = st.refitBvh = st.builtLinks = st.builtLightLinks = st.ranBounces = false;
-  st.msBvh = st.msLinks = st.msCompress = st.msLightLinks = st.msBounces = st.msSmoothing = 0;
+  SolverStats st = stats; // lifetime counters carry over; per-update fields reset here
+  st.builtBvh = st.refitBvh = false;
+  st.stages.erase(std::remove_if(st.stages.begin(), st.stages.end(),
+                    [](const StageStats& r) { return !r.parent.empty(); }),
+    st.stages.end());
+  for (StageStats& r : st.stages)
+  {
+    r.ran = false;
+    r.ms = 0.0;
+  }
 
   // Unchanged arrays are neither copied nor validated again: the cached ones passed
   // validation unchanged, so equal input arrays would too. A light or material change on
   // a large mesh then costs no more host time than comparing the arrays.
-  Lent lent;
-  lent.geometry = valid && sameArray(input.positions, scene.positions) &&
+  const bool lendGeometry = valid && sameArray(input.positions, scene.positions) &&
     sameArray(input.normals, scene.normals) && sameArray(input.triangles, scene.triangles);
-  lent.albedo = lent.geometry && sameArray(input.albedo, scene.albedo);
-  lent.emission = lent.geometry && sameArray(input.emission, scene.emission);
+  const bool lendAlbedo = lendGeometry && sameArray(input.albedo, scene.albedo);
+  const bool lendEmission = lendGeometry && sameArray(input.emission, scene.emission);
   Scene s;
-  ArrayLoan loan(scene, s, lent.geometry, lent.albedo, lent.emission);
-  if (lent.geometry)
+  ArrayLoan loan(scene, s, lendGeometry, lendAlbedo, lendEmission);
+  if (lendGeometry)
   {
-    if (!lent.albedo)
+    if (!lendAlbedo)
     {
       s.albedo = input.albedo;
     }
-    if (!lent.emission)
+    if (!lendEmission)
     {
       s.emission = input.emission;
     }
     s.lights = input.lights;
     s.environment = input.environment;
-    st.warnings = validateShading(s, opt.albedoPolicy, lent.albedo, lent.emission);
+    st.warnings = validateShading(s, opt.albedoPolicy, lendAlbedo, lendEmission);
   }
   else
   {
@@ -312,56 +304,48 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
     st.warnings = validateScene(s, opt.albedoPolicy);
   }
 
-  const Changes c = detect(s, opt, lent);
+  const engine::Changes knownSame = (lendGeometry ? engine::kGeometry : 0) |
+    (lendAlbedo ? engine::kAlbedo : 0) | (lendEmission ? engine::kEmission : 0);
+  const engine::Changes changes =
+    valid ? engine::changesBetween(s, opt, scene, options, knownSame) : engine::kEverything;
   st.msPrepare = msSince(start);
-  const bool sameBackend = opt.backend == options.backend && opt.cudaDevices == options.cudaDevices &&
-    opt.cudaBvhBuild == options.cudaBvhBuild;
-  if (!c.rebounce && sameBackend)
+  if (changes == 0)
   {
     st.msTotal = msSince(start);
     stats = std::move(st);
     return;
   }
 
-  // New results go into locals and replace the cached ones only when the whole update
-  // succeeded, so an abort or error leaves the previous solution and caches intact.
-  auto t = std::chrono::steady_clock::now();
-  Topology newTopology;
-  std::vector<Vec3f> newShifts, newFaceNormals;
-  if (c.topology)
-  {
-    newTopology = Topology::build(s.vertexCount(), s.triangles);
-  }
-  const Topology& topo = c.topology ? newTopology : topology;
-  if (c.geometry)
-  {
-    newShifts = originShifts(s, topo);
-    newFaceNormals = frontFaceNormals(s);
-  }
-  const HostGeometry g{ &topo, c.geometry ? &newShifts : &shifts,
-    c.geometry ? &newFaceNormals : &faceNormals };
-  const double msHost = msSince(t);
-  st.msTopology = msHost;
-
+  // New results go into `sol` and the backend's staging, and replace the cached ones only
+  // when the whole update succeeded, so an abort or error leaves the previous solution.
+  const engine::MethodSpec& spec = engine::methodSpec(opt.method);
   Solution sol = std::move(spare); // same sizes as a rule: no allocation, no page faults
   spare = Solution();
-  const Backend backend = choose(opt, st);
-  if (backend != Backend::Cuda || !solveCuda(s, opt, c, g, sol, st, progress))
+  st.method = spec.name();
+  bool ran = false;
+  if (chooseCuda(opt, st))
   {
-    solveCpu(s, opt, c, g, sol, st, progress);
+    try
+    {
+      runStages(cuda, true, spec, changes, s, opt, sol, st, progress);
+      cpu.synced = false; // the CPU's caches no longer follow the committed scene
+      ran = true;
+    }
+    catch (const CudaError& e)
+    {
+      // Out of memory, a device that vanished, a kernel fault: the CPU takes over.
+      cuda.impl.reset();
+      st.warnings.push_back(std::string("The CUDA backend failed (") + e.what() + "); using the CPU.");
+      st.backendNote = "CUDA failed; using the CPU.";
+    }
   }
-  st.msBvh += msHost;
+  if (!ran)
+  {
+    runStages(cpu, false, spec, changes, s, opt, sol, st, progress);
+    cuda.synced = false;
+  }
 
   // Commit: nothing below can fail.
-  if (c.topology)
-  {
-    topology = std::move(newTopology);
-  }
-  if (c.geometry)
-  {
-    shifts = std::move(newShifts);
-    faceNormals = std::move(newFaceNormals);
-  }
   loan.commit();
   scene = std::move(s);
   options = opt;
@@ -371,187 +355,5 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
   st.elements = solution.elementCount();
   st.msTotal = msSince(start);
   stats = std::move(st);
-}
-
-bool Solver::Impl::solveCuda(const Scene& s, const SolverOptions& opt, const Changes& c,
-  const HostGeometry& g, Solution& sol, SolverStats& st, const ProgressCallback& progress)
-{
-#if LINKGI_HAVE_CUDA
-  try
-  {
-    if (opt.raysPerVertex > cuda::kMaxCompressRays)
-    {
-      throw CudaError("the CUDA backend merges at most " + std::to_string(cuda::kMaxCompressRays) +
-          " rays per vertex",
-        false);
-    }
-    if (!engine || engineDevices != opt.cudaDevices)
-    {
-      engine.reset();
-      cudaValid = false;
-      engine = std::make_unique<cuda::Engine>(opt.cudaDevices);
-      engineDevices = opt.cudaDevices;
-    }
-    const bool all = !cudaValid || opt.cudaBvhBuild != options.cudaBvhBuild;
-    cuda::StageMask mask;
-    mask.topology = all || c.topology;
-    mask.positions = all || c.positions;
-    mask.geometry = all || c.geometry;
-    mask.relink = all || c.relink;
-    mask.relight = all || c.relight;
-    mask.materials = all || c.materials;
-    cudaValid = false; // until this update has succeeded
-    engine->update(cuda::HostInputs{ s, *g.topology, *g.shifts, *g.faceNormals }, opt, mask, sol,
-      st, progress);
-    cudaValid = true;
-    cpuValid = false; // the CPU's caches no longer follow the scene
-    tracerMatchesScene = false;
-    st.backend = "cuda";
-    st.device = engine->description();
-    st.devices = engine->deviceCount();
-    const std::vector<std::size_t> linked = engine->linkedElements();
-    st.linkedPerDevice.assign(linked.begin(), linked.end());
-    engine->linkProfile(st);
-    st.gpuPeakBytes = engine->peakBytes();
-    return true;
-  }
-  catch (const CudaError& e)
-  {
-    // Out of memory, a device that vanished, a kernel fault: the CPU takes over.
-    engine.reset();
-    st.warnings.push_back(std::string("The CUDA backend failed (") + e.what() + "); using the CPU.");
-    st.backendNote = "CUDA failed; using the CPU.";
-    return false;
-  }
-#else
-  (void)s, (void)opt, (void)c, (void)g, (void)sol, (void)st, (void)progress;
-  return false;
-#endif
-}
-
-void Solver::Impl::solveCpu(const Scene& s, const SolverOptions& opt, Changes c,
-  const HostGeometry& g, Solution& sol, SolverStats& st, const ProgressCallback& progress)
-{
-  using clock = std::chrono::steady_clock;
-  if (!cpuValid)
-  {
-    c.relink = c.relight = true; // the caches belong to an older scene (the GPU ran since)
-  }
-  auto t = clock::now();
-  if (!tracer)
-  {
-    tracer = createCpuRayTracer();
-  }
-  if (c.topology || !tracerMatchesScene)
-  {
-    tracerMatchesScene = false;
-    tracer->build(s.positions, s.triangles);
-    st.builtBvh = true;
-    ++st.bvhBuilds;
-  }
-  else if (c.positions)
-  {
-    tracerMatchesScene = false;
-    tracer->refit(s.positions);
-    st.refitBvh = true;
-    ++st.bvhRefits;
-  }
-  st.msBvh = msSince(t);
-
-  LinkStructure newLinks;
-  if (c.relink)
-  {
-    const LinkOptions linkOptions{ opt.raysPerVertex, opt.twoSided, opt.twist, opt.seed };
-    t = clock::now();
-    traceLinkRays(s, *g.shifts, *tracer, linkOptions, hitScratch, stageProgress(progress, 0.0, 0.75));
-    st.msLinks = msSince(t);
-    t = clock::now();
-    newLinks = compressLinks(s, hitScratch, *g.faceNormals, linkOptions, stageProgress(progress, 0.75, 0.85));
-    st.msCompress = msSince(t);
-    st.builtLinks = true;
-    ++st.linkBuilds;
-  }
-  const LinkStructure& linksNow = c.relink ? newLinks : links;
-
-  DirectLightResult newDirect;
-  if (c.relight)
-  {
-    t = clock::now();
-    newDirect = computeDirectLight(s, *g.topology, *g.shifts, *tracer, opt.twoSided,
-      opt.lightOversampling, stageProgress(progress, 0.85, 0.95));
-    st.msLightLinks = msSince(t);
-    st.builtLightLinks = true;
-    ++st.lightLinkBuilds;
-  }
-  const DirectLightResult& directNow = c.relight ? newDirect : direct;
-
-  t = clock::now();
-  const Elements elements{ s.vertexCount(), opt.twoSided };
-  const std::size_t ne = elements.count(), nv = s.vertexCount();
-  const std::vector<Vec3f> envIrradiance = environmentIrradiance(linksNow.environment, s.environment);
-  BounceInputs inputs;
-  inputs.fixedIrradiance.resize(ne);
-  inputs.albedo.resize(ne);
-  for (std::size_t e = 0; e < ne; ++e)
-  {
-    inputs.fixedIrradiance[e] = directNow.irradiance[e] + envIrradiance[e];
-    inputs.albedo[e] = s.albedo[elements.vertexOf(e)];
-  }
-  if (!s.emission.empty())
-  {
-    // Emissive surfaces emit from their front side only.
-    inputs.emission.assign(ne, Vec3f(0.f));
-    std::copy(s.emission.begin(), s.emission.end(), inputs.emission.begin());
-  }
-  std::vector<Vec3f> indirect =
-    iterateBounces(linksNow.transport, inputs, opt.bounces, stageProgress(progress, 0.95, 1.0));
-  for (std::size_t e = 0; e < ne; ++e)
-  {
-    indirect[e] += envIrradiance[e];
-  }
-  st.msBounces = msSince(t);
-  st.ranBounces = true;
-  ++st.bounceRuns;
-  if (opt.smoothing)
-  {
-    t = clock::now();
-    const float cosFeature = std::cos(opt.featureAngleDegrees * (kPi / 180.f));
-    indirect = smoothFeatureAware(indirect, *g.topology, s.normals, elements, cosFeature);
-    st.msSmoothing = msSince(t);
-  }
-
-  sol.direct = directNow.irradiance;
-  sol.radiance.resize(ne);
-  for (std::size_t e = 0; e < ne; ++e)
-  {
-    const Vec3f le = (e < nv && !s.emission.empty()) ? s.emission[e] : Vec3f(0.f);
-    sol.radiance[e] = outgoingRadiance(inputs.albedo[e], sol.direct[e], indirect[e], le);
-  }
-  sol.indirect = std::move(indirect);
-
-  // Commit the CPU caches (the update cannot fail after this point).
-  if (c.relink)
-  {
-    links = std::move(newLinks);
-  }
-  if (c.relight)
-  {
-    direct = std::move(newDirect);
-  }
-  tracerMatchesScene = true;
-  cpuValid = true;
-#if LINKGI_HAVE_CUDA
-  cudaValid = false; // the GPU's caches no longer follow `scene`
-#endif
-  st.backend = "cpu";
-  st.device = tracer->name();
-  st.devices = 0;
-  st.linkedPerDevice.clear();
-  st.gpuPeakBytes = 0;
-  st.rays = links.rays;
-  st.linksRaw = links.rawLinks;
-  st.linksCompressed = links.transport.nonZeros();
-  st.linkBytes = links.transport.bytes() + links.environment.bytes();
-  st.lightRays = direct.shadowRays;
 }
 }

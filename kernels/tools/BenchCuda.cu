@@ -111,15 +111,14 @@ GatherBenchmark benchmarkGather(const Scene& input, const SolverOptions& options
 {
   Scene scene = input;
   validateScene(scene);
-  const Topology topology = Topology::build(scene.vertexCount(), scene.triangles);
-  const std::vector<Vec3f> shifts = originShifts(scene, topology);
-  const std::vector<Vec3f> faceNormals = frontFaceNormals(scene);
-  Engine engine(1);
+  Engine gpu(1);
   Solution solution;
   SolverStats stats;
-  engine.update(HostInputs{ scene, topology, shifts, faceNormals }, options, StageMask{}, solution,
-    stats, {});
-  const CsrView w = engine.transport();
+  for (std::size_t stage : { links::kGeometryStage, links::kLinkStage, links::kLightLinkStage, links::kBounceStage })
+  {
+    gpu.run(stage, engine::StageContext(scene, options, engine::kEverything, {}, solution, stats, "bench"));
+  }
+  const CsrView w = gpu.transport();
   LINKGI_CUDA_CHECK(cudaSetDevice(0));
   cudaStream_t stream;
   LINKGI_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));

@@ -231,7 +231,7 @@ UpdateRuns runUpdates(const Scene& scene, const Args& args)
     solver.update(scene, args.options);
     const SolverStats& st = solver.stats();
     runs.fullTimes.push_back(st.msTotal);
-    runs.linkTimes.push_back(st.msLinks + st.msCompress);
+    runs.linkTimes.push_back(st.ms("Links") + st.ms("Compress"));
     const std::string profile = linkProfile(st);
     runs.profile += (runs.profile.empty() || profile.empty() ? "" : ",") + profile;
     if (st.msTotal < runs.full.msTotal || r == 0)
@@ -241,7 +241,7 @@ UpdateRuns runUpdates(const Scene& scene, const Args& args)
     for (const Scene* s : { &moved, &scene })
     {
       solver.update(*s, args.options);
-      if (solver.stats().builtLinks)
+      if (solver.stats().ran("Links"))
       {
         throw Error("A light-only change rebuilt the links.");
       }
@@ -273,9 +273,9 @@ std::string timingJson(const UpdateRuns& runs)
   }
   const SolverStats& l = runs.light;
   out << "],\"link_profile_runs\":[" << runs.profile << "],\"ms_prepare\":" << runs.full.msPrepare
-      << ",\"ms_topology\":" << runs.full.msTopology << ",\"light_update_ms\":{\"prepare\":"
-      << l.msPrepare << ",\"upload\":" << l.msBvh << ",\"light_links\":" << l.msLightLinks
-      << ",\"bounces\":" << l.msBounces << ",\"finish\":" << l.msSmoothing << "}";
+      << ",\"ms_topology\":" << runs.full.ms("Topology") << ",\"light_update_ms\":{\"prepare\":"
+      << l.msPrepare << ",\"upload\":" << l.ms("Geometry") << ",\"light_links\":" << l.ms("LightLinks")
+      << ",\"bounces\":" << l.ms("Bounces") << ",\"finish\":" << l.ms("Smoothing") << "}";
   if (runs.full.devices > 0)
   {
     out << ",\"link_profile\":[" << linkProfile(runs.full) << "]";
@@ -303,8 +303,8 @@ std::string deformationJson(const std::string& name, const Scene& scene, const A
   const SolverStats& d = deforming.stats();
   std::ostringstream out;
   out << ",\"ms_deform_update\":" << d.msTotal << ",\"deform_bvh\":\""
-      << (d.builtBvh ? "rebuild" : "refit") << "\",\"deform_ms_bvh\":" << d.msBvh
-      << ",\"deform_rays_per_s\":" << d.rays / (d.msLinks * 1e-3);
+      << (d.builtBvh ? "rebuild" : "refit") << "\",\"deform_ms_bvh\":" << d.ms("Geometry") + d.ms("Topology")
+      << ",\"deform_rays_per_s\":" << d.rays / (d.ms("Links") * 1e-3);
   return out.str();
 }
 
@@ -330,10 +330,21 @@ std::string yardstickJson(const Scene& scene, const SolverStats& full, const Arg
   {
     const double bare = bench::bareEmbreeRaysPerSecond(scene, args.options);
     out << ",\"bare_embree_rays_per_s\":" << bare << ",\"ray_rate_ratio\":"
-        << full.rays / (full.msLinks * 1e-3) / bare;
+        << full.rays / (full.ms("Links") * 1e-3) / bare;
   }
 #endif
   (void)scene, (void)full, (void)args;
+  return out.str();
+}
+
+/// Every stage and part of the method that ran the update, by name: "Links":12.3,...
+std::string stagesJson(const SolverStats& s)
+{
+  std::ostringstream out;
+  for (std::size_t i = 0; i < s.stages.size(); ++i)
+  {
+    out << (i ? "," : "") << "\"" << s.stages[i].name << "\":" << s.stages[i].ms;
+  }
   return out.str();
 }
 
@@ -346,22 +357,24 @@ void printRecord(const std::string& name, const Scene& scene, const UpdateRuns& 
   {
     perDevice << (i ? "," : "") << full.linkedPerDevice[i];
   }
-  std::printf("{\"scene\":\"%s\",\"backend\":\"%s\",\"device\":\"%s\",\"devices\":%d,\"threads\":%d,"
-              "\"vertices\":%zu,\"triangles\":%zu,\"rays_per_vertex\":%u,\"bounces\":%u,\"rays\":%llu,"
-              "\"rays_per_s\":%.4g,\"links_raw\":%llu,\"links_compressed\":%llu,\"link_bytes\":%llu,"
-              "\"light_rays\":%llu,\"ms_bvh\":%.3f,\"ms_links\":%.3f,\"ms_compress\":%.3f,"
-              "\"ms_link_generation\":%.3f,\"ms_light_links\":%.3f,\"ms_bounces\":%.3f,"
-              "\"ms_smoothing\":%.3f,\"ms_full_update\":%.3f,\"ms_full_update_cold\":%.3f,"
-              "\"ms_light_update\":%.3f,\"gpu_peak_mb\":%.1f,\"host_peak_mb\":%.1f,"
-              "\"linked_per_device\":[%s]%s,\"note\":\"%s\"}\n",
-    name.c_str(), full.backend.c_str(), full.device.c_str(), full.devices, workerCount(),
-    scene.vertexCount(), scene.triangleCount(), args.options.raysPerVertex, args.options.bounces,
-    (unsigned long long)full.rays, full.rays / (full.msLinks * 1e-3),
+  const double msLinks = full.ms("Links"), msCompress = full.ms("Compress");
+  std::printf("{\"scene\":\"%s\",\"method\":\"%s\",\"backend\":\"%s\",\"device\":\"%s\",\"devices\":%d,"
+              "\"threads\":%d,\"vertices\":%zu,\"triangles\":%zu,\"rays_per_vertex\":%u,\"bounces\":%u,"
+              "\"rays\":%llu,\"rays_per_s\":%.4g,\"links_raw\":%llu,\"links_compressed\":%llu,"
+              "\"link_bytes\":%llu,\"light_rays\":%llu,\"ms_bvh\":%.3f,\"ms_links\":%.3f,"
+              "\"ms_compress\":%.3f,\"ms_link_generation\":%.3f,\"ms_light_links\":%.3f,"
+              "\"ms_bounces\":%.3f,\"ms_smoothing\":%.3f,\"ms_full_update\":%.3f,"
+              "\"ms_full_update_cold\":%.3f,\"ms_light_update\":%.3f,\"gpu_bytes_allocated\":%llu,"
+              "\"host_peak_mb\":%.1f,\"linked_per_device\":[%s],\"stages_ms\":{%s}%s,\"note\":\"%s\"}\n",
+    name.c_str(), full.method.c_str(), full.backend.c_str(), full.device.c_str(), full.devices,
+    workerCount(), scene.vertexCount(), scene.triangleCount(), args.options.raysPerVertex,
+    args.options.bounces, (unsigned long long)full.rays, full.rays / (msLinks * 1e-3),
     (unsigned long long)full.linksRaw, (unsigned long long)full.linksCompressed,
-    (unsigned long long)full.linkBytes, (unsigned long long)full.lightRays, full.msBvh,
-    full.msLinks, full.msCompress, full.msLinks + full.msCompress, full.msLightLinks,
-    full.msBounces, full.msSmoothing, full.msTotal, runs.cold.msTotal, runs.light.msTotal,
-    full.gpuPeakBytes / 1048576.0, peakHostMb(), perDevice.str().c_str(), extra.c_str(),
+    (unsigned long long)full.linkBytes, (unsigned long long)full.lightRays,
+    full.ms("Geometry") + full.ms("Topology"), msLinks, msCompress, msLinks + msCompress,
+    full.ms("LightLinks"), full.ms("Bounces"), full.ms("Smoothing"), full.msTotal,
+    runs.cold.msTotal, runs.light.msTotal, (unsigned long long)full.gpuBytesAllocated,
+    peakHostMb(), perDevice.str().c_str(), stagesJson(full).c_str(), extra.c_str(),
     full.backendNote.c_str());
   for (const std::string& w : full.warnings)
   {

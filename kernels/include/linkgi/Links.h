@@ -125,6 +125,10 @@ LINKGI_HOST_DEVICE inline Vec3f elementRayOrigin(const Vec3f& position, const Ve
   return position + sideNormal * eps + shift;
 }
 
+/// Lenv(j): the radiance of each environment texel the matrix Wenv gathers (one entry, the
+/// colour, for a constant environment; colour x texel for a lat-long map).
+std::vector<Vec3f> environmentTexelRadiance(const Environment& environment);
+
 /// Ray offset along the normal used throughout: a small fraction of the scene size.
 float rayEpsilon(const Scene& scene);
 

@@ -17,7 +17,6 @@ double msSince(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Asks the caller whether to go on; the fractions follow the CPU path's stage ranges.
 /// Lets kernels on `from` access `to`'s memory; once per process and pair (enabling it
 /// twice is an error that compute-sanitizer reports).
 bool enablePeerAccess(int from, int to)
@@ -45,14 +44,6 @@ bool enablePeerAccess(int from, int to)
 
 /// CudaBvhUpdate::Auto rebuilds a refit tree whose surface-area cost grew by this factor.
 constexpr double kRebuildGrowth = 1.5;
-
-void ask(const ProgressCallback& progress, const char* stage, double fraction)
-{
-  if (progress && !progress(stage, fraction))
-  {
-    throw Aborted();
-  }
-}
 
 template <typename T>
 void uploadVector(GPUBuffer<T>& buffer, const std::vector<T>& host, cudaStream_t stream)
@@ -234,36 +225,42 @@ void Engine::samplePeakMemory()
   }
 }
 
-void Engine::update(const HostInputs& in, const SolverOptions& options, const StageMask& mask,
-  Solution& solution, SolverStats& stats, const ProgressCallback& progress)
+void Engine::run(std::size_t stage, const engine::StageContext& c)
 {
-  using clock = std::chrono::steady_clock;
-  auto t = clock::now();
-  uploadGeometry(in, mask, stats, options);
-  stats.msBvh = msSince(t);
-  samplePeakMemory();
-  if (mask.relink)
+  if (c.options.raysPerVertex > kMaxCompressRays)
   {
-    ask(progress, "links", 0.0);
-    buildLinks(in, options, stats, progress);
-    ask(progress, "compress", 0.85);
-    stats.builtLinks = true;
-    ++stats.linkBuilds;
-    samplePeakMemory();
+    throw CudaError("the CUDA backend merges at most " + std::to_string(kMaxCompressRays) +
+        " rays per vertex",
+      false);
   }
-  if (mask.relight)
+  switch (stage)
   {
-    ask(progress, "light links", 0.85);
-    t = clock::now();
-    computeDirectLight(in, options, stats);
-    stats.msLightLinks = msSince(t);
-    stats.builtLightLinks = true;
-    ++stats.lightLinkBuilds;
-    ask(progress, "light links", 0.95);
+    case links::kGeometryStage:
+      updateGeometry(c);
+      break;
+    case links::kLinkStage:
+      buildLinks(c);
+      break;
+    case links::kLightLinkStage:
+      computeDirectLight(c);
+      break;
+    case links::kBounceStage:
+      bounceAndFinish(c);
+      break;
   }
-  bounceAndFinish(in, options, solution, stats, progress);
   samplePeakMemory();
+}
+
+void Engine::describe(SolverStats& stats) const
+{
   const EngineDevice& d0 = *devices[0];
+  stats.backend = "cuda";
+  stats.device = name;
+  stats.devices = deviceCount();
+  const std::vector<std::size_t> linked = linkedElements();
+  stats.linkedPerDevice.assign(linked.begin(), linked.end());
+  linkProfile(stats);
+  stats.gpuBytesAllocated = peak;
   stats.rays = rays;
   stats.linksRaw = rawLinks;
   stats.linksCompressed = d0.transport.nonZeros;
@@ -271,10 +268,24 @@ void Engine::update(const HostInputs& in, const SolverOptions& options, const St
   stats.lightRays = lightRays;
 }
 
-void Engine::uploadGeometry(const HostInputs& in, const StageMask& mask, SolverStats& stats,
-  const SolverOptions& options)
+void Engine::updateGeometry(const engine::StageContext& c)
 {
-  const Scene& s = in.scene;
+  const Scene& s = c.scene;
+  const SolverOptions& options = c.options;
+  SolverStats& stats = c.stats;
+  struct
+  {
+    bool topology, positions, geometry;
+  } const mask{ (c.changes & engine::kTopology) != 0, (c.changes & (engine::kTopology | engine::kPositions)) != 0,
+    (c.changes & engine::kGeometry) != 0 };
+  auto t = std::chrono::steady_clock::now();
+  if (mask.topology)
+  {
+    topology = Topology::build(s.vertexCount(), s.triangles);
+  }
+  shifts = originShifts(s, topology);
+  faceNormals = frontFaceNormals(s);
+  c.part("Topology", msSince(t));
   HostBvh sah; // CudaBvhBuild::HostSah: built once here, uploaded to every device
   for (std::size_t i = 0; i < devices.size(); ++i)
   {
@@ -291,8 +302,8 @@ void Engine::uploadGeometry(const HostInputs& in, const StageMask& mask, SolverS
     if (mask.geometry)
     {
       uploadVector(d.normals, s.normals, d.stream);
-      uploadVector(d.shifts, in.shifts, d.stream);
-      uploadVector(d.faceNormals, in.faceNormals, d.stream);
+      uploadVector(d.shifts, shifts, d.stream);
+      uploadVector(d.faceNormals, faceNormals, d.stream);
     }
     bool rebuild = mask.topology || (mask.positions && options.cudaBvhUpdate == CudaBvhUpdate::Rebuild);
     if (!rebuild && mask.positions)
@@ -328,17 +339,12 @@ void Engine::uploadGeometry(const HostInputs& in, const StageMask& mask, SolverS
   d0.use();
   if (mask.topology)
   {
-    const Topology& topo = in.topology;
+    const Topology& topo = topology;
     uploadVector(d0.neighbourOffsets, topo.neighbourOffsets, d0.stream);
     uploadVector(d0.neighbours, topo.neighbours, d0.stream);
     uploadVector(d0.vertexEdges, topo.vertexEdges, d0.stream);
     d0.edges.upload(reinterpret_cast<const Index*>(topo.edges.data()), 2 * topo.edges.size(), d0.stream);
     static_assert(sizeof(topo.edges[0]) == 2 * sizeof(Index), "edges are pairs of indices");
-  }
-  if (mask.materials)
-  {
-    uploadVector(d0.albedo, s.albedo, d0.stream);
-    uploadVector(d0.emission, s.emission, d0.stream);
   }
   for (const auto& d : devices)
   {
@@ -346,9 +352,10 @@ void Engine::uploadGeometry(const HostInputs& in, const StageMask& mask, SolverS
   }
 }
 
-void Engine::computeDirectLight(const HostInputs& in, const SolverOptions& options, SolverStats&)
+void Engine::computeDirectLight(const engine::StageContext& c)
 {
-  const Scene& s = in.scene;
+  const Scene& s = c.scene;
+  const SolverOptions& options = c.options;
   EngineDevice& d = *devices[0];
   d.use();
   const Index nv = Index(s.vertexCount());
@@ -361,7 +368,7 @@ void Engine::computeDirectLight(const HostInputs& in, const SolverOptions& optio
       lit.push_back(light);
     }
   }
-  const std::size_t edges = in.topology.edges.size();
+  const std::size_t edges = topology.edges.size();
   d.direct.resize(elements.count());
   d.direct.fillZero(d.stream);
   d.lights.upload(lit, d.stream);
@@ -392,30 +399,25 @@ void Engine::computeDirectLight(const HostInputs& in, const SolverOptions& optio
   lightRays = traced;
 }
 
-void Engine::bounceAndFinish(const HostInputs& in, const SolverOptions& options,
-  Solution& solution, SolverStats& stats, const ProgressCallback& progress)
+void Engine::bounceAndFinish(const engine::StageContext& c)
 {
   using clock = std::chrono::steady_clock;
-  const Scene& s = in.scene;
+  const Scene& s = c.scene;
+  const SolverOptions& options = c.options;
+  Solution& solution = c.solution;
   EngineDevice& d = *devices[0];
   d.use();
-  auto t = clock::now();
+  if (c.changes & (engine::kTopology | engine::kAlbedo | engine::kEmission))
+  {
+    uploadVector(d.albedo, s.albedo, d.stream);
+    uploadVector(d.emission, s.emission, d.stream);
+  }
   const Elements elements{ s.vertexCount(), options.twoSided };
   const Index ne = Index(elements.count());
-  const Environment& env = s.environment;
   std::vector<Rgba> texels;
-  if (env.hasTexture())
+  for (const Vec3f& r : environmentTexelRadiance(s.environment))
   {
-    texels.reserve(env.texels.size());
-    for (const Vec3f& c : env.texels)
-    {
-      const Vec3f r = env.color * c;
-      texels.push_back({ r.x, r.y, r.z, 0.f });
-    }
-  }
-  else
-  {
-    texels.push_back({ env.color.x, env.color.y, env.color.z, 0.f });
+    texels.push_back({ r.x, r.y, r.z, 0.f });
   }
   d.texelRadiance.upload(texels, d.stream);
   d.envIrradiance.resize(ne);
@@ -436,16 +438,11 @@ void Engine::bounceAndFinish(const HostInputs& in, const SolverOptions& options,
   for (std::uint32_t i = 0; i < options.bounces; ++i)
   {
     const bool last = i + 1 == options.bounces;
-    ask(progress, "bounces", 0.95 + 0.05 * double(i) / options.bounces);
+    c.check(double(i) / options.bounces);
     bounce(d.transport.view(), b, d.fixedIrradiance.data(), d.radiance[i % 2].data(),
       d.indirect.data(), last ? nullptr : d.radiance[(i + 1) % 2].data(), d.stream);
   }
-  d.sync();
-  stats.msBounces = msSince(t);
-  stats.ranBounces = true;
-  ++stats.bounceRuns;
-
-  t = clock::now();
+  const auto t = clock::now();
   FinishParams f;
   f.bounce = b;
   f.indirect = options.bounces > 0 ? d.indirect.data() : nullptr;
@@ -465,6 +462,9 @@ void Engine::bounceAndFinish(const HostInputs& in, const SolverOptions& options,
     cudaMemcpyDeviceToHost));
   LINKGI_CUDA_CHECK(cudaMemcpy(solution.radiance.data(), d.output.data() + 2 * std::size_t(ne),
     ne * sizeof(Vec3f), cudaMemcpyDeviceToHost));
-  stats.msSmoothing = msSince(t);
+  if (options.smoothing)
+  {
+    c.part("Smoothing", msSince(t)); // with the read-back, as on the CPU
+  }
 }
 }

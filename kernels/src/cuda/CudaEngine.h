@@ -1,12 +1,15 @@
-// The solver's CUDA path: scene, BVH, links, light links and bounces resident on the GPU(s),
-// recomputing only the stages the solver asks for. Host-facing: no device code here.
+// The link-structure method's CUDA backend: scene, BVH, links, light links and bounces
+// resident on the GPU(s); the orchestrator (Solver.cpp) says which stages to run. Host-facing:
+// no device code here.
 #pragma once
 
 #include "DeviceBvh.h"
 #include "Kernels.h"
 
+#include "engine/Pipeline.h"
+#include "links/LinksBackends.h"
+
 #include "linkgi/Links.h"
-#include "linkgi/Solver.h"
 #include "linkgi/Topology.h"
 
 #include <functional>
@@ -16,26 +19,6 @@
 
 namespace linkgi::cuda
 {
-/// Which stages the solver's change detection asks for (see Solver.cpp).
-struct StageMask
-{
-  bool topology = true;  ///< triangles changed: rebuild the BVH, new topology
-  bool positions = true; ///< vertices moved: refit or rebuild the BVH
-  bool geometry = true;  ///< positions or normals changed: new shifts and face normals
-  bool relink = true;    ///< links
-  bool relight = true;   ///< light links
-  bool materials = true; ///< albedo or emission
-};
-
-/// The host arrays of one update (owned by the solver).
-struct HostInputs
-{
-  const Scene& scene;
-  const Topology& topology;
-  const std::vector<Vec3f>& shifts;
-  const std::vector<Vec3f>& faceNormals;
-};
-
 /// A device matrix in the row-start / row-count form of CsrView. The entry buffers keep the
 /// worst-case capacity (3 n_C or n_C per row), so GPUs can append rows without a merge.
 struct DeviceCsr
@@ -52,20 +35,21 @@ struct DeviceCsr
 /// the links (light links, bounces, output).
 struct EngineDevice;
 
-class Engine
+class Engine final : public engine::MethodBackend
 {
 public:
   /// Uses up to `maxDevices` devices (0 = all). Throws CudaError when none can be used.
   explicit Engine(int maxDevices);
-  ~Engine();
+  ~Engine() override;
   Engine(const Engine&) = delete;
   Engine& operator=(const Engine&) = delete;
 
-  /// Runs the stages of `mask` (and always the bounces and smoothing); fills `solution`
-  /// and the stage fields of `stats`. Throws CudaError or Aborted; after a throw the
-  /// engine's caches are invalid and the next update must pass a full mask.
-  void update(const HostInputs& in, const SolverOptions& options, const StageMask& mask,
-    Solution& solution, SolverStats& stats, const ProgressCallback& progress);
+  /// Runs one of the stages of links::Stage. Throws CudaError or Aborted; after a throw the
+  /// engine's caches are lost (discard() says so) and the next update runs every stage.
+  void run(std::size_t stage, const engine::StageContext& context) override;
+  void commit() override {}
+  bool discard() override { return false; }
+  void describe(SolverStats& stats) const override;
 
   int deviceCount() const;
   /// "NVIDIA H100 80GB HBM3" or "2 x NVIDIA H200".
@@ -80,19 +64,20 @@ public:
   CsrView transport() const;
 
 private:
-  void uploadGeometry(const HostInputs& in, const StageMask& mask, SolverStats& stats,
-    const SolverOptions& options);
-  void buildLinks(const HostInputs& in, const SolverOptions& options, SolverStats& stats,
-    const ProgressCallback& progress);
-  void computeDirectLight(const HostInputs& in, const SolverOptions& options, SolverStats& stats);
-  void bounceAndFinish(const HostInputs& in, const SolverOptions& options, Solution& solution,
-    SolverStats& stats, const ProgressCallback& progress);
+  void updateGeometry(const engine::StageContext& c);
+  void buildLinks(const engine::StageContext& c);
+  void computeDirectLight(const engine::StageContext& c);
+  void bounceAndFinish(const engine::StageContext& c);
   void samplePeakMemory();
   /// work(device, index) on every device at once: the first on this thread, the others on
   /// their workers; rethrows the first exception after all have finished.
   void runOnAllDevices(const std::function<void(EngineDevice&, std::size_t)>& work);
 
   std::vector<std::unique_ptr<EngineDevice>> devices;
+  // Host copies of what the light links read on the host side (edge count) and what the
+  // geometry stage derives from the scene.
+  Topology topology;
+  std::vector<Vec3f> shifts, faceNormals;
   std::string name;
   std::size_t peak = 0;
   std::uint64_t rawLinks = 0, rays = 0, lightRays = 0;

@@ -279,7 +279,7 @@ struct LinkStage
   const std::vector<Vec3f>& directions;
   MatrixSink& sink;
   BatchScheduler& scheduler;
-  const ProgressCallback& progress;
+  const engine::StageContext& context;
   std::atomic<Index> done{ 0 };
 
   void run(EngineDevice& d, std::size_t i)
@@ -303,9 +303,9 @@ struct LinkStage
         linkBatch(d, job, sink, first, count);
         done += count;
         // Only the caller's thread may ask: the callback may touch GUI state.
-        if (i == 0 && progress && !progress("links", 0.75 * double(done) / std::max<Index>(job.elements, 1)))
+        if (i == 0)
         {
-          throw Aborted();
+          context.check(double(done) / std::max<Index>(job.elements, 1));
         }
       }
       d.scratch.rawLinks.download(&d.rawLinks, 1);
@@ -353,11 +353,11 @@ void Engine::runOnAllDevices(const std::function<void(EngineDevice&, std::size_t
   }
 }
 
-void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, SolverStats& stats,
-  const ProgressCallback& progress)
+void Engine::buildLinks(const engine::StageContext& c)
 {
+  const SolverOptions& options = c.options;
   const auto start = std::chrono::steady_clock::now();
-  const LinkJob job = makeJob(in.scene, options);
+  const LinkJob job = makeJob(c.scene, options);
   const Index ne = job.elements, n = options.raysPerVertex;
   const std::vector<Vec3f> dirs = makeDirectionSet(n);
   EngineDevice& d0 = *devices[0];
@@ -369,7 +369,7 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
     all.push_back(d.get());
   }
   BatchScheduler scheduler(ne, all);
-  LinkStage stage{ job, dirs, sink, scheduler, progress };
+  LinkStage stage{ job, dirs, sink, scheduler, c };
   runOnAllDevices([&stage](EngineDevice& d, std::size_t i) { stage.run(d, i); });
 
   rawLinks = 0;
@@ -384,7 +384,6 @@ void Engine::buildLinks(const HostInputs& in, const SolverOptions& options, Solv
   d0.environment.nonZeros = sink.envUsed;
   rays = std::uint64_t(ne) * n;
   const double msAll = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  stats.msCompress = std::min(msCompress, msAll);
-  stats.msLinks = msAll - stats.msCompress;
+  c.part("Compress", std::min(msCompress, msAll));
 }
 }

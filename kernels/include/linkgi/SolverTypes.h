@@ -1,0 +1,140 @@
+// What the solver takes (options) and gives (solution, statistics); no solver code here, so
+// backends and tools can include it without the orchestrator.
+#pragma once
+
+#include "linkgi/Scene.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace linkgi
+{
+/// How the indirect light is computed. Every method writes the same Solution.
+enum class Method
+{
+  Links ///< the link structure of Schmitz, Tavenrath & Kobbelt 2008 (default)
+};
+
+/// Where the solver runs.
+enum class Backend
+{
+  Auto, ///< CUDA when this build has it and a CUDA device exists, else the CPU (default)
+  Cpu,  ///< Embree and all cores
+  Cuda  ///< the GPU(s); falls back to the CPU with a warning when no device or memory is left
+};
+
+/// CUDA backend: what a deformation (same triangles, moved vertices) does to the GPU's BVH.
+enum class CudaBvhUpdate
+{
+  Auto,    ///< refit while the tree stays tight, rebuild once its box surface area has grown
+           ///< by half since its build (boxes of a refit tree swell as the mesh deforms)
+  Rebuild, ///< always a new linear BVH (a millisecond for 200k triangles)
+  Refit    ///< always new boxes for the old tree
+};
+
+/// CUDA backend: where its BVH is built.
+enum class CudaBvhBuild
+{
+  Gpu,    ///< a linear BVH built on the GPU in about a millisecond (default)
+  HostSah ///< a binned SAH tree built on the CPU: ~30% fewer nodes per ray, ~100x the build
+};
+
+struct SolverOptions
+{
+  /// The solution method. Default Links.
+  linkgi::Method method = linkgi::Method::Links;
+  /// n_C: directions per vertex, a perfect square k*k (traced in 4x4 blocks). Default 256.
+  std::uint32_t raysPerVertex = 256;
+  /// n_B: Jacobi bounces of indirect light. Default 3.
+  std::uint32_t bounces = 3;
+  /// Feature-aware one-ring smoothing of the indirect irradiance (Eq. 5-6). Default on.
+  bool smoothing = true;
+  /// alpha_f: neighbours whose normals differ by more than this (degrees) are not averaged.
+  float featureAngleDegrees = 30.f;
+  /// Two-sided elements: every vertex also has a back side (normal -n) with its own value.
+  /// Off (default): a ray hitting the back of a triangle is blocked and sees black.
+  bool twoSided = false;
+  /// Rotate the shared direction set by a random angle about each vertex normal, so the
+  /// fixed pattern does not alias into structured artefacts. Default on.
+  bool twist = true;
+  /// Seed of the per-vertex twist angles; results are deterministic for a given seed.
+  std::uint32_t seed = 0;
+  /// Shadow rays also at the 1:4 subdivision points (edge midpoints) of the one-ring, so
+  /// hard shadow edges do not alias onto vertices. Default on.
+  bool lightOversampling = true;
+  AlbedoPolicy albedoPolicy = AlbedoPolicy::Clamp;
+  /// CPU, CUDA, or Auto (CUDA when a device exists). Default Auto.
+  Backend backend = Backend::Auto;
+  /// CUDA: at most this many GPUs (0 = all of them). Default 0.
+  int cudaDevices = 0;
+  /// CUDA: BVH update on deformation. Default Auto.
+  CudaBvhUpdate cudaBvhUpdate = CudaBvhUpdate::Auto;
+  /// CUDA: where the BVH is built. Default Gpu.
+  CudaBvhBuild cudaBvhBuild = CudaBvhBuild::Gpu;
+};
+
+/// Checks the options every method shares; throws linkgi::Error naming the bad one. The one
+/// home of these limits: the filter and the tools call it too.
+void validateOptions(const SolverOptions& options);
+
+/// Per-element results. Elements are the vertices; with two-sided elements the back sides
+/// follow the front sides (element vertexCount + i is the back of vertex i).
+struct Solution
+{
+  std::vector<Vec3f> direct;   ///< E_d: irradiance from the point, spot and directional lights
+  std::vector<Vec3f> indirect; ///< E_ind: bounced light, emissive surfaces and environment
+  std::vector<Vec3f> radiance; ///< outgoing L = Le + rho/pi (E_d + E_ind)
+  std::size_t elementCount() const { return direct.size(); }
+};
+
+/// One stage of the method that ran, or a named part of one (its time is not counted in the
+/// stage's own), as the orchestrator records it.
+struct StageStats
+{
+  std::string name;    ///< "Links": field data LinkGI.MsLinks, bench "Links"
+  std::string counter; ///< lifetime run counter, "LinkBuilds"; empty for parts
+  std::string parent;  ///< for a part: the stage it belongs to; empty for a stage
+  bool ran = false;    ///< in the last update
+  double ms = 0.0;     ///< last update, 0 if it did not run
+  std::uint64_t runs = 0; ///< lifetime, over successful updates
+};
+
+/// What the last update computed and how long each stage took.
+struct SolverStats
+{
+  /// The method's stages in pipeline order, and the parts their backends reported.
+  std::vector<StageStats> stages;
+  /// The stage or part called `name`; nullptr when the method has none.
+  const StageStats* stage(const std::string& name) const;
+  bool ran(const std::string& name) const;
+  double ms(const std::string& name) const;
+  /// Lifetime runs of the stage whose counter (or name) is `counter`.
+  std::uint64_t runs(const std::string& counter) const;
+
+  // The acceleration structure (every backend has one): which way it followed the last
+  // geometry change, and lifetime totals.
+  bool builtBvh = false, refitBvh = false;
+  std::uint64_t bvhBuilds = 0, bvhRefits = 0;
+  // Sizes of the current structure (0 where a method has none).
+  std::uint64_t elements = 0, rays = 0, linksRaw = 0, linksCompressed = 0, linkBytes = 0,
+                lightRays = 0;
+  /// The whole last update in milliseconds.
+  double msTotal = 0;
+  /// Of msTotal: copying and validating the scene and finding what changed (host).
+  double msPrepare = 0;
+  std::vector<std::string> warnings; ///< from scene validation and backend fallbacks
+  /// Which method and backend ran the last update ("links", "cpu" or "cuda"), on what
+  /// ("embree", "2 x NVIDIA H200"), and why that backend (Auto's choice or a fallback).
+  std::string method, backend, device, backendNote;
+  int devices = 0;                         ///< GPUs the update used (0 on the CPU)
+  std::vector<std::uint64_t> linkedPerDevice; ///< elements (rows) each GPU linked and holds
+  /// Per GPU in the last link stage: batches, and milliseconds busy tracing, compressing
+  /// (GPU time) and in all (its thread's wall time) - how well the batches balanced.
+  std::vector<std::uint32_t> batchesPerDevice;
+  std::vector<double> msTracePerDevice, msCompressPerDevice, msWallPerDevice;
+  /// GPU memory the engine itself had allocated at its peak during the update, all GPUs
+  /// together (not the device's total - free, which counts the CUDA context and others).
+  std::uint64_t gpuBytesAllocated = 0;
+};
+}

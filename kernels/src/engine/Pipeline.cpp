@@ -1,0 +1,134 @@
+#include "engine/Pipeline.h"
+
+#include "linkgi/Error.h"
+#include "linkgi/Sampling.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace linkgi
+{
+namespace
+{
+/// Bitwise equality. One thread: on the 16-core GPU machine splitting the comparison over
+/// the thread pool measured twice as slow as a single memcmp of conference's 8 MB.
+template <typename T>
+bool sameArray(const std::vector<T>& a, const std::vector<T>& b)
+{
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), sizeof(T) * a.size()) == 0);
+}
+}
+
+void validateOptions(const SolverOptions& options)
+{
+  if (options.bounces > 1000)
+  {
+    throw Error("The number of bounces must be at most 1000.");
+  }
+  if (!isPerfectSquare(options.raysPerVertex))
+  {
+    throw Error("The number of rays per vertex must be a perfect square (k*k, e.g. 64, 256, "
+                "1024); got " + std::to_string(options.raysPerVertex) + ".");
+  }
+  if (!std::isfinite(options.featureAngleDegrees))
+  {
+    throw Error("The feature angle must be a finite number of degrees.");
+  }
+  if (options.cudaDevices < 0)
+  {
+    throw Error("The number of CUDA devices must be 0 (all) or more; got " +
+      std::to_string(options.cudaDevices) + ".");
+  }
+}
+
+const StageStats* SolverStats::stage(const std::string& name) const
+{
+  for (const StageStats& s : stages)
+  {
+    if (s.name == name)
+    {
+      return &s;
+    }
+  }
+  return nullptr;
+}
+
+bool SolverStats::ran(const std::string& name) const
+{
+  const StageStats* s = stage(name);
+  return s && s->ran;
+}
+
+double SolverStats::ms(const std::string& name) const
+{
+  const StageStats* s = stage(name);
+  return s ? s->ms : 0.0;
+}
+
+std::uint64_t SolverStats::runs(const std::string& counter) const
+{
+  for (const StageStats& s : stages)
+  {
+    if (s.counter == counter || (s.parent.empty() && s.name == counter))
+    {
+      return s.runs;
+    }
+  }
+  return 0;
+}
+
+namespace engine
+{
+Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& before,
+  const SolverOptions& b, Changes knownSame)
+{
+  Changes c = 0;
+  const auto differs = [&](Changes bit, bool different) {
+    if (!(knownSame & bit) && different)
+    {
+      c |= bit;
+    }
+  };
+  differs(kTopology, now.vertexCount() != before.vertexCount() || !sameArray(now.triangles, before.triangles));
+  differs(kPositions, !sameArray(now.positions, before.positions));
+  differs(kNormals, !sameArray(now.normals, before.normals));
+  differs(kLights, !sameArray(now.lights, before.lights));
+  differs(kAlbedo, !sameArray(now.albedo, before.albedo));
+  differs(kEmission, !sameArray(now.emission, before.emission));
+  const Environment &en = now.environment, &eb = before.environment;
+  differs(kEnvironmentLayout, en.hasTexture() != eb.hasTexture() || en.width != eb.width || en.height != eb.height);
+  const bool sameColor = std::memcmp(&en.color, &eb.color, sizeof(Vec3f)) == 0;
+  differs(kEnvironmentRadiance, !sameColor || !sameArray(en.texels, eb.texels));
+  differs(kSampling, o.raysPerVertex != b.raysPerVertex || o.twist != b.twist || o.seed != b.seed);
+  differs(kSides, o.twoSided != b.twoSided);
+  differs(kLightSampling, o.lightOversampling != b.lightOversampling);
+  differs(kIteration, o.bounces != b.bounces);
+  differs(kFiltering, o.smoothing != b.smoothing || o.featureAngleDegrees != b.featureAngleDegrees);
+  differs(kBackendSetup, o.cudaBvhBuild != b.cudaBvhBuild);
+  differs(kPlacement, o.backend != b.backend || o.cudaDevices != b.cudaDevices);
+  if (o.method != b.method)
+  {
+    c = kEverything;
+  }
+  return c;
+}
+
+void StageContext::check(double fraction) const
+{
+  if (progress && !progress(stageName, fraction))
+  {
+    throw Aborted();
+  }
+}
+
+void StageContext::part(const char* name, double ms) const
+{
+  StageStats record;
+  record.name = name;
+  record.parent = stageName;
+  record.ran = true;
+  record.ms = ms;
+  stats.stages.push_back(std::move(record));
+}
+}
+}

@@ -1,0 +1,123 @@
+// The engine's shape: the orchestrator (Solver.cpp) runs a *method*'s stages on a *backend*.
+// A method declares its stages and which input changes make each stale; a backend implements
+// a method's stages and keeps their results between updates. The orchestrator alone decides
+// what is stale, maps progress, times stages, counts runs, picks the backend and falls back
+// to the CPU. See Documentation/Engine.md. Host-only: no device code, no CUDA headers.
+#pragma once
+
+#include "linkgi/Parallel.h"
+#include "linkgi/SolverTypes.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace linkgi::engine
+{
+/// What differs between an update's input and the input of the last update the backend
+/// completed: one bit per kind of change. A backend that never ran, was reset, or lost its
+/// caches sees kEverything.
+using Changes = std::uint32_t;
+enum : Changes
+{
+  kTopology = 1u << 0,          ///< triangles or vertex count
+  kPositions = 1u << 1,         ///< vertex positions
+  kNormals = 1u << 2,           ///< vertex normals
+  kLights = 1u << 3,            ///< the point, spot and directional lights
+  kAlbedo = 1u << 4,            ///< rho
+  kEmission = 1u << 5,          ///< Le of emissive surfaces
+  kEnvironmentLayout = 1u << 6, ///< constant colour vs lat-long map, and the map's size
+  kEnvironmentRadiance = 1u << 7, ///< the environment's colour or texels
+  kSampling = 1u << 8,          ///< options: rays per vertex, twist, seed
+  kSides = 1u << 9,             ///< options: two-sided elements
+  kLightSampling = 1u << 10,    ///< options: light oversampling
+  kIteration = 1u << 11,        ///< options: bounces
+  kFiltering = 1u << 12,        ///< options: smoothing, feature angle
+  kBackendSetup = 1u << 13,     ///< options: how the backend builds its structures (BVH build)
+  kPlacement = 1u << 14,        ///< options: which backend, how many GPUs (no stage reads it)
+  kGeometry = kTopology | kPositions | kNormals,
+  kEverything = ~0u
+};
+
+/// Which bits differ between two inputs (both validated) and two option sets. Bits in
+/// `knownSame` are not compared (the orchestrator lent those arrays from `before`).
+Changes changesBetween(const Scene& now, const SolverOptions& optionsNow, const Scene& before,
+  const SolverOptions& optionsBefore, Changes knownSame = 0);
+
+/// One stage of a method, as the method declares it.
+struct StageSpec
+{
+  const char* name;     ///< "Links": stats, field data (LinkGI.MsLinks), progress label
+  const char* counter;  ///< lifetime run counter ("LinkBuilds"), "" for none
+  Changes dependsOn;    ///< input changes that make it stale
+  std::uint32_t after;  ///< bit i: stale whenever stage i re-runs (i < this stage)
+  double progressShare; ///< its part of a full update's progress, in any unit
+};
+
+/// A stage's window on the update in progress.
+class StageContext
+{
+public:
+  StageContext(const Scene& scene, const SolverOptions& options, Changes changes,
+    ProgressCallback progress, Solution& solution, SolverStats& stats, const char* stage)
+    : scene(scene), options(options), changes(changes), progress(std::move(progress)),
+      solution(solution), stats(stats), stageName(stage)
+  {
+  }
+  const Scene& scene;
+  const SolverOptions& options;
+  /// Since this backend's last completed update; stages read it to skip unchanged uploads.
+  const Changes changes;
+  /// This stage's own progress in [0, 1], mapped onto its window of the update's bar.
+  const ProgressCallback progress;
+  /// Reports `fraction` of the stage done; throws Aborted if the caller asked to stop.
+  void check(double fraction) const;
+  /// The update's result, which the last stage writes (its buffers are those of the
+  /// solution before last, so equal sizes need no allocation).
+  Solution& solution;
+  /// Records `ms` of this stage's time as the part `name` (e.g. "Compress" of "Links").
+  void part(const char* name, double ms) const;
+  /// For sizes and device details (rays, links, bvh builds, per-GPU profile).
+  SolverStats& stats;
+
+private:
+  const char* stageName;
+};
+
+/// One backend's implementation of one method's stages, and their caches.
+class MethodBackend
+{
+public:
+  virtual ~MethodBackend() = default;
+  /// Runs stage `index` of the method's stages(). Results a later update may reuse are
+  /// staged until commit(). Throws Error, Aborted, or CudaError (the orchestrator then
+  /// falls back to the CPU).
+  virtual void run(std::size_t index, const StageContext& context) = 0;
+  /// The update succeeded: staged results become the cache.
+  virtual void commit() = 0;
+  /// The update failed or was aborted. Returns true if the caches are still those of the
+  /// last commit (the next update may reuse them), false if they are lost.
+  virtual bool discard() = 0;
+  /// After a commit: "cpu" / "cuda", what it ran on, the GPUs used (0 on the CPU) and the
+  /// sizes of its current structures into `stats`.
+  virtual void describe(SolverStats& stats) const = 0;
+};
+
+/// A solution method: its stages, and its backends.
+class MethodSpec
+{
+public:
+  virtual ~MethodSpec() = default;
+  virtual const char* name() const = 0; ///< "links"
+  virtual const std::vector<StageSpec>& stages() const = 0;
+  /// The CPU implementation; always exists.
+  virtual std::unique_ptr<MethodBackend> createCpu(const SolverOptions& options) const = 0;
+  /// The CUDA implementation on up to options.cudaDevices GPUs. Throws CudaError when the
+  /// build has none or no device can be used.
+  virtual std::unique_ptr<MethodBackend> createCuda(const SolverOptions& options) const = 0;
+};
+
+/// The registry: the one place that names every method (Methods.cpp).
+const MethodSpec& methodSpec(Method method);
+}

@@ -1,0 +1,199 @@
+// The link-structure method on the CPU: Embree (or our BVH) and all cores.
+#include "links/LinksBackends.h"
+
+#include "linkgi/Bounce.h"
+#include "linkgi/DirectLight.h"
+#include "linkgi/Links.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace linkgi::links
+{
+namespace
+{
+using namespace engine;
+
+double msSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+class LinksCpu final : public MethodBackend
+{
+public:
+  void run(std::size_t stage, const StageContext& c) override
+  {
+    switch (stage)
+    {
+      case kGeometryStage:
+        return updateGeometry(c);
+      case kLinkStage:
+        return buildLinks(c);
+      case kLightLinkStage:
+        return lightLinks(c);
+      case kBounceStage:
+        return bounce(c);
+    }
+  }
+
+  void commit() override
+  {
+    if (linksStaged)
+    {
+      std::swap(links, nextLinks);
+      nextLinks = LinkStructure();
+    }
+    if (directStaged)
+    {
+      std::swap(direct, nextDirect);
+    }
+    linksStaged = directStaged = geometryTouched = false;
+  }
+
+  bool discard() override
+  {
+    linksStaged = directStaged = false;
+    // The tracer and the host geometry are updated in place: after a failure they may
+    // belong to the failed scene, and the next update must rebuild them.
+    const bool whole = !geometryTouched;
+    geometryTouched = false;
+    return whole;
+  }
+
+  void describe(SolverStats& st) const override
+  {
+    st.backend = "cpu";
+    st.device = tracer ? tracer->name() : "";
+    st.devices = 0;
+    st.linkedPerDevice.clear();
+    st.batchesPerDevice.clear();
+    st.msTracePerDevice.clear();
+    st.msCompressPerDevice.clear();
+    st.msWallPerDevice.clear();
+    st.gpuBytesAllocated = 0;
+    st.rays = links.rays;
+    st.linksRaw = links.rawLinks;
+    st.linksCompressed = links.transport.nonZeros();
+    st.linkBytes = links.transport.bytes() + links.environment.bytes();
+    st.lightRays = direct.shadowRays;
+  }
+
+private:
+  void updateGeometry(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    geometryTouched = true;
+    auto t = std::chrono::steady_clock::now();
+    if (c.changes & kTopology)
+    {
+      topology = Topology::build(s.vertexCount(), s.triangles);
+    }
+    shifts = originShifts(s, topology);
+    faceNormals = frontFaceNormals(s);
+    c.part("Topology", msSince(t));
+    if (!tracer)
+    {
+      tracer = createCpuRayTracer();
+    }
+    if (c.changes & kTopology)
+    {
+      tracer->build(s.positions, s.triangles);
+      c.stats.builtBvh = true;
+      ++c.stats.bvhBuilds;
+    }
+    else if (c.changes & kPositions)
+    {
+      tracer->refit(s.positions);
+      c.stats.refitBvh = true;
+      ++c.stats.bvhRefits;
+    }
+  }
+
+  void buildLinks(const StageContext& c)
+  {
+    const SolverOptions& o = c.options;
+    const LinkOptions linkOptions{ o.raysPerVertex, o.twoSided, o.twist, o.seed };
+    const auto within = [&c](double lo, double hi) -> ProgressCallback {
+      return [&c, lo, hi](const char*, double f) { return !c.progress || c.progress("Links", lo + (hi - lo) * f); };
+    };
+    traceLinkRays(c.scene, shifts, *tracer, linkOptions, hitScratch, within(0.0, 0.9));
+    const auto t = std::chrono::steady_clock::now();
+    nextLinks = compressLinks(c.scene, hitScratch, faceNormals, linkOptions, within(0.9, 1.0));
+    c.part("Compress", msSince(t));
+    linksStaged = true;
+  }
+
+  void lightLinks(const StageContext& c)
+  {
+    nextDirect = computeDirectLight(c.scene, topology, shifts, *tracer, c.options.twoSided,
+      c.options.lightOversampling, c.progress);
+    directStaged = true;
+  }
+
+  void bounce(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    const SolverOptions& o = c.options;
+    const LinkStructure& linksNow = linksStaged ? nextLinks : links;
+    const DirectLightResult& directNow = directStaged ? nextDirect : direct;
+    const Elements elements{ s.vertexCount(), o.twoSided };
+    const std::size_t ne = elements.count(), nv = s.vertexCount();
+
+    const std::vector<Vec3f> texels = environmentTexelRadiance(s.environment);
+    std::vector<Vec3f> envIrradiance(ne);
+    gatherRgb(linksNow.environment, texels.data(), envIrradiance.data());
+    BounceInputs inputs;
+    inputs.fixedIrradiance.resize(ne);
+    inputs.albedo.resize(ne);
+    for (std::size_t e = 0; e < ne; ++e)
+    {
+      inputs.fixedIrradiance[e] = directNow.irradiance[e] + envIrradiance[e];
+      inputs.albedo[e] = s.albedo[elements.vertexOf(e)];
+    }
+    if (!s.emission.empty())
+    {
+      // Emissive surfaces emit from their front side only.
+      inputs.emission.assign(ne, Vec3f(0.f));
+      std::copy(s.emission.begin(), s.emission.end(), inputs.emission.begin());
+    }
+    std::vector<Vec3f> indirect = iterateBounces(linksNow.transport, inputs, o.bounces, c.progress);
+    for (std::size_t e = 0; e < ne; ++e)
+    {
+      indirect[e] += envIrradiance[e];
+    }
+    if (o.smoothing)
+    {
+      const auto t = std::chrono::steady_clock::now();
+      const float cosFeature = std::cos(o.featureAngleDegrees * (kPi / 180.f));
+      indirect = smoothFeatureAware(indirect, topology, s.normals, elements, cosFeature);
+      c.part("Smoothing", msSince(t));
+    }
+
+    Solution& sol = c.solution;
+    sol.direct = directNow.irradiance;
+    sol.radiance.resize(ne);
+    for (std::size_t e = 0; e < ne; ++e)
+    {
+      const Vec3f le = (e < nv && !s.emission.empty()) ? s.emission[e] : Vec3f(0.f);
+      sol.radiance[e] = outgoingRadiance(inputs.albedo[e], sol.direct[e], indirect[e], le);
+    }
+    sol.indirect = std::move(indirect);
+  }
+
+  std::unique_ptr<RayTracer> tracer;
+  Topology topology;
+  std::vector<Vec3f> shifts, faceNormals;
+  bool geometryTouched = false;
+  LinkHits hitScratch; // link rays' hits, kept so the next relink reuses the buffer
+  LinkStructure links, nextLinks;
+  DirectLightResult direct, nextDirect;
+  bool linksStaged = false, directStaged = false;
+};
+}
+
+std::unique_ptr<MethodBackend> createCpuBackend(const SolverOptions&)
+{
+  return std::make_unique<LinksCpu>();
+}
+}
