@@ -135,9 +135,14 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
   for (vtkLight* light : this->Lights)
   {
     linkgi::Light converted;
-    if (Builder::ConvertLight(light, self->LightIntensityScale, converted))
+    const auto status = Builder::ConvertLight(light, self->LightIntensityScale, converted);
+    if (status == vtkGlobalIlluminationLights::CONVERTED)
     {
       scene.lights.push_back(converted);
+    }
+    else if (status == vtkGlobalIlluminationLights::NO_DIRECTION)
+    {
+      this->Warnings.push_back(vtkGlobalIlluminationLights::Explain(status, light));
     }
   }
   scene.environment = Builder::ConvertEnvironment(self->EnvironmentColor, self->EnvironmentTexture);

@@ -25,10 +25,12 @@
  * white DiffuseColor has a radiant intensity of 1 W/sr per channel (times
  * LightIntensityScale), so a surface at distance r facing it receives 1/r^2; a directional
  * light of intensity 1 gives irradiance 1 on a surface facing it. vtkLight's attenuation
- * values are ignored (light falls off with 1/r^2). Switched-off lights are ignored.
- * Positional lights with a cone angle below 90 degrees are spot lights (with the light's
- * exponent); headlights and camera lights are used at their transformed positions, as last
- * placed by a renderer.
+ * values are ignored (light falls off with 1/r^2). Lights are read by
+ * vtkGlobalIlluminationLights, as vtkGlobalIlluminationMapper reads them: switched-off
+ * lights are ignored; positional lights with a cone angle below 90 degrees are spot lights
+ * (with the light's exponent), other positional lights point lights; headlights and camera
+ * lights are used at their transformed positions, as last placed by a renderer; a spot or
+ * directional light whose focal point equals its position is skipped with a warning.
  *
  * Surfaces: triangles are lit on the side their normal points to. Normals come from the
  * input's point normals, or are computed with vtkPolyDataNormals (feature angle

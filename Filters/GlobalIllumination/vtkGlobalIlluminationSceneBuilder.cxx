@@ -8,6 +8,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkGlobalIlluminationColors.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -138,6 +139,11 @@ linkgi::Vec3f ToVec3f(const double v[3])
 {
   return { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
 }
+
+linkgi::Vec3f ColorOf(vtkDataArray* array, vtkIdType tuple)
+{
+  return ToVec3f(vtkGlobalIlluminationColors::Read(array, tuple).data());
+}
 }
 
 //------------------------------------------------------------------------------
@@ -227,29 +233,6 @@ vtkGlobalIlluminationSceneBuilder::Mesh vtkGlobalIlluminationSceneBuilder::Build
 }
 
 //------------------------------------------------------------------------------
-linkgi::Vec3f vtkGlobalIlluminationSceneBuilder::ColorOf(vtkDataArray* array, vtkIdType tuple)
-{
-  const double scale = array->GetDataType() == VTK_UNSIGNED_CHAR ? 1.0 / 255.0 : 1.0;
-  double c[3];
-  if (array->GetNumberOfComponents() < 3)
-  {
-    c[0] = c[1] = c[2] = array->GetComponent(tuple, 0);
-  }
-  else
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      c[k] = array->GetComponent(tuple, k);
-    }
-  }
-  for (double& v : c)
-  {
-    v *= scale;
-  }
-  return ToVec3f(c);
-}
-
-//------------------------------------------------------------------------------
 std::vector<linkgi::Vec3f> vtkGlobalIlluminationSceneBuilder::GatherColors(vtkPolyData* input,
   const Mesh& mesh, const char* arrayName, int association, const linkgi::Vec3f& fallback,
   const char* role)
@@ -310,42 +293,27 @@ std::vector<linkgi::Vec3f> vtkGlobalIlluminationSceneBuilder::GatherColors(vtkPo
 }
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationSceneBuilder::ConvertLight(vtkLight* light, double scale, linkgi::Light& out)
+vtkGlobalIlluminationLights::Status vtkGlobalIlluminationSceneBuilder::ConvertLight(
+  vtkLight* light, double scale, linkgi::Light& out)
 {
-  if (!light || !light->GetSwitch())
+  vtkGlobalIlluminationLights::Light l;
+  const vtkGlobalIlluminationLights::Status status =
+    vtkGlobalIlluminationLights::Convert(light, scale, l);
+  if (status != vtkGlobalIlluminationLights::CONVERTED)
   {
-    return false;
+    return status;
   }
-  double position[3], focal[3], color[3];
-  light->GetTransformedPosition(position);
-  light->GetTransformedFocalPoint(focal);
-  light->GetDiffuseColor(color);
-  const double axis[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
-
-  linkgi::Light result;
-  result.position = ToVec3f(position);
-  result.direction = linkgi::normalize(ToVec3f(axis));
-  const double power = light->GetIntensity() * scale;
-  const double intensity[3] = { color[0] * power, color[1] * power, color[2] * power };
-  result.intensity = ToVec3f(intensity);
-  if (light->GetPositional())
-  {
-    const bool spot = light->GetConeAngle() < 90.0;
-    result.type = spot ? linkgi::LightType::Spot : linkgi::LightType::Point;
-    result.coneAngleDegrees = static_cast<float>(light->GetConeAngle());
-    result.spotExponent = static_cast<float>(light->GetExponent());
-  }
-  else
-  {
-    result.type = linkgi::LightType::Directional;
-  }
-  if (result.type != linkgi::LightType::Point && linkgi::length(result.direction) == 0.f)
-  {
-    Fail("A spot or directional light has its position equal to its focal point, so it has "
-         "no direction; move its focal point.");
-  }
-  out = result;
-  return true;
+  static_assert(int(linkgi::LightType::Point) == vtkGlobalIlluminationLights::Light::POINT &&
+      int(linkgi::LightType::Spot) == vtkGlobalIlluminationLights::Light::SPOT &&
+      int(linkgi::LightType::Directional) == vtkGlobalIlluminationLights::Light::DIRECTIONAL,
+    "one numbering of the light types");
+  out.type = static_cast<linkgi::LightType>(l.Type);
+  out.position = ToVec3f(l.Position.data());
+  out.direction = ToVec3f(l.Direction.data());
+  out.intensity = ToVec3f(l.Intensity.data());
+  out.coneAngleDegrees = static_cast<float>(l.ConeAngle);
+  out.spotExponent = static_cast<float>(l.Exponent);
+  return status;
 }
 
 //------------------------------------------------------------------------------

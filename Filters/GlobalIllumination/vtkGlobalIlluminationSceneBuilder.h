@@ -19,6 +19,7 @@
 #define vtkGlobalIlluminationSceneBuilder_h
 
 #include "LinkGIFiltersGlobalIlluminationModule.h" // for export macro
+#include "vtkGlobalIlluminationLights.h"           // for vtkGlobalIlluminationLights::Status
 #include "vtkSmartPointer.h"                       // for vtkSmartPointer
 #include "vtkType.h"                               // for vtkIdType
 
@@ -63,29 +64,24 @@ public:
    * One linear RGB value per element, read from the array `arrayName` of the input's point
    * data (`association` = vtkDataObject::FIELD_ASSOCIATION_POINTS) or cell data
    * (FIELD_ASSOCIATION_CELLS; an element gets the mean of its triangles' cells). With no
-   * name every element gets `fallback`. Tuples with 1 or 2 components are grey (first
-   * component), with 3 or more the first three are RGB; unsigned char values are divided
-   * by 255. `role` names the array in error messages ("albedo").
+   * name every element gets `fallback`. Tuples are read by vtkGlobalIlluminationColors::Read
+   * (unclamped: the engine validates them). `role` names the array in error messages
+   * ("albedo").
    */
   static std::vector<linkgi::Vec3f> GatherColors(vtkPolyData* input, const Mesh& mesh,
     const char* arrayName, int association, const linkgi::Vec3f& fallback, const char* role);
 
-  /// One tuple of a colour array as linear RGB, with the rules of GatherColors.
-  static linkgi::Vec3f ColorOf(vtkDataArray* array, vtkIdType tuple);
-
   /**
-   * Converts a vtkLight. Returns false, leaving `out` alone, for a switched-off light.
-   * Positional lights become point lights (cone angle >= 90) or spot lights (cone angle,
-   * exponent); others are directional, travelling from the position to the focal point.
-   * The transformed position and focal point are used, so camera lights work. Intensity
-   * = DiffuseColor * Intensity * `scale`. Attenuation values are ignored: point and spot
-   * lights fall off physically, with 1/r^2.
+   * Converts a vtkLight as vtkGlobalIlluminationLights::Convert does (the mapper uses the
+   * same function) into the engine's light; `out` is written only if that returns
+   * CONVERTED.
    */
-  static bool ConvertLight(vtkLight* light, double scale, linkgi::Light& out);
+  static vtkGlobalIlluminationLights::Status ConvertLight(
+    vtkLight* light, double scale, linkgi::Light& out);
 
   /**
    * A constant sky `color`, multiplied by the lat-long `texture` when one is given (its
-   * point scalars, converted like colour arrays). The image's last row (largest j, the top
+   * point scalars, read by vtkGlobalIlluminationColors::Read). The image's last row (largest j, the top
    * of a picture read by VTK's image readers) looks along +Y.
    */
   static linkgi::Environment ConvertEnvironment(const double color[3], vtkImageData* texture);

@@ -4,6 +4,8 @@
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
+#include "vtkGlobalIlluminationColors.h"
+#include "vtkGlobalIlluminationLights.h"
 #include "vtkGlobalIlluminationShading.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -35,9 +37,9 @@ namespace
 {
 using ShadowMaps = vtkGlobalIlluminationShadowMaps;
 
-/// `components` float components per point of the named point array, or null if the
-/// input has no numeric point array of that name with a tuple for every point. Colours
-/// follow vtkGlobalIlluminationFilter: 1 or 2 components are grey, unsigned char / 255.
+/// The named point array as float colours (RGBA with A = 1 for the albedo, else RGB), or
+/// null if the input has no numeric point array of that name with a tuple for every point.
+/// Read and clamped by vtkGlobalIlluminationColors, the filter's rule.
 vtkSmartPointer<vtkFloatArray> ReadColors(vtkPolyData* poly, const char* name, bool albedo)
 {
   vtkDataArray* array = (name && *name) ? poly->GetPointData()->GetArray(name) : nullptr;
@@ -46,18 +48,17 @@ vtkSmartPointer<vtkFloatArray> ReadColors(vtkPolyData* poly, const char* name, b
   {
     return nullptr;
   }
-  const double scale = array->GetDataType() == VTK_UNSIGNED_CHAR ? 1.0 / 255.0 : 1.0;
-  const bool grey = array->GetNumberOfComponents() < 3;
+  using Colors = vtkGlobalIlluminationColors;
+  const Colors::Quantity quantity = albedo ? Colors::REFLECTANCE : Colors::RADIOMETRIC;
   auto out = vtkSmartPointer<vtkFloatArray>::New();
   out->SetNumberOfComponents(albedo ? 4 : 3);
   out->SetNumberOfTuples(n);
   float* values = out->GetPointer(0);
   for (vtkIdType i = 0; i < n; ++i)
   {
-    for (int k = 0; k < 3; ++k)
+    for (double v : Colors::Clamp(Colors::Read(array, i), quantity))
     {
-      const double v = array->GetComponent(i, grey ? 0 : k) * scale;
-      *values++ = static_cast<float>(albedo ? std::min(std::max(v, 0.0), 1.0) : v);
+      *values++ = static_cast<float>(v);
     }
     if (albedo)
     {
@@ -264,13 +265,19 @@ void vtkGlobalIlluminationMapperCore::Prepare(
   const int maximum = vtkGlobalIlluminationShading::GetMaximumNumberOfLights();
   this->Lights.clear();
   int ignored = 0;
+  std::vector<std::string> skipped;
   vtkLightCollection* lights = renderer->GetLights();
   vtkCollectionSimpleIterator it;
   lights->InitTraversal(it);
   while (vtkLight* light = lights->GetNextLight(it))
   {
     ShadowMaps::Light converted;
-    if (ShadowMaps::ConvertLight(light, scale, converted))
+    const auto status = vtkGlobalIlluminationLights::Convert(light, scale, converted);
+    if (status == vtkGlobalIlluminationLights::NO_DIRECTION)
+    {
+      skipped.push_back(vtkGlobalIlluminationLights::Explain(status, light));
+    }
+    else if (status == vtkGlobalIlluminationLights::CONVERTED)
     {
       if (static_cast<int>(this->Lights.size()) < maximum)
       {
@@ -282,6 +289,7 @@ void vtkGlobalIlluminationMapperCore::Prepare(
       }
     }
   }
+  // Once per change, not per frame.
   if (ignored > 0 && ignored != this->IgnoredLightsWarned)
   {
     vtkWarningWithObjectMacro(
@@ -289,6 +297,14 @@ void vtkGlobalIlluminationMapperCore::Prepare(
                    << maximum << " a global illumination mapper shades; they are ignored.");
   }
   this->IgnoredLightsWarned = ignored;
+  if (skipped != this->SkippedLightsWarned)
+  {
+    for (const std::string& warning : skipped)
+    {
+      vtkWarningWithObjectMacro(this->Owner, << warning);
+    }
+    this->SkippedLightsWarned = skipped;
+  }
   auto* window = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
   const bool shadows = this->Shading && this->Shading->GetShadows();
   const int resolution = this->Shading ? this->Shading->GetShadowMapResolution() : 1024;
@@ -400,7 +416,7 @@ void vtkGlobalIlluminationMapperCore::SetShaderParameters(
       directions[3 * i + k] = static_cast<float>(l.Direction[k]);
       intensities[3 * i + k] = static_cast<float>(l.Intensity[k]);
     }
-    cones[2 * i] = static_cast<float>(l.CosCone);
+    cones[2 * i] = static_cast<float>(l.CosCone());
     cones[2 * i + 1] = static_cast<float>(l.Exponent);
   }
   if (n > 0)

@@ -148,6 +148,7 @@ private:
   Layout Present;
   bool TextureActive = false;
   int IgnoredLightsWarned = 0;
+  std::vector<std::string> SkippedLightsWarned; // lights without a direction, last warned
 };
 
 #endif

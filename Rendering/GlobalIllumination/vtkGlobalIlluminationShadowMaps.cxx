@@ -1,6 +1,5 @@
 #include "vtkGlobalIlluminationShadowMaps.h"
 
-#include "vtkLight.h"
 #include "vtkMath.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
@@ -127,7 +126,7 @@ vtkGlobalIlluminationShadowMaps::Map SpotMap(
   const double* eye = light.Position.data();
   const double farZ = std::max(FarthestCorner(eye, bounds) * 1.01, 1e-6);
   // A little wider than the cone, so that the filter and the normal offset stay inside.
-  const double cone = std::acos(std::max(-1.0, std::min(1.0, light.CosCone)));
+  const double cone = std::acos(std::max(-1.0, std::min(1.0, light.CosCone())));
   const double tanHalf = std::tan(cone) * (1.0 + 8.0 / resolution) + 4.0 / resolution;
   double u[3], v[3];
   Frame(light.Direction.data(), u, v);
@@ -173,46 +172,6 @@ vtkGlobalIlluminationShadowMaps::Map DirectionalMap(
 }
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationShadowMaps::ConvertLight(vtkLight* light, double scale, Light& out)
-{
-  if (!light || !light->GetSwitch())
-  {
-    return false;
-  }
-  double position[3], focal[3], color[3];
-  light->GetTransformedPosition(position);
-  light->GetTransformedFocalPoint(focal);
-  light->GetDiffuseColor(color);
-  Light result;
-  double axis[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
-  const bool hasAxis = vtkMath::Normalize(axis) > 0.0;
-  const double power = light->GetIntensity() * scale;
-  for (int k = 0; k < 3; ++k)
-  {
-    result.Position[k] = position[k];
-    result.Direction[k] = hasAxis ? axis[k] : (k == 1 ? -1.0 : 0.0);
-    result.Intensity[k] = color[k] * power;
-  }
-  if (light->GetPositional())
-  {
-    const bool spot = light->GetConeAngle() < 90.0;
-    result.Type = spot ? Light::SPOT : Light::POINT;
-    result.CosCone = std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle()));
-    result.Exponent = light->GetExponent();
-  }
-  else
-  {
-    result.Type = Light::DIRECTIONAL;
-  }
-  if (result.Type != Light::POINT && !hasAxis)
-  {
-    return false;
-  }
-  out = result;
-  return true;
-}
-
-//------------------------------------------------------------------------------
 vtkGlobalIlluminationShadowMaps::vtkGlobalIlluminationShadowMaps()
 {
   this->Texture->SetAutoParameters(0);
@@ -235,7 +194,7 @@ std::vector<vtkGlobalIlluminationShadowMaps::Map> vtkGlobalIlluminationShadowMap
     {
       map = DirectionalMap(light, bounds, resolution);
     }
-    else if (light.Type == Light::SPOT && light.CosCone > wideSpot)
+    else if (light.Type == Light::SPOT && light.CosCone() > wideSpot)
     {
       map = SpotMap(light, bounds, resolution);
     }
@@ -263,7 +222,7 @@ bool vtkGlobalIlluminationShadowMaps::Update(vtkOpenGLRenderWindow* window,
     signature.push_back(light.Type);
     signature.insert(signature.end(), light.Position.begin(), light.Position.end());
     signature.insert(signature.end(), light.Direction.begin(), light.Direction.end());
-    signature.push_back(light.CosCone);
+    signature.push_back(light.CosCone());
   }
   if (signature == this->Signature && window == this->Context && this->TextureHandle)
   {

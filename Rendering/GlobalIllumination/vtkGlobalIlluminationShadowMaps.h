@@ -19,7 +19,8 @@
 #ifndef vtkGlobalIlluminationShadowMaps_h
 #define vtkGlobalIlluminationShadowMaps_h
 
-#include "vtkNew.h"  // for vtkNew
+#include "vtkGlobalIlluminationLights.h" // for vtkGlobalIlluminationLights::Light
+#include "vtkNew.h"                      // for vtkNew
 #include "vtkType.h" // for vtkMTimeType
 
 #include <array>      // for std::array
@@ -27,7 +28,6 @@
 #include <string>     // for std::string
 #include <vector>     // for std::vector
 
-class vtkLight;
 class vtkOpenGLRenderWindow;
 class vtkOpenGLVertexArrayObject;
 class vtkRenderer;
@@ -38,31 +38,9 @@ class vtkWindow;
 class vtkGlobalIlluminationShadowMaps
 {
 public:
-  /// A light as the shaders see it: world coordinates, linear RGB.
-  struct Light
-  {
-    enum Types
-    {
-      POINT = 0,
-      SPOT = 1,
-      DIRECTIONAL = 2
-    };
-    int Type = POINT;
-    std::array<double, 3> Position{ { 0.0, 0.0, 0.0 } };
-    std::array<double, 3> Direction{ { 0.0, 0.0, -1.0 } }; ///< unit, direction of travel
-    std::array<double, 3> Intensity{ { 1.0, 1.0, 1.0 } };  ///< W/sr, or W/m^2 if directional
-    double CosCone = -1.0;                                 ///< spot only
-    double Exponent = 0.0;                                 ///< spot only
-  };
-
-  /**
-   * Converts a vtkLight like vtkGlobalIlluminationFilter does: transformed position and
-   * focal point, Intensity * DiffuseColor * scale, positional lights with a cone angle
-   * below 90 degrees are spots, vtkLight's attenuation values are ignored (1/r^2).
-   * Returns false for a switched-off light and for a spot or directional light without a
-   * direction (focal point = position).
-   */
-  static bool ConvertLight(vtkLight* light, double scale, Light& out);
+  /// A light as the shaders see it: world coordinates, linear RGB. The mappers convert
+  /// the renderer's lights with vtkGlobalIlluminationLights::Convert, as the filter does.
+  using Light = vtkGlobalIlluminationLights::Light;
 
   /// What casts shadows.
   struct Casters

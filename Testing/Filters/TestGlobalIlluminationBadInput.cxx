@@ -220,22 +220,34 @@ TEST(GlobalIlluminationFilterBadInput, InputWithoutNormalsGetsComputedNormals)
   }
 }
 
-TEST(GlobalIlluminationFilterBadInput, BadLightsAndTexturesAreErrors)
+TEST(GlobalIlluminationFilterBadInput, LightsWithoutADirectionAreSkippedWithAWarning)
 {
+  // As the mapper does (both read lights with vtkGlobalIlluminationLights): the other
+  // lights still shine.
   auto filter = FloorFilter();
   MessageCapture messages(filter);
   auto spot = MakeLight(Origin, Origin, 1.0, true, 20.0); // position == focal point
+  auto sun = MakeLight(Origin, Origin, 1.0, false);
   filter->AddLight(spot);
+  filter->AddLight(sun);
   filter->Update();
-  EXPECT_TRUE(messages.HasError("no direction"));
-  filter->RemoveLight(spot);
+  EXPECT_TRUE(messages.Errors.empty());
+  EXPECT_TRUE(messages.HasWarning("spot light"));
+  EXPECT_TRUE(messages.HasWarning("directional light"));
+  EXPECT_TRUE(messages.HasWarning("no direction and is skipped"));
+  EXPECT_NEAR(Value(filter->GetOutput(), "DirectIrradiance", 0), 1.0, 1e-4) << "the sun alone";
+}
+
+TEST(GlobalIlluminationFilterBadInput, BadTexturesAreErrors)
+{
+  auto filter = FloorFilter();
+  MessageCapture messages(filter);
 
   vtkNew<vtkImageData> volume; // a 3D image is no lat-long map
   volume->SetDimensions(4, 2, 2);
   volume->AllocateScalars(VTK_FLOAT, 3);
   filter->SetEnvironmentColor(1, 1, 1);
   filter->SetEnvironmentTexture(volume);
-  messages.Clear();
   filter->Update();
   EXPECT_TRUE(messages.HasError("2D image"));
 }

@@ -1,0 +1,74 @@
+#include "vtkGlobalIlluminationLights.h"
+
+#include "vtkLight.h"
+#include "vtkMath.h"
+
+#include <cmath>
+#include <sstream>
+
+//------------------------------------------------------------------------------
+double vtkGlobalIlluminationLights::Light::CosCone() const
+{
+  return std::cos(vtkMath::RadiansFromDegrees(this->ConeAngle));
+}
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationLights::Status vtkGlobalIlluminationLights::Convert(
+  vtkLight* light, double scale, Light& out)
+{
+  if (!light || !light->GetSwitch())
+  {
+    return SWITCHED_OFF;
+  }
+  double position[3], focal[3], color[3];
+  light->GetTransformedPosition(position);
+  light->GetTransformedFocalPoint(focal);
+  light->GetDiffuseColor(color);
+  double axis[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
+  const bool hasAxis = vtkMath::Normalize(axis) > 0.0;
+
+  Light result;
+  if (light->GetPositional())
+  {
+    result.Type = light->GetConeAngle() < 90.0 ? Light::SPOT : Light::POINT;
+    result.ConeAngle = light->GetConeAngle();
+    result.Exponent = light->GetExponent();
+  }
+  else
+  {
+    result.Type = Light::DIRECTIONAL;
+  }
+  if (result.Type != Light::POINT && !hasAxis)
+  {
+    return NO_DIRECTION;
+  }
+  const double power = light->GetIntensity() * scale;
+  for (int k = 0; k < 3; ++k)
+  {
+    result.Position[k] = position[k];
+    result.Intensity[k] = color[k] * power;
+    if (hasAxis)
+    {
+      result.Direction[k] = axis[k];
+    }
+  }
+  out = result;
+  return CONVERTED;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGlobalIlluminationLights::Explain(Status status, vtkLight* light)
+{
+  if (status != NO_DIRECTION)
+  {
+    return std::string();
+  }
+  double position[3];
+  light->GetTransformedPosition(position);
+  std::ostringstream msg;
+  msg << "A " << (light->GetPositional() ? "spot" : "directional") << " light (vtkLight "
+      << static_cast<const void*>(light) << ") has its focal point at its position ("
+      << position[0] << ", " << position[1] << ", " << position[2]
+      << "), so it has no direction and is skipped; move its focal point.";
+  return msg.str();
+}

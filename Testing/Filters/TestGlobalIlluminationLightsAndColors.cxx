@@ -1,0 +1,195 @@
+// vtkGlobalIlluminationLights and vtkGlobalIlluminationColors: the one reading of vtkLight
+// and of colour arrays that the filter and the mapper's shadow maps share (the mapper's
+// light type is the same struct; TestGlobalIlluminationMapperLightReading checks what it
+// draws).
+#include "FilterTestUtilities.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkGlobalIlluminationColors.h"
+#include "vtkGlobalIlluminationFilter.h"
+#include "vtkGlobalIlluminationLights.h"
+#include "vtkMatrix4x4.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+using namespace linkgi_test;
+using Lights = vtkGlobalIlluminationLights;
+using Colors = vtkGlobalIlluminationColors;
+
+namespace
+{
+const double Lamp[3] = { 1, 2, 3 }, Below[3] = { 1, 0, 3 };
+
+Lights::Light Converted(vtkLight* light, double scale = 1.0)
+{
+  Lights::Light out;
+  EXPECT_EQ(Lights::Convert(light, scale, out), Lights::CONVERTED);
+  return out;
+}
+
+void ExpectNear(const std::array<double, 3>& a, double x, double y, double z, double tolerance = 1e-12)
+{
+  EXPECT_NEAR(a[0], x, tolerance);
+  EXPECT_NEAR(a[1], y, tolerance);
+  EXPECT_NEAR(a[2], z, tolerance);
+}
+}
+
+TEST(GlobalIlluminationLights, ConeAnglesBelowNinetyAreSpotsTheRestPoints)
+{
+  for (double cone : { 89.0, 90.0, 180.0, 30.0 })
+  {
+    auto light = MakeLight(Lamp, Below, 1.0, true, cone);
+    light->SetExponent(2.0);
+    const Lights::Light l = Converted(light);
+    EXPECT_EQ(l.Type, cone < 90.0 ? Lights::Light::SPOT : Lights::Light::POINT) << cone;
+    EXPECT_EQ(l.ConeAngle, cone);
+    EXPECT_NEAR(l.CosCone(), std::cos(cone * 3.14159265358979 / 180.0), 1e-12);
+    EXPECT_EQ(l.Exponent, 2.0);
+    ExpectNear(l.Position, 1, 2, 3);
+    ExpectNear(l.Direction, 0, -1, 0); // unit, from the position to the focal point
+  }
+}
+
+TEST(GlobalIlluminationLights, NonPositionalLightsAreDirectional)
+{
+  const double from[3] = { 0, 0, 4 }, to[3] = { 0, 3, 0 };
+  auto sun = MakeLight(from, to, 1.0, false, 30.0); // the cone angle does not matter
+  const Lights::Light l = Converted(sun);
+  EXPECT_EQ(l.Type, Lights::Light::DIRECTIONAL);
+  ExpectNear(l.Direction, 0, 0.6, -0.8);
+}
+
+TEST(GlobalIlluminationLights, IntensityIsColourTimesIntensityTimesScale)
+{
+  auto light = MakeLight(Lamp, Below, 2.0);
+  light->SetDiffuseColor(1.0, 0.5, 0.25);
+  light->SetAmbientColor(9, 9, 9); // only the diffuse colour counts
+  light->SetSpecularColor(9, 9, 9);
+  ExpectNear(Converted(light, 3.0).Intensity, 6.0, 3.0, 1.5);
+  ExpectNear(Converted(light, 0.0).Intensity, 0.0, 0.0, 0.0);
+  light->SetAttenuationValues(1, 5, 7); // ignored: light falls off with 1/r^2
+  ExpectNear(Converted(light, 1.0).Intensity, 2.0, 1.0, 0.5);
+}
+
+TEST(GlobalIlluminationLights, SwitchedOffLightsAreSkippedSilently)
+{
+  auto light = MakeLight(Lamp, Below, 1.0);
+  light->SwitchOff();
+  Lights::Light out;
+  out.Intensity = { { 7, 7, 7 } };
+  EXPECT_EQ(Lights::Convert(light, 1.0, out), Lights::SWITCHED_OFF);
+  EXPECT_EQ(Lights::Convert(nullptr, 1.0, out), Lights::SWITCHED_OFF);
+  ExpectNear(out.Intensity, 7, 7, 7); // untouched
+  EXPECT_TRUE(Lights::Explain(Lights::SWITCHED_OFF, light).empty());
+}
+
+TEST(GlobalIlluminationLights, SpotAndDirectionalLightsNeedADirectionPointLightsDoNot)
+{
+  Lights::Light out;
+  auto spot = MakeLight(Lamp, Lamp, 1.0, true, 45.0);
+  auto sun = MakeLight(Lamp, Lamp, 1.0, false);
+  auto point = MakeLight(Lamp, Lamp, 1.0, true, 90.0);
+  EXPECT_EQ(Lights::Convert(spot, 1.0, out), Lights::NO_DIRECTION);
+  EXPECT_EQ(Lights::Convert(sun, 1.0, out), Lights::NO_DIRECTION);
+  EXPECT_NE(Lights::Explain(Lights::NO_DIRECTION, spot).find("A spot light"), std::string::npos);
+  EXPECT_NE(Lights::Explain(Lights::NO_DIRECTION, sun).find("A directional light"), std::string::npos);
+  EXPECT_NE(Lights::Explain(Lights::NO_DIRECTION, sun).find("(1, 2, 3)"), std::string::npos);
+  const Lights::Light l = Converted(point);
+  EXPECT_EQ(l.Type, Lights::Light::POINT);
+  ExpectNear(l.Direction, 0, 0, -1); // a unit placeholder, never NaN
+}
+
+TEST(GlobalIlluminationLights, CameraLightsAreReadWhereTheRendererPlacedThem)
+{
+  auto light = MakeLight(Lamp, Below, 1.0);
+  light->SetLightTypeToCameraLight();
+  vtkNew<vtkMatrix4x4> shift; // what vtkRenderer sets from the camera
+  shift->SetElement(0, 3, 10.0);
+  light->SetTransformMatrix(shift);
+  const Lights::Light l = Converted(light);
+  ExpectNear(l.Position, 11, 2, 3);
+  ExpectNear(l.Direction, 0, -1, 0);
+}
+
+TEST(GlobalIlluminationColors, UnsignedCharIsDividedBy255OtherTypesAreTakenAsTheyAre)
+{
+  vtkNew<vtkUnsignedCharArray> bytes;
+  bytes->SetNumberOfComponents(4);
+  const unsigned char rgba[4] = { 255, 51, 0, 7 };
+  bytes->InsertNextTypedTuple(rgba);
+  ExpectNear(Colors::Read(bytes, 0), 1.0, 0.2, 0.0); // alpha ignored
+
+  vtkNew<vtkFloatArray> floats;
+  floats->SetNumberOfComponents(3);
+  floats->InsertNextTuple3(2.5, 0.5, 255.0); // HDR is kept
+  ExpectNear(Colors::Read(floats, 0), 2.5, 0.5, 255.0);
+}
+
+TEST(GlobalIlluminationColors, OneAndTwoComponentsAreGrey)
+{
+  vtkNew<vtkDoubleArray> grey;
+  grey->InsertNextValue(0.25);
+  grey->InsertNextValue(3.0);
+  ExpectNear(Colors::Read(grey, 0), 0.25, 0.25, 0.25);
+  ExpectNear(Colors::Read(grey, 1), 3.0, 3.0, 3.0);
+
+  vtkNew<vtkUnsignedCharArray> greyAlpha;
+  greyAlpha->SetNumberOfComponents(2);
+  greyAlpha->InsertNextTuple2(102, 255);
+  ExpectNear(Colors::Read(greyAlpha, 0), 0.4, 0.4, 0.4);
+
+  vtkNew<vtkFloatArray> five; // more than four: the first three
+  five->SetNumberOfComponents(5);
+  five->InsertNextTuple(std::array<double, 5>{ { 0.1, 0.2, 0.3, 0.4, 0.5 } }.data());
+  ExpectNear(Colors::Read(five, 0), 0.1, 0.2, 0.3, 1e-7);
+}
+
+TEST(GlobalIlluminationColors, ClampKeepsAlbedoInZeroOneAndRadiometryNonNegative)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const Colors::RGB values = { { 1.5, nan, -0.25 } };
+  ExpectNear(Colors::Clamp(values, Colors::REFLECTANCE), 1.0, 0.0, 0.0);
+  ExpectNear(Colors::Clamp(values, Colors::RADIOMETRIC), 1.5, 0.0, 0.0);
+  ExpectNear(Colors::Clamp({ { 0.5, 0.0, 1.0 } }, Colors::REFLECTANCE), 0.5, 0.0, 1.0);
+  EXPECT_EQ(Colors::Clamp({ { inf, 0, 0 } }, Colors::REFLECTANCE)[0], 1.0);
+  EXPECT_EQ(Colors::Clamp({ { inf, 0, 0 } }, Colors::RADIOMETRIC)[0], inf);
+
+  vtkNew<vtkFloatArray> withNaN; // as the mapper reads an array: Read, then Clamp
+  withNaN->SetNumberOfComponents(3);
+  withNaN->InsertNextTuple3(nan, 2.0, 0.5);
+  ExpectNear(Colors::Clamp(Colors::Read(withNaN, 0), Colors::REFLECTANCE), 0.0, 1.0, 0.5);
+}
+
+TEST(GlobalIlluminationColors, TheFilterSolvesWithWhatClampGivesTheMapper)
+{
+  // Albedo above 1 in a float array: the filter's ClampAlbedo repair is Clamp(REFLECTANCE).
+  vtkSmartPointer<vtkPolyData> floor = MakeFloor(1, 2);
+  vtkNew<vtkFloatArray> albedo;
+  albedo->SetName("Albedo");
+  albedo->SetNumberOfComponents(3);
+  for (vtkIdType i = 0; i < floor->GetNumberOfPoints(); ++i)
+  {
+    albedo->InsertNextTuple3(1.5, 0.5, 0.25);
+  }
+  floor->GetPointData()->AddArray(albedo);
+  vtkNew<vtkGlobalIlluminationFilter> filter;
+  filter->SetInputData(floor);
+  filter->SetRaysPerVertex(16);
+  filter->SetAlbedoArrayName("Albedo");
+  const double above[3] = { 0, 0, 1 }, origin[3] = { 0, 0, 0 };
+  filter->AddLight(MakeLight(above, origin, 1.0, false));
+  MessageCapture messages(filter);
+  filter->Update();
+  EXPECT_TRUE(messages.HasWarning("Clamped the albedo"));
+  // A lone floor under the sun: E = 1, L = albedo / pi.
+  const Colors::RGB drawn = Colors::Clamp(Colors::Read(albedo, 0), Colors::REFLECTANCE);
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(Value(filter->GetOutput(), "Radiance", 0, c) * 3.14159265358979, drawn[c], 1e-5);
+  }
+}
