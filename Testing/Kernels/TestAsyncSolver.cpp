@@ -134,12 +134,19 @@ TEST(TestAsyncSolver, CancelKeepsTheLastResult)
   const std::uint64_t first = async.request(test::roomWithBlock(0.25f), options());
   ASSERT_TRUE(async.wait(first, 60.0));
   const auto before = async.latest();
-  // A much finer mesh takes a while; cancel it in flight.
+  // A much finer mesh on the CPU: ~40M link rays, seconds on any CPU; cancel it once the
+  // worker has started it (waiting for that, not for a fixed time, which a fast machine
+  // beats).
   SolverOptions slow = options();
   slow.raysPerVertex = 1024;
-  async.request(test::roomWithBlock(0.05f), slow);
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  EXPECT_TRUE(async.busy());
+  slow.backend = Backend::Cpu;
+  const std::uint64_t running = async.request(test::roomWithBlock(0.04f), slow);
+  const auto started = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (async.solving() != running && std::chrono::steady_clock::now() < started)
+  {
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  ASSERT_EQ(async.solving(), running);
   async.cancel();
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   while (async.busy() && std::chrono::steady_clock::now() < deadline)

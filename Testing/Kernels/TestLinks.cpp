@@ -13,7 +13,7 @@ namespace
 {
 LinkStructure linksOf(const Scene& s, std::uint32_t rays, bool twoSided = false)
 {
-  auto tracer = createEmbreeRayTracer();
+  auto tracer = createCpuRayTracer(); // Embree, or our BVH where a build has no Embree
   tracer->build(s.positions, s.triangles);
   const LinkOptions o{ rays, twoSided, true, 0 };
   const Topology topo = Topology::build(s.vertexCount(), s.triangles);

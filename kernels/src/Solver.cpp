@@ -88,21 +88,6 @@ struct BackendSlot
   }
 };
 
-/// The stages of `spec` that `changes` (or an upstream stage) make stale: bit i for stage i.
-std::uint32_t staleStages(const engine::MethodSpec& spec, engine::Changes changes)
-{
-  std::uint32_t stale = 0;
-  const std::vector<engine::StageSpec>& stages = spec.stages();
-  for (std::size_t i = 0; i < stages.size(); ++i)
-  {
-    if ((stages[i].dependsOn & changes) || (stages[i].after & stale))
-    {
-      stale |= 1u << i;
-    }
-  }
-  return stale;
-}
-
 /// Fresh per-update records of the method's stages; lifetime run counts carry over.
 std::vector<StageStats> stageRecords(const engine::MethodSpec& spec, const SolverStats& before)
 {
@@ -210,7 +195,7 @@ void Solver::Impl::runStages(BackendSlot& slot, bool onCuda, const engine::Metho
     slot.cudaDevices = opt.cudaDevices;
   }
   const engine::Changes seen = slot.synced ? changes : engine::kEverything;
-  const std::uint32_t stale = staleStages(spec, seen);
+  const std::uint32_t stale = engine::staleStages(spec.stages(), seen);
   const std::vector<engine::StageSpec>& stages = spec.stages();
   double shareSum = 0.0, shareDone = 0.0;
   for (std::size_t i = 0; i < stages.size(); ++i)

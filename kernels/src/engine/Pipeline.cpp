@@ -113,6 +113,23 @@ Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& be
   return c;
 }
 
+std::uint32_t staleStages(const std::vector<StageSpec>& stages, Changes changes)
+{
+  if (stages.size() > 32)
+  {
+    throw Error("A method may have at most 32 stages; this one has " + std::to_string(stages.size()) + ".");
+  }
+  std::uint32_t stale = 0;
+  for (std::size_t i = 0; i < stages.size(); ++i)
+  {
+    if ((stages[i].dependsOn & changes) || (stages[i].after & stale))
+    {
+      stale |= 1u << i;
+    }
+  }
+  return stale;
+}
+
 void StageContext::check(double fraction) const
 {
   if (progress && !progress(stageName, fraction))

@@ -55,6 +55,10 @@ struct StageSpec
   double progressShare; ///< its part of a full update's progress, in any unit
 };
 
+/// The stages that `changes` make stale, directly or through an upstream stage that re-runs:
+/// bit i for stages[i].
+std::uint32_t staleStages(const std::vector<StageSpec>& stages, Changes changes);
+
 /// A stage's window on the update in progress.
 class StageContext
 {
