@@ -13,6 +13,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
+#include "vtkGlobalIlluminationAsyncWatcher.h"
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkGlobalIlluminationMapper.h"
 #include "vtkGlobalIlluminationSceneSource.h"
@@ -45,6 +46,7 @@ struct LiveScene
   vtkNew<vtkRenderWindow> window;
   vtkLight* light = nullptr;
   double lightHome[3] = { 0, 0, 0 };
+  int animationTimer = 0;
 
   LiveScene(const char* scene, int rays, double blend, double exposure)
   {
@@ -126,10 +128,14 @@ int Interactive(LiveScene& live)
   });
   widget->AddObserver(vtkCommand::InteractionEvent, moveLight);
   widget->On();
-  // Deform on a timer; new GI results re-render as they arrive.
+  // Deform on a timer.
   vtkNew<vtkCallbackCommand> animate;
   animate->SetClientData(&live);
-  animate->SetCallback([](vtkObject* caller, unsigned long, void* data, void*) {
+  animate->SetCallback([](vtkObject* caller, unsigned long, void* data, void* timerId) {
+    if (timerId && *static_cast<int*>(timerId) != static_cast<LiveScene*>(data)->animationTimer)
+    {
+      return; // the watcher's timer
+    }
     static double t = 0.0;
     t += 0.05;
     static_cast<LiveScene*>(data)->SetTime(t, false);
@@ -137,8 +143,12 @@ int Interactive(LiveScene& live)
   });
   interactor->AddObserver(vtkCommand::TimerEvent, animate);
   interactor->Initialize();
-  interactor->CreateRepeatingTimer(50);
-  live.gi->WatchAsynchronousResults(interactor, 20);
+  live.animationTimer = interactor->CreateRepeatingTimer(50);
+  // New GI results re-render as they arrive, polled every 20 ms.
+  vtkNew<vtkGlobalIlluminationAsyncWatcher> watcher;
+  watcher->SetFilter(live.gi);
+  watcher->SetInterval(20);
+  watcher->Watch(interactor);
   live.window->Render();
   interactor->Start();
   return 0;

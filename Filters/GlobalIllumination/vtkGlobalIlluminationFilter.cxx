@@ -11,12 +11,9 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
-#include "vtkCallbackCommand.h"
-#include "vtkCommand.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkVersionMacros.h"
@@ -273,26 +270,6 @@ bool vtkGlobalIlluminationFilter::PollAsynchronousResult()
   }
   this->Modified();
   return true;
-}
-
-//------------------------------------------------------------------------------
-void vtkGlobalIlluminationFilter::WatchAsynchronousResults(
-  vtkRenderWindowInteractor* interactor, int milliseconds)
-{
-  if (!interactor)
-  {
-    return;
-  }
-  vtkNew<vtkCallbackCommand> poll;
-  poll->SetClientData(this);
-  poll->SetCallback([](vtkObject* caller, unsigned long, void* self, void*) {
-    if (static_cast<vtkGlobalIlluminationFilter*>(self)->PollAsynchronousResult())
-    {
-      static_cast<vtkRenderWindowInteractor*>(caller)->Render();
-    }
-  });
-  interactor->AddObserver(vtkCommand::TimerEvent, poll);
-  interactor->CreateRepeatingTimer(static_cast<unsigned long>(std::max(1, milliseconds)));
 }
 
 //------------------------------------------------------------------------------

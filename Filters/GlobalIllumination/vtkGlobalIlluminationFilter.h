@@ -65,7 +65,6 @@
 class vtkImageData;
 class vtkLight;
 class vtkRenderer;
-class vtkRenderWindowInteractor;
 
 class LINKGIFILTERSGLOBALILLUMINATION_EXPORT vtkGlobalIlluminationFilter : public vtkPolyDataAlgorithm
 {
@@ -295,8 +294,9 @@ public:
    * earlier request (the field data's LinkGI.ShownRequest says which; LinkGI.Pending = 1
    * while the worker is busy), or with zero arrays before the first result for this mesh.
    * A newer request supersedes a running one instead of queueing. The render loop calls
-   * PollAsynchronousResult(), or lets WatchAsynchronousResults() do it on a timer, so the
-   * filter re-executes when a newer result is ready. Solver errors surface as warnings in
+   * PollAsynchronousResult(), or lets a vtkGlobalIlluminationAsyncWatcher (module
+   * LinkGI::RenderingGlobalIllumination) do it on an interactor's timer, so the filter
+   * re-executes when a newer result is ready. Solver errors surface as warnings in
    * LinkGI.Warnings. The default value is off.
    */
   vtkSetMacro(Asynchronous, vtkTypeBool);
@@ -320,12 +320,6 @@ public:
    * filter modified (so the next render re-executes it) and returns true.
    */
   bool PollAsynchronousResult();
-
-  /**
-   * Adds a repeating timer of `milliseconds` to `interactor` that polls for asynchronous
-   * results and renders the interactor's window when one arrived.
-   */
-  void WatchAsynchronousResults(vtkRenderWindowInteractor* interactor, int milliseconds = 30);
 
   /**
    * Includes the modification times of the lights and the environment texture.
