@@ -123,6 +123,11 @@ TEST(TestAsyncSolver, RepeatedRequestsAreNotNewWork)
   EXPECT_EQ(async.request(s, options()), id); // pending or running
   ASSERT_TRUE(async.wait(id, 60.0));
   EXPECT_EQ(async.request(s, options()), id); // published
+  // Any option counts, also those no stage reads (where it runs).
+  SolverOptions elsewhere = options();
+  elsewhere.backend = elsewhere.backend == Backend::Cpu ? Backend::Auto : Backend::Cpu;
+  EXPECT_GT(async.request(s, elsewhere), id);
+  ASSERT_TRUE(async.wait(id + 1, 60.0));
   Scene moved = s;
   moved.lights[0].position.x += 0.1f;
   EXPECT_GT(async.request(moved, options()), id);

@@ -17,17 +17,6 @@
 
 namespace linkgi
 {
-namespace
-{
-bool sameOptions(const SolverOptions& a, const SolverOptions& b)
-{
-  return a.raysPerVertex == b.raysPerVertex && a.bounces == b.bounces &&
-    a.smoothing == b.smoothing && a.featureAngleDegrees == b.featureAngleDegrees &&
-    a.twoSided == b.twoSided && a.twist == b.twist && a.seed == b.seed &&
-    a.lightOversampling == b.lightOversampling && a.albedoPolicy == b.albedoPolicy;
-}
-}
-
 struct AsyncSolver::Impl
 {
   struct Request
@@ -86,7 +75,7 @@ std::uint64_t AsyncSolver::request(Scene scene, const SolverOptions& options)
     // Asking again for what is already pending, running or published is not new work: a
     // render loop may re-request the same scene every frame.
     const auto& last = impl->lastAccepted;
-    if (last && sameOptions(last->options, options) && sameScene(last->scene, scene) &&
+    if (last && last->options == options && sameScene(last->scene, scene) &&
       (impl->pending || impl->running == last->id ||
         (impl->published && impl->published->request == last->id)))
     {

@@ -74,6 +74,13 @@ struct SolverOptions
   CudaBvhBuild cudaBvhBuild = CudaBvhBuild::Gpu;
 };
 
+/// Every field equal (a request for the same solve).
+bool operator==(const SolverOptions& a, const SolverOptions& b);
+inline bool operator!=(const SolverOptions& a, const SolverOptions& b)
+{
+  return !(a == b);
+}
+
 /// Checks the options every method shares; throws linkgi::Error naming the bad one. The one
 /// home of these limits: the filter and the tools call it too.
 void validateOptions(const SolverOptions& options);

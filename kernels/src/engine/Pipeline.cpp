@@ -19,6 +19,16 @@ bool sameArray(const std::vector<T>& a, const std::vector<T>& b)
 }
 }
 
+bool operator==(const SolverOptions& a, const SolverOptions& b)
+{
+  return a.method == b.method && a.raysPerVertex == b.raysPerVertex && a.bounces == b.bounces &&
+    a.smoothing == b.smoothing && a.featureAngleDegrees == b.featureAngleDegrees &&
+    a.twoSided == b.twoSided && a.twist == b.twist && a.seed == b.seed &&
+    a.lightOversampling == b.lightOversampling && a.albedoPolicy == b.albedoPolicy &&
+    a.backend == b.backend && a.cudaDevices == b.cudaDevices &&
+    a.cudaBvhUpdate == b.cudaBvhUpdate && a.cudaBvhBuild == b.cudaBvhBuild;
+}
+
 void validateOptions(const SolverOptions& options)
 {
   if (options.bounces > 1000)
