@@ -306,7 +306,6 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
   const engine::MethodSpec& spec = engine::methodSpec(opt.method);
   Solution sol = std::move(spare); // same sizes as a rule: no allocation, no page faults
   spare = Solution();
-  st.method = spec.name();
   bool ran = false;
   if (chooseCuda(opt, st))
   {
@@ -337,6 +336,7 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
   spare = std::move(solution);
   solution = std::move(sol);
   valid = true;
+  st.method = spec.name();
   st.elements = solution.elementCount();
   st.msTotal = msSince(start);
   stats = std::move(st);
