@@ -16,11 +16,7 @@ namespace linkgi
 {
 namespace
 {
-template <typename T>
-bool sameArray(const std::vector<T>& a, const std::vector<T>& b)
-{
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), sizeof(T) * a.size()) == 0);
-}
+using engine::sameArray;
 
 double msSince(std::chrono::steady_clock::time_point start)
 {

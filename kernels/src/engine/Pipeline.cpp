@@ -8,17 +8,6 @@
 
 namespace linkgi
 {
-namespace
-{
-/// Bitwise equality. One thread: on the 16-core GPU machine splitting the comparison over
-/// the thread pool measured twice as slow as a single memcmp of conference's 8 MB.
-template <typename T>
-bool sameArray(const std::vector<T>& a, const std::vector<T>& b)
-{
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), sizeof(T) * a.size()) == 0);
-}
-}
-
 bool operator==(const SolverOptions& a, const SolverOptions& b)
 {
   return a.method == b.method && a.raysPerVertex == b.raysPerVertex && a.bounces == b.bounces &&
