@@ -164,3 +164,27 @@ TEST(TestPipeline, ProgressSpansTheStagesThatRun)
   EXPECT_LE(last, 1.0);
   EXPECT_EQ(stages.front(), "LightLinks");
 }
+
+TEST(TestPipeline, ResetRerunsEveryStageAndKeepsValidationWarnings)
+{
+  Scene s = test::roomWithBlock();
+  s.triangles.push_back({ { 0, 0, 1 } }); // degenerate: validation removes it, with a warning
+  Solver solver;
+  const Solution first = solver.update(s, fast());
+  ASSERT_EQ(solver.stats().warnings.size(), 1u);
+  solver.reset();
+  const Solution second = solver.update(s, fast());
+  for (const char* stage : { "Geometry", "Links", "LightLinks", "Bounces" })
+  {
+    EXPECT_TRUE(solver.stats().ran(stage)) << stage;
+  }
+  // The input differs from the validated copy, so it is validated again and warns again.
+  ASSERT_EQ(solver.stats().warnings.size(), 1u);
+  EXPECT_NE(solver.stats().warnings[0].find("degenerate"), std::string::npos);
+  ASSERT_EQ(first.elementCount(), second.elementCount());
+  for (std::size_t e = 0; e < first.elementCount(); ++e)
+  {
+    EXPECT_EQ(first.radiance[e].x, second.radiance[e].x);
+    EXPECT_EQ(first.indirect[e].y, second.indirect[e].y);
+  }
+}
