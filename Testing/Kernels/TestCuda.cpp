@@ -7,6 +7,8 @@
 #include "linkgi/BvhBuild.h"
 #include "linkgi/Scenes.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <random>
 
 using namespace linkgi;
@@ -241,4 +243,95 @@ TEST(Cuda, AllGpusGiveTheSameLinksAsOne)
   EXPECT_EQ(linked, s.vertexCount());
   EXPECT_EQ(a.stats().linksCompressed, b.stats().linksCompressed);
   expectIdentical(single, multi);
+}
+
+namespace
+{
+/// Each output of a within `tolerance` of b's, relative to the element's value.
+void expectClose(const Solution& a, const Solution& b, float tolerance)
+{
+  ASSERT_EQ(a.elementCount(), b.elementCount());
+  for (const auto member : { &Solution::direct, &Solution::indirect, &Solution::radiance })
+  {
+    const std::vector<Vec3f>&x = a.*member, &y = b.*member;
+    for (std::size_t i = 0; i < x.size(); ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        ASSERT_NEAR(x[i][c], y[i][c], tolerance * std::fabs(y[i][c]) + 1e-7f) << i;
+      }
+    }
+  }
+}
+
+/// LINKGI_CUDA_PARTITIONS while it lives.
+struct Partitions
+{
+  explicit Partitions(int p) { setenv("LINKGI_CUDA_PARTITIONS", std::to_string(p).c_str(), 1); }
+  ~Partitions() { unsetenv("LINKGI_CUDA_PARTITIONS"); }
+};
+}
+
+// Several GPUs keep the rows they linked and exchange the radiance between bounces; P
+// partitions on one GPU take the same paths (peer copies, gathers to the first).
+TEST(Cuda, PartitionsOnOneGpuGiveTheOneGpuSolution)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  Scene room = roomWithBlock();
+  Scene twoSided = twoSquares(false, 12);
+  twoSided.environment.color = Vec3f(0.6f, 0.7f, 0.9f);
+  Light lamp;
+  lamp.position = Vec3f(0.4f, 0.6f, 0.5f);
+  twoSided.lights.push_back(lamp);
+  SolverOptions o = onBackend(Backend::Cuda, fast());
+  for (Scene* s : { &room, &twoSided })
+  {
+    o.twoSided = s == &twoSided;
+    const std::size_t elements = o.twoSided ? 2 * s->vertexCount() : s->vertexCount();
+    Solver one;
+    const Solution single = one.update(*s, o);
+    ASSERT_EQ(one.stats().linkedPerDevice.size(), 1u);
+    for (int p : { 2, 3 })
+    {
+      const Partitions partitions(p);
+      Solver many;
+      const Solution split = many.update(*s, o);
+      ASSERT_EQ(many.stats().backend, "cuda") << many.stats().backendNote;
+      // Each partition holds the rows it linked, and only those.
+      ASSERT_EQ(many.stats().linkedPerDevice.size(), std::size_t(p));
+      std::uint64_t rows = 0;
+      for (std::uint64_t n : many.stats().linkedPerDevice)
+      {
+        EXPECT_GT(n, 0u);
+        EXPECT_LT(n, elements);
+        rows += n;
+      }
+      EXPECT_EQ(rows, elements);
+      EXPECT_EQ(many.stats().linksCompressed, one.stats().linksCompressed);
+      expectClose(split, single, 1e-5f);
+      // A light-only update reuses the partitions' rows.
+      Scene moved = *s;
+      for (Light& l : moved.lights)
+      {
+        l.position += Vec3f(0.05f, 0.f, 0.02f);
+      }
+      Solver oneMoved;
+      const Solution reference = oneMoved.update(moved, o);
+      const Solution& movedSplit = many.update(moved, o);
+      EXPECT_FALSE(many.stats().ran("Links"));
+      expectClose(movedSplit, reference, 1e-5f);
+    }
+  }
+}
+
+TEST(Cuda, GpuMemoryIsWhatTheEngineAllocated)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  Solver solver;
+  solver.update(roomWithBlock(), onBackend(Backend::Cuda, fast()));
+  const SolverStats& st = solver.stats();
+  ASSERT_EQ(st.backend, "cuda");
+  // At least the link matrices, far below a whole device (the context alone is ~0.5 GB).
+  EXPECT_GE(st.gpuBytesAllocated, st.linkBytes);
+  EXPECT_LT(st.gpuBytesAllocated, std::uint64_t(256) << 20);
 }

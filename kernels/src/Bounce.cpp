@@ -6,11 +6,16 @@ namespace linkgi
 {
 void gatherRgb(const SparseMatrix& m, const Vec3f* x, Vec3f* y)
 {
-  parallelRanges(m.rows(), 256, [&](std::size_t begin, std::size_t end) {
+  gatherRgb(m.view(), x, y);
+}
+
+void gatherRgb(const CsrRows& m, const Vec3f* x, Vec3f* y)
+{
+  parallelRanges(m.rows, 256, [&](std::size_t begin, std::size_t end) {
     for (std::size_t r = begin; r < end; ++r)
     {
       Vec3f sum(0.f);
-      for (Index i = m.rowOffsets[r]; i < m.rowOffsets[r + 1]; ++i)
+      for (Offset i = m.rowOffsets[r] - m.firstEntry; i < m.rowOffsets[r + 1] - m.firstEntry; ++i)
       {
         sum += x[m.columns[i]] * m.weights[i];
       }

@@ -147,6 +147,16 @@ void traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
     progress);
 }
 
+void exclusiveOffsets(const std::vector<Index>& counts, Offset first, std::vector<Offset>& offsets)
+{
+  offsets.resize(counts.size() + 1);
+  offsets[0] = first;
+  for (std::size_t i = 0; i < counts.size(); ++i)
+  {
+    offsets[i + 1] = offsets[i] + counts[i]; // Offset + Index: no 32-bit wrap
+  }
+}
+
 namespace
 {
 /// One chunk of compressed rows, built by one task.
@@ -192,10 +202,7 @@ void assembleCsr(const std::vector<RowChunk>& chunks, std::size_t chunkRows,
   const std::vector<Index>& rowCounts, bool environment, SparseMatrix& m)
 {
   const std::size_t rows = rowCounts.size();
-  m.rowOffsets.resize(rows + 1);
-  m.rowOffsets[0] = 0;
-  std::partial_sum(rowCounts.begin(), rowCounts.end(), m.rowOffsets.begin() + 1,
-    [](Index a, Index b) { return a + b; });
+  exclusiveOffsets(rowCounts, 0, m.rowOffsets);
   m.columns.resize(m.rowOffsets[rows]);
   m.weights.resize(m.rowOffsets[rows]);
   parallelRanges(chunks.size(), 1, [&](std::size_t begin, std::size_t end) {
@@ -203,7 +210,7 @@ void assembleCsr(const std::vector<RowChunk>& chunks, std::size_t chunkRows,
     {
       const auto& cols = environment ? chunks[c].envColumns : chunks[c].columns;
       const auto& ws = environment ? chunks[c].envWeights : chunks[c].weights;
-      const Index offset = m.rowOffsets[c * chunkRows];
+      const Offset offset = m.rowOffsets[c * chunkRows];
       std::copy(cols.begin(), cols.end(), m.columns.begin() + offset);
       std::copy(ws.begin(), ws.end(), m.weights.begin() + offset);
     }

@@ -164,11 +164,18 @@ GatherBenchmark benchmarkGather(const Scene& input, const SolverOptions& options
   out.msBounce = medianMs(repeat, stream,
     [&] { bounce(w, b, fixed.data(), dx.data(), dy.data(), next.data(), stream); });
   gatherRgb(w, dx.data(), dy.data(), stream);
-  // One GPU writes its rows in order: the row starts plus the total are CSR offsets.
+  // One batch on one GPU: the row starts plus the total are CSR offsets. cuSPARSE gets them
+  // as 32-bit offsets, which holds below 2^32 links.
+  if (w.nonZeros >= kInvalidIndex)
+  {
+    throw Error("The gather benchmark compares with cuSPARSE below 2^32 links only.");
+  }
+  std::vector<Offset> starts(w.rows);
   std::vector<Index> offsets(w.rows + 1), counts(w.rows);
-  LINKGI_CUDA_CHECK(cudaMemcpy(offsets.data(), w.rowStarts, w.rows * sizeof(Index), cudaMemcpyDeviceToHost));
+  LINKGI_CUDA_CHECK(cudaMemcpy(starts.data(), w.rowStarts, w.rows * sizeof(Offset), cudaMemcpyDeviceToHost));
   LINKGI_CUDA_CHECK(cudaMemcpy(counts.data(), w.rowCounts, w.rows * sizeof(Index), cudaMemcpyDeviceToHost));
-  offsets[w.rows] = w.nonZeros;
+  std::copy(starts.begin(), starts.end(), offsets.begin());
+  offsets[w.rows] = Index(w.nonZeros);
   for (Index r = 0; r < w.rows; ++r)
   {
     if (offsets[r] + counts[r] != offsets[r + 1])

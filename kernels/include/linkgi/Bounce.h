@@ -37,6 +37,8 @@ LINKGI_HOST_DEVICE inline Vec3f smoothElement(const ValueAt& value, std::size_t 
 
 /// y = M x for RGB vectors (one gather per row; rows in parallel).
 void gatherRgb(const SparseMatrix& m, const Vec3f* x, Vec3f* y);
+/// The same over a view: rows whose entry offsets may start anywhere (firstEntry).
+void gatherRgb(const CsrRows& m, const Vec3f* x, Vec3f* y);
 
 /// Per-element inputs of the bounce iteration.
 struct BounceInputs

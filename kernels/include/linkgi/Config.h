@@ -11,8 +11,11 @@
 
 namespace linkgi
 {
-/// Index type for vertices, triangles and links. 32 bits covers meshes of up to 4G elements.
+/// Index type for vertices, triangles, elements and link columns: meshes of up to 4G elements.
 using Index = std::uint32_t;
+/// Counts and offsets of link entries: a mesh of 6.5M vertices at 256 rays has more than 2^32
+/// links, so row offsets, non-zero counts and every sum over entry counts are 64-bit.
+using Offset = std::uint64_t;
 constexpr Index kInvalidIndex = 0xffffffffu;
 constexpr float kPi = 3.14159265358979323846f;
 }

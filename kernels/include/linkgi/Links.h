@@ -21,20 +21,37 @@ struct Elements
   LINKGI_HOST_DEVICE float sideSign(std::size_t e) const { return e < vertexCount ? 1.f : -1.f; }
 };
 
-/// Sparse matrix in CSR form; row = receiving element.
+/// Rows of a CSR matrix as the gather reads them: row r is entries [rowOffsets[r],
+/// rowOffsets[r + 1]) counted from `firstEntry`, which columns[0] / weights[0] hold (0 for a
+/// whole matrix; a slice of a larger one starts further on).
+struct CsrRows
+{
+  const Offset* rowOffsets = nullptr; ///< rows + 1
+  const Index* columns = nullptr;
+  const float* weights = nullptr;
+  std::size_t rows = 0;
+  Offset firstEntry = 0;
+};
+
+/// Sparse matrix in CSR form; row = receiving element. Entry offsets are 64-bit (Offset).
 struct SparseMatrix
 {
-  std::vector<Index> rowOffsets; ///< rows + 1
+  std::vector<Offset> rowOffsets; ///< rows + 1
   std::vector<Index> columns;
   std::vector<float> weights;
   std::size_t rows() const { return rowOffsets.empty() ? 0 : rowOffsets.size() - 1; }
   std::size_t nonZeros() const { return columns.size(); }
   std::size_t bytes() const
   {
-    return rowOffsets.size() * sizeof(Index) + columns.size() * sizeof(Index) +
+    return rowOffsets.size() * sizeof(Offset) + columns.size() * sizeof(Index) +
       weights.size() * sizeof(float);
   }
+  CsrRows view() const { return { rowOffsets.data(), columns.data(), weights.data(), rows(), 0 }; }
 };
+
+/// offsets[0] = first, offsets[i + 1] = offsets[i] + counts[i]: row offsets from per-row
+/// entry counts, in 64 bits (the sum passes 2^32 on large meshes). offsets gets counts + 1.
+void exclusiveOffsets(const std::vector<Index>& counts, Offset first, std::vector<Offset>& offsets);
 
 /// What link generation produces. With cosine-weighted directions the geometry term and the
 /// pdf cancel: E_ind(x) = sum_y W[x][y] L(y) + sum_j Wenv[x][j] Lenv(j), each hit adding

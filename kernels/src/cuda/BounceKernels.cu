@@ -26,11 +26,11 @@ template <int Lanes>
 __device__ inline Vec3f gatherRow(const CsrView& m, const Rgba* __restrict__ x, Index row, int lane)
 {
   const bool active = row < m.rows;
-  const Index begin = active ? __ldg(m.rowStarts + row) : 0;
-  const Index end = active ? begin + __ldg(m.rowCounts + row) : 0;
+  const Offset begin = active ? __ldg(m.rowStarts + row) : 0;
+  const Offset end = active ? begin + __ldg(m.rowCounts + row) : 0;
   float r = 0.f, g = 0.f, b = 0.f;
   const float4* xs = reinterpret_cast<const float4*>(x);
-  Index i = begin + lane;
+  Offset i = begin + lane;
   // Four entries per lane per step keep more loads in flight; the matrix streams through
   // once (evict-first loads), so the gathered vector stays in L2.
   for (; i + 3 * Lanes < end; i += 4 * Lanes)
@@ -91,7 +91,7 @@ __global__ void gatherKernel(CsrView m, const Rgba* __restrict__ x, Rgba* __rest
   const Vec3f sum = gatherRow<Lanes>(m, x, row, int(t % Lanes));
   if (row < m.rows && t % Lanes == 0)
   {
-    y[row] = toRgba(sum);
+    y[m.firstElement + row] = toRgba(sum);
   }
 }
 
@@ -100,10 +100,11 @@ __global__ void bounceKernel(CsrView w, BounceParams p, const Rgba* __restrict__
   const Rgba* __restrict__ radiance, Rgba* __restrict__ indirect, Rgba* __restrict__ next)
 {
   const std::size_t t = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
-  const Index e = Index(t / Lanes);
-  const Vec3f sum = gatherRow<Lanes>(w, radiance, e, int(t % Lanes));
-  if (e < w.rows && t % Lanes == 0)
+  const Index row = Index(t / Lanes);
+  const Vec3f sum = gatherRow<Lanes>(w, radiance, row, int(t % Lanes));
+  if (row < w.rows && t % Lanes == 0)
   {
+    const Index e = w.firstElement + row;
     indirect[e] = toRgba(sum);
     if (next)
     {
@@ -112,11 +113,12 @@ __global__ void bounceKernel(CsrView w, BounceParams p, const Rgba* __restrict__
   }
 }
 
-__global__ void startKernel(BounceParams p, Rgba* fixed, Rgba* radiance)
+__global__ void startKernel(BounceParams p, Index first, Index count, Rgba* fixed, Rgba* radiance)
 {
-  const Index e = blockIdx.x * blockDim.x + threadIdx.x;
-  if (e < p.elements)
+  const Index i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < count)
   {
+    const Index e = first + i;
     const Vec3f f = p.direct[e] + toVec(p.environment[e]);
     fixed[e] = toRgba(f);
     radiance[e] = toRgba(outgoingRadiance(albedoOf(p, e), f, Vec3f(0.f), emissionOf(p, e)));
@@ -176,11 +178,12 @@ void gatherRgb(const CsrView& m, const Rgba* x, Rgba* y, cudaStream_t stream)
   LINKGI_CUDA_CHECK_LAUNCH("gatherKernel");
 }
 
-void startBounces(const BounceParams& p, Rgba* fixedIrradiance, Rgba* radiance, cudaStream_t stream)
+void startBounces(const BounceParams& p, Index first, Index count, Rgba* fixedIrradiance,
+  Rgba* radiance, cudaStream_t stream)
 {
-  if (p.elements)
+  if (count)
   {
-    startKernel<<<(p.elements + kThreads - 1) / kThreads, kThreads, 0, stream>>>(p, fixedIrradiance, radiance);
+    startKernel<<<(count + kThreads - 1) / kThreads, kThreads, 0, stream>>>(p, first, count, fixedIrradiance, radiance);
     LINKGI_CUDA_CHECK_LAUNCH("startKernel");
   }
 }

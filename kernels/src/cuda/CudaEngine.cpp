@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <mutex>
 
@@ -112,7 +113,7 @@ void DeviceWorker::loop()
   }
 }
 
-CsrView DeviceCsr::view() const
+CsrView DeviceCsr::view(Index firstElement) const
 {
   CsrView v;
   v.rowStarts = rowStarts.data();
@@ -120,6 +121,7 @@ CsrView DeviceCsr::view() const
   v.columns = columns.data();
   v.weights = weights.data();
   v.rows = Index(rowStarts.size());
+  v.firstElement = firstElement;
   v.nonZeros = nonZeros;
   return v;
 }
@@ -132,9 +134,10 @@ EngineDevice::EngineDevice(int device) : id(device)
   {
     LINKGI_CUDA_CHECK(cudaEventCreate(&e));
   }
+  LINKGI_CUDA_CHECK(cudaEventCreateWithFlags(&ready, cudaEventDisableTiming));
   void* pinned = nullptr;
-  LINKGI_CUDA_CHECK(cudaMallocHost(&pinned, 4 * sizeof(Index)));
-  totals = static_cast<Index*>(pinned);
+  LINKGI_CUDA_CHECK(cudaMallocHost(&pinned, 4 * sizeof(Offset)));
+  totals = static_cast<Offset*>(pinned);
 }
 
 EngineDevice::~EngineDevice()
@@ -145,6 +148,7 @@ EngineDevice::~EngineDevice()
   {
     cudaEventDestroy(e);
   }
+  cudaEventDestroy(ready);
   cudaStreamDestroy(stream);
 }
 
@@ -157,16 +161,32 @@ Engine::Engine(int maxDevices)
     throw CudaError("The CUDA backend cannot run: " + why + ".", false);
   }
   const std::size_t use = maxDevices > 0 ? std::min<std::size_t>(found.size(), maxDevices) : found.size();
-  for (std::size_t d = 0; d < use; ++d)
+  std::size_t partitions = use;
+  if (const char* p = std::getenv("LINKGI_CUDA_PARTITIONS"))
   {
-    devices.push_back(std::make_unique<EngineDevice>(found[d].index));
+    partitions = std::max<std::size_t>(use, std::strtoul(p, nullptr, 10));
   }
-  name = (use > 1 ? std::to_string(use) + " x " : std::string()) + found[0].name;
-  // Peer access lets the other devices write their link rows straight into the first
-  // device's matrix (over NVLink where there is one); without it they stage and copy.
-  for (std::size_t d = 1; d < devices.size(); ++d)
+  for (std::size_t i = 0; i < partitions; ++i)
   {
-    devices[d]->writesFirst = enablePeerAccess(devices[d]->id, devices[0]->id);
+    devices.push_back(std::make_unique<EngineDevice>(found[i % use].index));
+  }
+  physicalDevices = int(use);
+  name = (use > 1 ? std::to_string(use) + " x " : std::string()) + found[0].name;
+  if (partitions > use)
+  {
+    name += " (" + std::to_string(partitions) + " partitions)";
+  }
+  // Peer access lets the bounce vectors' copies between GPUs go straight over NVLink; without
+  // it cudaMemcpyPeerAsync stages them through the host.
+  for (std::size_t a = 0; a < use; ++a)
+  {
+    for (std::size_t b = 0; b < use; ++b)
+    {
+      if (a != b)
+      {
+        enablePeerAccess(found[a].index, found[b].index);
+      }
+    }
   }
 }
 
@@ -184,7 +204,12 @@ std::string Engine::description() const
 
 CsrView Engine::transport() const
 {
-  return devices[0]->transport.view();
+  const EngineDevice& d0 = *devices[0];
+  if (d0.blocks.size() != 1)
+  {
+    throw Error("The transport matrix is not one block on the first GPU.");
+  }
+  return d0.blocks[0].transport.view(d0.blocks[0].first);
 }
 
 void Engine::linkProfile(SolverStats& stats) const
@@ -207,22 +232,14 @@ std::vector<std::size_t> Engine::linkedElements() const
   std::vector<std::size_t> out;
   for (const auto& d : devices)
   {
-    out.push_back(d->linked);
+    std::size_t rows = 0;
+    for (const MatrixBlock& b : d->blocks)
+    {
+      rows += b.transport.rowStarts.size();
+    }
+    out.push_back(rows);
   }
   return out;
-}
-
-void Engine::samplePeakMemory()
-{
-  for (const auto& d : devices)
-  {
-    d->use();
-    std::size_t freeBytes = 0, totalBytes = 0;
-    if (cudaMemGetInfo(&freeBytes, &totalBytes) == cudaSuccess)
-    {
-      peak = std::max(peak, totalBytes - freeBytes);
-    }
-  }
 }
 
 void Engine::run(std::size_t stage, const engine::StageContext& c)
@@ -248,23 +265,31 @@ void Engine::run(std::size_t stage, const engine::StageContext& c)
       bounceAndFinish(c);
       break;
   }
-  samplePeakMemory();
 }
 
 void Engine::describe(SolverStats& stats) const
 {
-  const EngineDevice& d0 = *devices[0];
   stats.backend = "cuda";
   stats.device = name;
-  stats.devices = deviceCount();
+  stats.devices = physicalDevices;
   const std::vector<std::size_t> linked = linkedElements();
   stats.linkedPerDevice.assign(linked.begin(), linked.end());
   linkProfile(stats);
-  stats.gpuBytesAllocated = peak;
+  // What this engine's buffers held at most since the last update was described: the sum
+  // over its GPUs of GPUBuffer allocations, not the devices' used memory.
+  stats.gpuBytesAllocated = MemoryLedger::takePeak();
   stats.rays = rays;
   stats.linksRaw = rawLinks;
-  stats.linksCompressed = d0.transport.nonZeros;
-  stats.linkBytes = d0.transport.usedBytes() + d0.environment.usedBytes();
+  stats.linksCompressed = 0;
+  stats.linkBytes = 0;
+  for (const auto& d : devices)
+  {
+    for (const MatrixBlock& b : d->blocks)
+    {
+      stats.linksCompressed += b.transport.nonZeros;
+      stats.linkBytes += b.transport.usedBytes() + b.environment.usedBytes();
+    }
+  }
   stats.lightRays = lightRays;
 }
 
@@ -399,19 +424,47 @@ void Engine::computeDirectLight(const engine::StageContext& c)
   lightRays = traced;
 }
 
+void Engine::exchange(Rgba* (*of)(EngineDevice&), bool toAll)
+{
+  if (devices.size() < 2)
+  {
+    return;
+  }
+  for (const auto& d : devices)
+  {
+    d->use();
+    LINKGI_CUDA_CHECK(cudaEventRecord(d->ready, d->stream));
+  }
+  for (std::size_t q = 0; q < (toAll ? devices.size() : 1); ++q)
+  {
+    EngineDevice& to = *devices[q];
+    to.use();
+    for (std::size_t p = 0; p < devices.size(); ++p)
+    {
+      EngineDevice& from = *devices[p];
+      if (p == q || from.blocks.empty())
+      {
+        continue;
+      }
+      // Pulled on the receiver's stream: after its own kernels that read the old values,
+      // and before the next that read the new ones.
+      LINKGI_CUDA_CHECK(cudaStreamWaitEvent(to.stream, from.ready, 0));
+      for (const MatrixBlock& b : from.blocks)
+      {
+        LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(of(to) + b.first, to.id, of(from) + b.first, from.id,
+          std::size_t(b.count) * sizeof(Rgba), to.stream));
+      }
+    }
+  }
+}
+
 void Engine::bounceAndFinish(const engine::StageContext& c)
 {
   using clock = std::chrono::steady_clock;
   const Scene& s = c.scene;
   const SolverOptions& options = c.options;
   Solution& solution = c.solution;
-  EngineDevice& d = *devices[0];
-  d.use();
-  if (c.changes & (engine::kTopology | engine::kAlbedo | engine::kEmission))
-  {
-    uploadVector(d.albedo, s.albedo, d.stream);
-    uploadVector(d.emission, s.emission, d.stream);
-  }
+  EngineDevice& d0 = *devices[0];
   const Elements elements{ s.vertexCount(), options.twoSided };
   const Index ne = Index(elements.count());
   std::vector<Rgba> texels;
@@ -419,49 +472,107 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
   {
     texels.push_back({ r.x, r.y, r.z, 0.f });
   }
-  d.texelRadiance.upload(texels, d.stream);
-  d.envIrradiance.resize(ne);
-  gatherRgb(d.environment.view(), d.texelRadiance.data(), d.envIrradiance.data(), d.stream);
-
+  const bool shading = (c.changes & (engine::kTopology | engine::kAlbedo | engine::kEmission)) != 0;
+  // Every partition computes its rows of each bounce from the whole radiance vector: E_env
+  // and the start for its rows, then after each bounce the rows move between partitions.
+  for (const auto& dp : devices)
+  {
+    EngineDevice& d = *dp;
+    d.use();
+    if (shading)
+    {
+      uploadVector(d.albedo, s.albedo, d.stream);
+      uploadVector(d.emission, s.emission, d.stream);
+    }
+    if (&d != &d0)
+    {
+      d.direct.resize(ne);
+      LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(d.direct.data(), d.id, d0.direct.data(), d0.id,
+        std::size_t(ne) * sizeof(Vec3f), d.stream));
+    }
+    d.texelRadiance.upload(texels, d.stream);
+    for (GPUBuffer<Rgba>* b : { &d.envIrradiance, &d.fixedIrradiance, &d.radiance[0], &d.radiance[1], &d.indirect })
+    {
+      b->resize(ne);
+    }
+  }
   BounceParams b;
   b.elements = ne;
   b.vertexCount = Index(s.vertexCount());
-  b.direct = d.direct.data();
-  b.environment = d.envIrradiance.data();
-  b.albedo = d.albedo.data();
-  b.emission = s.emission.empty() ? nullptr : d.emission.data();
-  d.fixedIrradiance.resize(ne);
-  d.radiance[0].resize(ne);
-  d.radiance[1].resize(ne);
-  d.indirect.resize(ne);
-  startBounces(b, d.fixedIrradiance.data(), d.radiance[0].data(), d.stream);
+  b.emission = nullptr;
+  const auto paramsOf = [&b, &s](EngineDevice& d) {
+    BounceParams p = b;
+    p.direct = d.direct.data();
+    p.environment = d.envIrradiance.data();
+    p.albedo = d.albedo.data();
+    p.emission = s.emission.empty() ? nullptr : d.emission.data();
+    return p;
+  };
+  for (const auto& dp : devices)
+  {
+    EngineDevice& d = *dp;
+    d.use();
+    const BounceParams p = paramsOf(d);
+    for (const MatrixBlock& m : d.blocks)
+    {
+      gatherRgb(m.environment.view(m.first), d.texelRadiance.data(), d.envIrradiance.data(), d.stream);
+      startBounces(p, m.first, m.count, d.fixedIrradiance.data(), d.radiance[0].data(), d.stream);
+    }
+  }
+  exchange([](EngineDevice& d) { return d.radiance[0].data(); }, true);
   for (std::uint32_t i = 0; i < options.bounces; ++i)
   {
     const bool last = i + 1 == options.bounces;
     c.check(double(i) / options.bounces);
-    bounce(d.transport.view(), b, d.fixedIrradiance.data(), d.radiance[i % 2].data(),
-      d.indirect.data(), last ? nullptr : d.radiance[(i + 1) % 2].data(), d.stream);
+    for (const auto& dp : devices)
+    {
+      EngineDevice& d = *dp;
+      d.use();
+      const BounceParams p = paramsOf(d);
+      for (const MatrixBlock& m : d.blocks)
+      {
+        bounce(m.transport.view(m.first), p, d.fixedIrradiance.data(), d.radiance[i % 2].data(),
+          d.indirect.data(), last ? nullptr : d.radiance[(i + 1) % 2].data(), d.stream);
+      }
+    }
+    if (!last)
+    {
+      exchange(i % 2 ? +[](EngineDevice& d) { return d.radiance[0].data(); }
+                     : +[](EngineDevice& d) { return d.radiance[1].data(); },
+        true);
+    }
+  }
+  // Smoothing reads neighbours' values: the first partition gathers E_ind and E_env.
+  exchange([](EngineDevice& d) { return d.envIrradiance.data(); }, false);
+  if (options.bounces > 0)
+  {
+    exchange([](EngineDevice& d) { return d.indirect.data(); }, false);
   }
   const auto t = clock::now();
+  d0.use();
   FinishParams f;
-  f.bounce = b;
-  f.indirect = options.bounces > 0 ? d.indirect.data() : nullptr;
+  f.bounce = paramsOf(d0);
+  f.indirect = options.bounces > 0 ? d0.indirect.data() : nullptr;
   f.smoothing = options.smoothing;
   f.cosFeatureAngle = std::cos(options.featureAngleDegrees * (kPi / 180.f));
-  f.neighbourOffsets = d.neighbourOffsets.data();
-  f.neighbours = d.neighbours.data();
-  f.normals = d.normals.data();
-  d.output.resize(3 * std::size_t(ne));
-  finish(f, d.output.data(), d.stream);
+  f.neighbourOffsets = d0.neighbourOffsets.data();
+  f.neighbours = d0.neighbours.data();
+  f.normals = d0.normals.data();
+  d0.output.resize(3 * std::size_t(ne));
+  finish(f, d0.output.data(), d0.stream);
   solution.direct.resize(ne);
   solution.indirect.resize(ne);
   solution.radiance.resize(ne);
-  d.sync();
-  d.output.download(solution.direct.data(), ne);
-  LINKGI_CUDA_CHECK(cudaMemcpy(solution.indirect.data(), d.output.data() + ne, ne * sizeof(Vec3f),
-    cudaMemcpyDeviceToHost));
-  LINKGI_CUDA_CHECK(cudaMemcpy(solution.radiance.data(), d.output.data() + 2 * std::size_t(ne),
-    ne * sizeof(Vec3f), cudaMemcpyDeviceToHost));
+  for (std::size_t i = 0; i < 3; ++i)
+  {
+    std::vector<Vec3f>& to = i == 0 ? solution.direct : i == 1 ? solution.indirect : solution.radiance;
+    LINKGI_CUDA_CHECK(cudaMemcpyAsync(to.data(), d0.output.data() + i * ne, ne * sizeof(Vec3f),
+      cudaMemcpyDeviceToHost, d0.stream));
+  }
+  for (const auto& d : devices)
+  {
+    d->sync();
+  }
   if (options.smoothing)
   {
     c.part("Smoothing", msSince(t)); // with the read-back, as on the CPU

@@ -19,26 +19,29 @@
 
 namespace linkgi::cuda
 {
-/// A device matrix in the row-start / row-count form of CsrView. The entry buffers keep the
-/// worst-case capacity (3 n_C or n_C per row), so GPUs can append rows without a merge.
+/// A block of rows of a device matrix, in the row-start / row-count form of CsrView.
 struct DeviceCsr
 {
-  GPUBuffer<Index> rowStarts, rowCounts, columns;
+  GPUBuffer<Offset> rowStarts;
+  GPUBuffer<Index> rowCounts, columns;
   GPUBuffer<float> weights;
-  Index nonZeros = 0;
-  CsrView view() const;
-  /// The bytes of the matrix itself (what a bounce reads), not the reserve.
-  std::size_t usedBytes() const { return nonZeros * 8ull + rowStarts.size() * 8ull; }
+  Offset nonZeros = 0;
+  CsrView view(Index firstElement) const;
+  /// The bytes of the matrix itself (what a bounce reads).
+  std::size_t usedBytes() const { return nonZeros * 8ull + rowStarts.size() * 12ull; }
 };
 
-/// One GPU's share of the work; the first device of the engine also holds everything after
-/// the links (light links, bounces, output).
+/// One partition of the work (a GPU, or a share of one); the first also holds everything
+/// that needs the whole mesh (topology, light links, smoothing, output).
 struct EngineDevice;
 
 class Engine final : public engine::MethodBackend
 {
 public:
-  /// Uses up to `maxDevices` devices (0 = all). Throws CudaError when none can be used.
+  /// Uses up to `maxDevices` devices (0 = all), one partition each; the environment variable
+  /// LINKGI_CUDA_PARTITIONS=P makes P partitions, dealt round-robin over those devices (several
+  /// on one GPU: how the multi-GPU paths are tested on one). Throws CudaError when no device
+  /// can be used.
   explicit Engine(int maxDevices);
   ~Engine() override;
   Engine(const Engine&) = delete;
@@ -54,13 +57,11 @@ public:
   int deviceCount() const;
   /// "NVIDIA H100 80GB HBM3" or "2 x NVIDIA H200".
   std::string description() const;
-  /// Largest GPU memory in use on any of the engine's devices, sampled after each stage.
-  std::size_t peakBytes() const { return peak; }
-  /// Elements each device linked in the last link stage.
+  /// Rows of W each partition holds (= elements it linked in the last link stage).
   std::vector<std::size_t> linkedElements() const;
-  /// Per device: batches and ms tracing, compressing and in all in the last link stage.
+  /// Per partition: batches and ms tracing, compressing and in all in the last link stage.
   void linkProfile(SolverStats& stats) const;
-  /// The transport matrix W on the first device (for benchmarks).
+  /// The transport matrix W, when it is one block on the first partition (for benchmarks).
   CsrView transport() const;
 
 private:
@@ -68,7 +69,9 @@ private:
   void buildLinks(const engine::StageContext& c);
   void computeDirectLight(const engine::StageContext& c);
   void bounceAndFinish(const engine::StageContext& c);
-  void samplePeakMemory();
+  /// Copies, for every partition q in `to` (all, or the first only), the rows of buffer
+  /// `of` that the other partitions computed, once their work queued so far is done.
+  void exchange(Rgba* (*of)(EngineDevice&), bool toAll);
   /// work(device, index) on every device at once: the first on this thread, the others on
   /// their workers; rethrows the first exception after all have finished.
   void runOnAllDevices(const std::function<void(EngineDevice&, std::size_t)>& work);
@@ -79,7 +82,7 @@ private:
   Topology topology;
   std::vector<Vec3f> shifts, faceNormals;
   std::string name;
-  std::size_t peak = 0;
+  int physicalDevices = 0;
   std::uint64_t rawLinks = 0, rays = 0, lightRays = 0;
 };
 }

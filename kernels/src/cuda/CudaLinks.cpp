@@ -1,7 +1,7 @@
-// The link stage of the CUDA engine: the element range in batches across all devices,
-// each batch sized by its device's speed on its previous batch (paper, sec. 3.2), traced and
-// compressed where it was traced, and its rows written straight into the first device's
-// matrix (peer stores over NVLink), so the devices' results need no merge pass.
+// The link stage of the CUDA engine: the element range in batches across all partitions
+// (GPUs), each batch sized by its partition's speed on its previous batch (paper, sec. 3.2),
+// traced and compressed where it was traced, and its rows kept there as one block: no merge
+// pass, no rows crossing between GPUs, and the matrix's memory adds up over the GPUs.
 #include "EngineDevice.h"
 #include "Primitives.h"
 
@@ -101,33 +101,6 @@ struct LinkJob
   Index elements = 0;
 };
 
-/// The first device's matrices and the next free entry of each, shared by all devices.
-class MatrixSink
-{
-public:
-  MatrixSink(EngineDevice& first) : first(first) {}
-  /// Room for a batch's entries: returns where they start in W and Wenv.
-  void reserve(Index nnz, Index envNnz, Index& base, Index& envBase)
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    base = used;
-    envBase = envUsed;
-    used += nnz;
-    envUsed += envNnz;
-  }
-  PackedRows target(bool env) const
-  {
-    DeviceCsr& m = env ? first.environment : first.transport;
-    return PackedRows{ m.columns.data(), m.weights.data(), m.rowStarts.data(), m.rowCounts.data(), 0, 0 };
-  }
-  int device() const { return first.id; }
-  Index used = 0, envUsed = 0;
-
-private:
-  EngineDevice& first;
-  std::mutex mutex;
-};
-
 /// Largest batch whose scratch fits in about half of the device's free memory.
 Index maxBatchFor(const EngineDevice& d, Index raysPerVertex)
 {
@@ -135,46 +108,27 @@ Index maxBatchFor(const EngineDevice& d, Index raysPerVertex)
   LINKGI_CUDA_CHECK(cudaMemGetInfo(&freeBytes, &totalBytes));
   const std::size_t perElement = std::size_t(raysPerVertex) *
       (sizeof(LinkHit) + 4 * (sizeof(Index) + sizeof(float))) + 64;
-  return Index(std::max<std::size_t>(256, (freeBytes + d.scratch.bytes()) / 2 / perElement));
+  return Index(std::min<std::size_t>(kInvalidIndex - 1,
+    std::max<std::size_t>(256, (freeBytes + d.scratch.bytes()) / 2 / perElement)));
 }
 
-/// Packs a batch's rows into the sink: directly where the device may write the first
-/// device's memory, else into staging buffers and copied over.
-void packInto(EngineDevice& d, MatrixSink& sink, bool env, Index n, Index first, Index count,
-  Index base, Index nnz)
+/// Packs a batch's rows of W (or Wenv) from the fixed-capacity scratch into its block.
+void packInto(EngineDevice& d, DeviceCsr& m, bool env, Index n, Index count, Offset nnz)
 {
   LinkScratch& s = d.scratch;
-  const Index* counts = env ? s.envCounts.data() : s.counts.data();
-  const Index* offsets = env ? s.envOffsets.data() : s.offsets.data();
-  const Index* columns = env ? s.envColumns.data() : s.columns.data();
-  const float* weights = env ? s.envWeights.data() : s.weights.data();
-  const Index capacity = env ? n : 3 * n;
-  PackedRows to = sink.target(env);
-  if (d.writesFirst)
-  {
-    to.entryOffset = to.startOffset = base;
-    packRows(columns, weights, capacity, counts, offsets, count, first, to, d.stream);
-    return;
-  }
-  s.stageColumns.resize(std::max<Index>(nnz, 1));
-  s.stageWeights.resize(std::max<Index>(nnz, 1));
-  s.stageStarts.resize(count);
-  s.stageCounts.resize(count);
-  const PackedRows staged{ s.stageColumns.data(), s.stageWeights.data(), s.stageStarts.data(),
-    s.stageCounts.data(), 0, base };
-  packRows(columns, weights, capacity, counts, offsets, count, 0, staged, d.stream);
-  const auto copy = [&](void* dst, const void* src, std::size_t bytes) {
-    LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(dst, sink.device(), src, d.id, bytes, d.stream));
-  };
-  copy(to.columns + base, staged.columns, nnz * sizeof(Index));
-  copy(to.weights + base, staged.weights, nnz * sizeof(float));
-  copy(to.rowStarts + first, staged.rowStarts, count * sizeof(Index));
-  copy(to.rowCounts + first, staged.rowCounts, count * sizeof(Index));
-  d.sync(); // the staging buffers are reused by the next batch
+  m.rowStarts.resize(count);
+  m.rowCounts.resize(count);
+  m.columns.resize(std::max<Offset>(nnz, 1));
+  m.weights.resize(std::max<Offset>(nnz, 1));
+  m.nonZeros = nnz;
+  const PackedRows to{ m.columns.data(), m.weights.data(), m.rowStarts.data(), m.rowCounts.data() };
+  packRows(env ? s.envColumns.data() : s.columns.data(), env ? s.envWeights.data() : s.weights.data(),
+    env ? n : 3 * n, env ? s.envCounts.data() : s.counts.data(),
+    env ? s.envOffsets.data() : s.offsets.data(), count, to, d.stream);
 }
 
-/// Traces and compresses elements [first, first + count) on `d` into the sink.
-void linkBatch(EngineDevice& d, const LinkJob& job, MatrixSink& sink, Index first, Index count)
+/// Traces and compresses elements [first, first + count) on `d` into a new block of its rows.
+void linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
 {
   const Index n = job.params.trace.raysPerVertex;
   LinkScratch& s = d.scratch;
@@ -183,10 +137,10 @@ void linkBatch(EngineDevice& d, const LinkJob& job, MatrixSink& sink, Index firs
   s.weights.resize(std::size_t(count) * 3 * n);
   s.envColumns.resize(std::size_t(count) * n);
   s.envWeights.resize(std::size_t(count) * n);
-  for (GPUBuffer<Index>* b : { &s.counts, &s.offsets, &s.envCounts, &s.envOffsets })
-  {
-    b->resize(count);
-  }
+  s.counts.resize(count);
+  s.envCounts.resize(count);
+  s.offsets.resize(count);
+  s.envOffsets.resize(count);
 
   LinkCompressParams p = job.params;
   p.trace.bvh = d.bvh.view();
@@ -209,19 +163,20 @@ void linkBatch(EngineDevice& d, const LinkJob& job, MatrixSink& sink, Index firs
   exclusiveSum(s.counts.data(), s.offsets.data(), count, s.temp, d.stream);
   exclusiveSum(s.envCounts.data(), s.envOffsets.data(), count, s.temp, d.stream);
   const Index last = count - 1;
-  const std::pair<Index*, const Index*> reads[] = { { d.totals + 0, s.offsets.data() + last },
-    { d.totals + 1, s.counts.data() + last }, { d.totals + 2, s.envOffsets.data() + last },
-    { d.totals + 3, s.envCounts.data() + last } };
-  for (const auto& [to, from] : reads)
-  {
-    LINKGI_CUDA_CHECK(cudaMemcpyAsync(to, from, sizeof(Index), cudaMemcpyDeviceToHost, d.stream));
-  }
+  LINKGI_CUDA_CHECK(cudaMemcpyAsync(d.totals + 0, s.offsets.data() + last, sizeof(Offset), cudaMemcpyDeviceToHost, d.stream));
+  LINKGI_CUDA_CHECK(cudaMemcpyAsync(d.totals + 2, s.envOffsets.data() + last, sizeof(Offset), cudaMemcpyDeviceToHost, d.stream));
+  Index* lastCounts = reinterpret_cast<Index*>(d.totals + 1); // pinned, as the totals
+  LINKGI_CUDA_CHECK(cudaMemcpyAsync(lastCounts, s.counts.data() + last, sizeof(Index), cudaMemcpyDeviceToHost, d.stream));
+  LINKGI_CUDA_CHECK(cudaMemcpyAsync(lastCounts + 1, s.envCounts.data() + last, sizeof(Index), cudaMemcpyDeviceToHost, d.stream));
   d.sync();
-  const Index nnz = d.totals[0] + d.totals[1], envNnz = d.totals[2] + d.totals[3];
-  Index base = 0, envBase = 0;
-  sink.reserve(nnz, envNnz, base, envBase);
-  packInto(d, sink, false, n, first, count, base, nnz);
-  packInto(d, sink, true, n, first, count, envBase, envNnz);
+  const Offset nnz = d.totals[0] + lastCounts[0], envNnz = d.totals[2] + lastCounts[1];
+  // The batch's rows stay on this partition, as one block of its matrices.
+  d.blocks.emplace_back();
+  MatrixBlock& block = d.blocks.back();
+  block.first = first;
+  block.count = count;
+  packInto(d, block.transport, false, n, count, nnz);
+  packInto(d, block.environment, true, n, count, envNnz);
   LINKGI_CUDA_CHECK(cudaEventRecord(d.events[2], d.stream));
   d.sync();
   float trace = 0.f, compress = 0.f;
@@ -242,8 +197,14 @@ namespace
 {
 LinkJob makeJob(const Scene& s, const SolverOptions& options)
 {
+  const std::size_t elements = Elements{ s.vertexCount(), options.twoSided }.count();
+  if (elements >= kInvalidIndex)
+  {
+    throw Error("The CUDA backend links at most " + std::to_string(kInvalidIndex - 1) +
+      " elements (vertices, twice that for two-sided); got " + std::to_string(elements) + ".");
+  }
   LinkJob job;
-  job.elements = Index(Elements{ s.vertexCount(), options.twoSided }.count());
+  job.elements = Index(elements);
   LinkTraceParams& t = job.params.trace;
   t.raysPerVertex = options.raysPerVertex;
   t.vertexCount = Index(s.vertexCount());
@@ -256,28 +217,12 @@ LinkJob makeJob(const Scene& s, const SolverOptions& options)
   return job;
 }
 
-/// The matrices on the first device, at their worst-case size: every device appends its
-/// rows there as its batches finish, so there is nothing to merge afterwards.
-void reserveMatrices(EngineDevice& d0, Index elements, Index raysPerVertex)
-{
-  d0.use();
-  for (DeviceCsr* m : { &d0.transport, &d0.environment })
-  {
-    const std::size_t perRow = m == &d0.transport ? 3 * raysPerVertex : raysPerVertex;
-    m->columns.resize(std::size_t(elements) * perRow);
-    m->weights.resize(std::size_t(elements) * perRow);
-    m->rowStarts.resize(elements);
-    m->rowCounts.resize(elements);
-  }
-}
-
 /// One link stage over all devices: each sets itself up and runs batches until none are
 /// left.
 struct LinkStage
 {
   const LinkJob& job;
   const std::vector<Vec3f>& directions;
-  MatrixSink& sink;
   BatchScheduler& scheduler;
   const engine::StageContext& context;
   std::atomic<Index> done{ 0 };
@@ -296,11 +241,12 @@ struct LinkStage
       d.msTrace = d.msCompress = 0.0;
       d.linked = 0;
       d.batches = 0;
+      d.blocks.clear(); // the last link stage's rows: their memory goes to this one's
       scheduler.limit(i, maxBatchFor(d, n));
       Index first = 0, count = 0;
       while (scheduler.next(i, first, count))
       {
-        linkBatch(d, job, sink, first, count);
+        linkBatch(d, job, first, count);
         done += count;
         // Only the caller's thread may ask: the callback may touch GUI state.
         if (i == 0)
@@ -360,16 +306,13 @@ void Engine::buildLinks(const engine::StageContext& c)
   const LinkJob job = makeJob(c.scene, options);
   const Index ne = job.elements, n = options.raysPerVertex;
   const std::vector<Vec3f> dirs = makeDirectionSet(n);
-  EngineDevice& d0 = *devices[0];
-  reserveMatrices(d0, ne, n);
-  MatrixSink sink(d0);
   std::vector<EngineDevice*> all;
   for (auto& d : devices)
   {
     all.push_back(d.get());
   }
   BatchScheduler scheduler(ne, all);
-  LinkStage stage{ job, dirs, sink, scheduler, c };
+  LinkStage stage{ job, dirs, scheduler, c };
   runOnAllDevices([&stage](EngineDevice& d, std::size_t i) { stage.run(d, i); });
 
   rawLinks = 0;
@@ -379,9 +322,6 @@ void Engine::buildLinks(const engine::StageContext& c)
     rawLinks += d->rawLinks;
     msCompress = std::max(msCompress, d->msCompress);
   }
-  d0.use();
-  d0.transport.nonZeros = sink.used;
-  d0.environment.nonZeros = sink.envUsed;
   rays = std::uint64_t(ne) * n;
   const double msAll = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   c.part("Compress", std::min(msCompress, msAll));

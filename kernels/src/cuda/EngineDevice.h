@@ -38,54 +38,64 @@ private:
 struct LinkScratch
 {
   GPUBuffer<LinkHit> hits;
-  GPUBuffer<Index> columns, counts, offsets, envColumns, envCounts, envOffsets;
+  GPUBuffer<Index> columns, counts, envColumns, envCounts;
+  GPUBuffer<Offset> offsets, envOffsets;
   GPUBuffer<float> weights, envWeights;
   GPUBuffer<unsigned long long> rawLinks;
   GPUBuffer<unsigned char> temp;
-  // Packed rows of a device that cannot write into the first device's memory: copied there.
-  GPUBuffer<Index> stageColumns, stageStarts, stageCounts;
-  GPUBuffer<float> stageWeights;
   std::size_t bytes() const
   {
     return hits.bytes() + columns.bytes() + counts.bytes() + offsets.bytes() + envColumns.bytes() +
-      envCounts.bytes() + envOffsets.bytes() + weights.bytes() + envWeights.bytes() + temp.bytes() +
-      stageColumns.bytes() + stageStarts.bytes() + stageCounts.bytes() + stageWeights.bytes();
+      envCounts.bytes() + envOffsets.bytes() + weights.bytes() + envWeights.bytes() + temp.bytes();
   }
 };
 
+/// The rows of one link batch, W and Wenv, on the partition that linked them.
+struct MatrixBlock
+{
+  DeviceCsr transport, environment;
+  Index first = 0, count = 0; ///< elements [first, first + count)
+};
+
+/// One partition of the engine: a GPU, or a share of one (LINKGI_CUDA_PARTITIONS), with its
+/// own stream, worker thread, geometry, BVH, link rows and bounce vectors. It links batches
+/// of elements, keeps their rows, and computes those rows of every bounce; the first
+/// partition also holds the topology, the light links and the output.
 struct EngineDevice
 {
   int id = 0;
   cudaStream_t stream = nullptr;
   cudaEvent_t events[3] = {};
-  Index* totals = nullptr; ///< pinned host memory: a batch's entry counts, read back at once
-  bool writesFirst = true; ///< kernels here may store into the first device's memory
+  cudaEvent_t ready = nullptr; ///< recorded before other partitions copy from this one
+  Offset* totals = nullptr; ///< pinned host memory: a batch's entry counts, read back at once
 
-  // Geometry (every device).
+  // Geometry (every partition).
   GPUBuffer<Vec3f> positions, normals, shifts, faceNormals, directions;
   GPUBuffer<Triangle> triangles;
   DeviceBvh bvh;
   double bvhBuildCost = 0.0; ///< DeviceBvh::cost() right after the last build
 
-  // Links (every device).
+  // Links (every partition): scratch, and this partition's rows, one block per batch.
   LinkScratch scratch;
+  std::vector<MatrixBlock> blocks;
   double elementsPerMs = 0.0; ///< speed of the last link batch, for the scheduler
   double msTrace = 0.0, msCompress = 0.0, msWall = 0.0;
   std::size_t linked = 0; ///< elements linked in the last link stage
   unsigned long long rawLinks = 0; ///< links before merging, last link stage
   std::uint32_t batches = 0;
 
-  // First device only: topology, shading inputs, link matrices, light and bounce buffers.
+  // Bounces (every partition: whole vectors, of which it computes its rows).
+  GPUBuffer<Vec3f> albedo, emission, direct;
+  GPUBuffer<Rgba> texelRadiance, envIrradiance, fixedIrradiance, radiance[2], indirect;
+
+  // First partition only: topology, light links and the output.
   GPUBuffer<Index> neighbourOffsets, neighbours, edges, vertexEdges;
-  GPUBuffer<Vec3f> albedo, emission, direct, output;
+  GPUBuffer<Vec3f> output;
   GPUBuffer<float> vertexVisible, edgeVisible;
   GPUBuffer<Light> lights;
   GPUBuffer<unsigned long long> counter;
-  DeviceCsr transport, environment;
-  GPUBuffer<Rgba> texelRadiance, envIrradiance, fixedIrradiance, radiance[2], indirect;
-  GPUBuffer<unsigned char> temp;
 
-  DeviceWorker worker; ///< runs this device's link batches (devices after the first)
+  DeviceWorker worker; ///< runs this partition's link batches (partitions after the first)
 
   explicit EngineDevice(int device);
   ~EngineDevice();

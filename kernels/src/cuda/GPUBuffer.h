@@ -5,12 +5,57 @@
 #include "CudaCheck.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <utility>
 #include <vector>
 
 namespace linkgi::cuda
 {
+/// Device memory held by GPUBuffers, per device and in all: what the engine allocated, not
+/// cudaMemGetInfo's view of the device (which counts the CUDA context and other processes).
+class MemoryLedger
+{
+public:
+  static constexpr int kDevices = 64;
+  static void add(int device, std::size_t bytes)
+  {
+    perDevice()[device & (kDevices - 1)] += bytes;
+    const std::size_t now = total() += bytes;
+    std::size_t seen = peak().load();
+    while (now > seen && !peak().compare_exchange_weak(seen, now))
+    {
+    }
+  }
+  static void remove(int device, std::size_t bytes)
+  {
+    perDevice()[device & (kDevices - 1)] -= bytes;
+    total() -= bytes;
+  }
+  static std::size_t held(int device) { return perDevice()[device & (kDevices - 1)].load(); }
+  static std::size_t held() { return total().load(); }
+  /// The largest sum over all devices since the last call; starts the next period at the
+  /// current sum.
+  static std::size_t takePeak() { return peak().exchange(total().load()); }
+
+private:
+  static std::atomic<std::size_t>* perDevice()
+  {
+    static std::atomic<std::size_t> bytes[kDevices] = {};
+    return bytes;
+  }
+  static std::atomic<std::size_t>& total()
+  {
+    static std::atomic<std::size_t> bytes{ 0 };
+    return bytes;
+  }
+  static std::atomic<std::size_t>& peak()
+  {
+    static std::atomic<std::size_t> bytes{ 0 };
+    return bytes;
+  }
+};
+
 template <typename T>
 class GPUBuffer
 {
@@ -45,6 +90,7 @@ public:
       LINKGI_CUDA_CHECK(cudaMalloc(&p, capacity * sizeof(T)));
       data_ = static_cast<T*>(p);
       capacity_ = capacity;
+      MemoryLedger::add(device_, capacity * sizeof(T));
     }
     size_ = count;
   }
@@ -121,6 +167,7 @@ public:
         cudaSetDevice(device_);
       }
       cudaFree(data_);
+      MemoryLedger::remove(device_, capacity_ * sizeof(T));
       if (current != device_)
       {
         cudaSetDevice(current);

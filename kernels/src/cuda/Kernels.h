@@ -28,19 +28,20 @@ struct LinkHit
   float u, v;
 };
 
-/// A sparse matrix in device memory (row = receiving element), CSR with each row's start
-/// and length stored apart: row r is entries [rowStarts[r], rowStarts[r] + rowCounts[r]).
-/// Rows need not lie in row order, so GPUs that link different rows append them wherever
-/// the first GPU's buffer has room, with no merge pass. One GPU writes them in order
-/// (rowStarts is then a CSR offset array).
+/// Rows [firstElement, firstElement + rows) of a sparse matrix in device memory (row =
+/// receiving element), CSR with each row's start and length stored apart: local row r is
+/// entries [rowStarts[r], rowStarts[r] + rowCounts[r]). Entry offsets are 64-bit: one GPU's
+/// rows of a large mesh hold more than 2^32 links. Each link batch is one such block, kept on
+/// the GPU that linked it.
 struct CsrView
 {
-  const Index* rowStarts = nullptr;
+  const Offset* rowStarts = nullptr;
   const Index* rowCounts = nullptr;
   const Index* columns = nullptr;
   const float* weights = nullptr;
   Index rows = 0;
-  Index nonZeros = 0;
+  Index firstElement = 0;
+  Offset nonZeros = 0;
 };
 
 // ---- rays (generic, for the RayTracer interface) ----
@@ -93,22 +94,19 @@ constexpr Index kMaxCompressRays = 1024;
 bool compressLinks(const LinkCompressParams& p, const LinkHit* hits, const LinkRowsOut& out,
   cudaStream_t stream);
 
-/// Where packRows puts a batch's rows: entries from `base` on, in the batch's row order,
-/// and each row's start and count at its element index. May be another GPU's memory (peer
-/// access).
+/// Where packRows puts a batch's rows: entries from 0 on, in row order, each row's start
+/// and count at its local row.
 struct PackedRows
 {
   Index* columns = nullptr;
   float* weights = nullptr;
-  Index* rowStarts = nullptr;
+  Offset* rowStarts = nullptr;
   Index* rowCounts = nullptr;
-  Index entryOffset = 0; ///< where the batch's first entry goes in columns / weights
-  Index startOffset = 0; ///< what rowStarts count from (differs when staging elsewhere)
 };
-/// Row r of the batch: `counts[r]` entries from src + r * capacity to
-/// dst.columns + dst.entryOffset + offsets[r]; dst.rowStarts / rowCounts[firstElement + r].
+/// Row r of the batch: `counts[r]` entries from src + r * capacity to dst.columns + offsets[r];
+/// dst.rowStarts[r] = offsets[r], dst.rowCounts[r] = counts[r].
 void packRows(const Index* srcColumns, const float* srcWeights, Index capacity, const Index* counts,
-  const Index* offsets, Index rows, Index firstElement, const PackedRows& dst, cudaStream_t stream);
+  const Offset* offsets, Index rows, const PackedRows& dst, cudaStream_t stream);
 
 // ---- light links ----
 struct DirectLightParams
@@ -134,7 +132,7 @@ void addDirectLights(const DirectLightParams& p, const Light* lights, int lightC
   unsigned long long* rays, cudaStream_t stream);
 
 // ---- bounces, smoothing, output ----
-/// y = M x, RGB; rows in parallel with 8..32 threads per row.
+/// y[m.firstElement + r] = (M x)[r] for the block's rows, RGB; 8..32 threads per row.
 void gatherRgb(const CsrView& m, const Rgba* x, Rgba* y, cudaStream_t stream);
 
 struct BounceParams
@@ -146,10 +144,12 @@ struct BounceParams
   const Vec3f* albedo = nullptr;   ///< per vertex
   const Vec3f* emission = nullptr; ///< per vertex, nullptr = none (front sides emit)
 };
-/// radiance = L(E_ind = 0); fixedIrradiance = E_d + E_env.
-void startBounces(const BounceParams& p, Rgba* fixedIrradiance, Rgba* radiance, cudaStream_t stream);
-/// One Jacobi bounce fused with the next radiance: indirect = W radiance, and when
-/// `nextRadiance` is not null, nextRadiance = L(indirect).
+/// For elements [first, first + count): radiance = L(E_ind = 0); fixedIrradiance = E_d + E_env.
+void startBounces(const BounceParams& p, Index first, Index count, Rgba* fixedIrradiance,
+  Rgba* radiance, cudaStream_t stream);
+/// One Jacobi bounce over the block's rows, fused with the next radiance: indirect = W
+/// radiance, and when `nextRadiance` is not null, nextRadiance = L(indirect). Reads the whole
+/// radiance vector, writes only the block's elements.
 void bounce(const CsrView& w, const BounceParams& p, const Rgba* fixedIrradiance,
   const Rgba* radiance, Rgba* indirect, Rgba* nextRadiance, cudaStream_t stream);
 

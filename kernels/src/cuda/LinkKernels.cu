@@ -222,7 +222,7 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
 }
 
 __global__ void packRowsKernel(const Index* srcColumns, const float* srcWeights, Index capacity,
-  const Index* counts, const Index* offsets, Index rows, Index firstElement, PackedRows dst)
+  const Index* counts, const Offset* offsets, Index rows, PackedRows dst)
 {
   // One warp per row.
   const Index row = Index((std::size_t(blockIdx.x) * blockDim.x + threadIdx.x) / 32);
@@ -232,7 +232,8 @@ __global__ void packRowsKernel(const Index* srcColumns, const float* srcWeights,
     return;
   }
   const std::size_t src = std::size_t(row) * capacity;
-  const Index at = dst.entryOffset + offsets[row], count = counts[row];
+  const Offset at = offsets[row];
+  const Index count = counts[row];
   for (Index i = lane; i < count; i += 32)
   {
     dst.columns[at + i] = srcColumns[src + i];
@@ -240,8 +241,8 @@ __global__ void packRowsKernel(const Index* srcColumns, const float* srcWeights,
   }
   if (lane == 0)
   {
-    dst.rowStarts[firstElement + row] = dst.startOffset + offsets[row];
-    dst.rowCounts[firstElement + row] = count;
+    dst.rowStarts[row] = at;
+    dst.rowCounts[row] = count;
   }
 }
 
@@ -302,13 +303,13 @@ bool compressLinks(const LinkCompressParams& p, const LinkHit* hits, const LinkR
 }
 
 void packRows(const Index* srcColumns, const float* srcWeights, Index capacity, const Index* counts,
-  const Index* offsets, Index rows, Index firstElement, const PackedRows& dst, cudaStream_t stream)
+  const Offset* offsets, Index rows, const PackedRows& dst, cudaStream_t stream)
 {
   if (rows)
   {
     const std::size_t threads = std::size_t(rows) * 32;
     packRowsKernel<<<unsigned((threads + kThreads - 1) / kThreads), kThreads, 0, stream>>>(
-      srcColumns, srcWeights, capacity, counts, offsets, rows, firstElement, dst);
+      srcColumns, srcWeights, capacity, counts, offsets, rows, dst);
     LINKGI_CUDA_CHECK_LAUNCH("packRowsKernel");
   }
 }

@@ -2,6 +2,7 @@
 
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
+#include <cuda/std/functional>
 
 namespace linkgi::cuda
 {
@@ -17,12 +18,14 @@ void sortPairs(const std::uint64_t* keysIn, std::uint64_t* keysOut, const Index*
     valuesOut, count, 0, endBit, stream));
 }
 
-void exclusiveSum(const Index* in, Index* out, std::size_t count, GPUBuffer<unsigned char>& temp,
+void exclusiveSum(const Index* in, Offset* out, std::size_t count, GPUBuffer<unsigned char>& temp,
   cudaStream_t stream)
 {
+  // The 64-bit initial value makes CUB accumulate in 64 bits (Sum(Offset, Index) = Offset).
   std::size_t bytes = 0;
-  LINKGI_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, count, stream));
+  const auto sum = ::cuda::std::plus<>{};
+  LINKGI_CUDA_CHECK(cub::DeviceScan::ExclusiveScan(nullptr, bytes, in, out, sum, Offset(0), count, stream));
   temp.resize(bytes);
-  LINKGI_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp.data(), bytes, in, out, count, stream));
+  LINKGI_CUDA_CHECK(cub::DeviceScan::ExclusiveScan(temp.data(), bytes, in, out, sum, Offset(0), count, stream));
 }
 }

@@ -13,7 +13,7 @@ void sortPairs(const std::uint64_t* keysIn, std::uint64_t* keysOut, const Index*
   Index* valuesOut, std::size_t count, int endBit, GPUBuffer<unsigned char>& temp,
   cudaStream_t stream);
 
-/// out[i] = in[0] + ... + in[i-1]; out may alias in.
-void exclusiveSum(const Index* in, Index* out, std::size_t count, GPUBuffer<unsigned char>& temp,
+/// out[i] = in[0] + ... + in[i-1], summed in 64 bits (entry counts pass 2^32).
+void exclusiveSum(const Index* in, Offset* out, std::size_t count, GPUBuffer<unsigned char>& temp,
   cudaStream_t stream);
 }
