@@ -62,26 +62,13 @@ float rayEpsilon(const Scene& scene)
 
 std::vector<Vec3f> originShifts(const Scene& scene, const Topology& topology)
 {
-  constexpr float kShift = 0.01f; // of the distance to the one-ring centroid
-  std::vector<Vec3f> shifts(scene.vertexCount(), Vec3f(0.f));
+  std::vector<Vec3f> shifts(scene.vertexCount());
   parallelRanges(shifts.size(), 4096, [&](std::size_t first, std::size_t last) {
     for (std::size_t v = first; v < last; ++v)
     {
       const Index begin = topology.neighbourOffsets[v], end = topology.neighbourOffsets[v + 1];
-      if (begin == end)
-      {
-        continue;
-      }
-      Vec3f centroid(0.f);
-      for (Index i = begin; i < end; ++i)
-      {
-        centroid += scene.positions[topology.neighbours[i]];
-      }
-      centroid = centroid / float(end - begin);
-      const Vec3f& n = scene.normals[v];
-      Vec3f toCentroid = centroid - scene.positions[v];
-      toCentroid -= n * dot(n, toCentroid); // stay in the tangent plane
-      shifts[v] = toCentroid * kShift;
+      shifts[v] = originShift(scene.positions.data(), scene.positions[v], scene.normals[v],
+        topology.neighbours.data() + begin, end - begin);
     }
   });
   return shifts;
@@ -93,11 +80,7 @@ std::vector<Vec3f> frontFaceNormals(const Scene& scene)
   parallelRanges(normals.size(), 8192, [&](std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t)
     {
-      const Index* v = scene.triangles[t].v;
-      const Vec3f& a = scene.positions[v[0]];
-      Vec3f n = normalize(cross(scene.positions[v[1]] - a, scene.positions[v[2]] - a));
-      const Vec3f vertexSum = scene.normals[v[0]] + scene.normals[v[1]] + scene.normals[v[2]];
-      normals[t] = dot(n, vertexSum) < 0.f ? -n : n;
+      normals[t] = frontFaceNormal(scene.positions.data(), scene.normals.data(), scene.triangles[t]);
     }
   });
   return normals;

@@ -9,8 +9,10 @@ namespace linkgi::bench
 {
 namespace
 {
-Scene isosurface()
+Scene isosurface(double vertices)
 {
+  // 1400 x 740 gives about 1.05M vertices; other sizes scale both directions alike.
+  const double f = std::sqrt(vertices / 1.05e6);
   MeshBuilder b;
   b.addBox({ -3, 0, -3 }, { 3, 3, 3 }, 0.1f, Vec3f(0.7f, 0.7f, 0.68f), true);
   const Vec3f c(0.f, 1.3f, 0.f);
@@ -25,7 +27,7 @@ Scene isosurface()
       const float r = radius(theta, phi);
       return c + Vec3f(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)) * r;
     },
-    1400, 740, SurfaceTopology::closed(), Vec3f(0.8f, 0.45f, 0.3f));
+    int(std::lround(1400 * f)), int(std::lround(740 * f)), SurfaceTopology::closed(), Vec3f(0.8f, 0.45f, 0.3f));
   Scene s = b.take();
   for (const Vec3f& p : { Vec3f(1.8f, 2.7f, 1.5f), Vec3f(-2.f, 2.6f, -1.2f) })
   {
@@ -40,6 +42,14 @@ Scene isosurface()
 
 Scene makeScene(const std::string& name)
 {
-  return name == "isosurface" ? isosurface() : makeStandardScene(name);
+  if (name == "isosurface")
+  {
+    return isosurface(1.05e6);
+  }
+  if (name.rfind("isosurface:", 0) == 0)
+  {
+    return isosurface(std::stod(name.substr(11)));
+  }
+  return makeStandardScene(name);
 }
 }

@@ -108,7 +108,7 @@ Args parse(int argc, char** argv)
       a.gather = false;
     else
     {
-      throw Error("Usage: linkgi-bench [--scenes a,b] [--rays 256] [--bounces 3] [--repeat 3] "
+      throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--rays 256] [--bounces 3] [--repeat 3] "
                   "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] [--bvh-build gpu|sah] "
                   "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather]; unknown argument " +
         arg + ".");
@@ -337,6 +337,23 @@ std::string yardstickJson(const Scene& scene, const SolverStats& full, const Arg
   return out.str();
 }
 
+/// The area-weighted mean over the vertices' front sides of the indirect irradiance (mean of
+/// R, G, B): independent of the tessellation, so meshes of different sizes must agree.
+std::string meanIndirectJson(const Scene& scene, const Solution& solution)
+{
+  const std::vector<float> areas = vertexAreas(scene);
+  double sum = 0.0, area = 0.0;
+  for (std::size_t v = 0; v < areas.size() && v < solution.indirect.size(); ++v)
+  {
+    const Vec3f& e = solution.indirect[v];
+    sum += areas[v] * (double(e.x) + e.y + e.z) / 3.0;
+    area += areas[v];
+  }
+  std::ostringstream out;
+  out << ",\"mean_indirect_irradiance\":" << (area > 0.0 ? sum / area : 0.0);
+  return out.str();
+}
+
 /// Every stage and part of the method that ran the update, by name: "Links":12.3,...
 std::string stagesJson(const SolverStats& s)
 {
@@ -387,7 +404,8 @@ void benchScene(const std::string& name, const Args& args)
 {
   const Scene scene = bench::makeScene(name);
   const UpdateRuns runs = runUpdates(scene, args);
-  std::string extra = timingJson(runs) + deformationJson(name, scene, args);
+  std::string extra = timingJson(runs) + deformationJson(name, scene, args) +
+    meanIndirectJson(scene, runs.solution);
   if (!args.dump.empty())
   {
     writeSolution(args.dump + "/" + name + ".bin", runs.solution);

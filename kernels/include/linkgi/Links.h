@@ -142,6 +142,36 @@ LINKGI_HOST_DEVICE inline Vec3f elementRayOrigin(const Vec3f& position, const Ve
   return position + sideNormal * eps + shift;
 }
 
+/// The shift of a vertex's ray origins (see originShifts): 1% of the way to the centroid of
+/// its one-ring `ring[0, ringSize)`, in its tangent plane.
+LINKGI_HOST_DEVICE inline Vec3f originShift(const Vec3f* positions, const Vec3f& position,
+  const Vec3f& normal, const Index* ring, Index ringSize)
+{
+  constexpr float kShift = 0.01f;
+  if (ringSize == 0)
+  {
+    return Vec3f(0.f);
+  }
+  Vec3f centroid(0.f);
+  for (Index i = 0; i < ringSize; ++i)
+  {
+    centroid += positions[ring[i]];
+  }
+  centroid = centroid / float(ringSize);
+  Vec3f toCentroid = centroid - position;
+  toCentroid -= normal * dot(normal, toCentroid); // stay in the tangent plane
+  return toCentroid * kShift;
+}
+
+/// A triangle's front-side normal (see frontFaceNormals).
+LINKGI_HOST_DEVICE inline Vec3f frontFaceNormal(const Vec3f* positions, const Vec3f* normals, const Triangle& t)
+{
+  const Vec3f& a = positions[t.v[0]];
+  const Vec3f n = normalize(cross(positions[t.v[1]] - a, positions[t.v[2]] - a));
+  const Vec3f vertexSum = normals[t.v[0]] + normals[t.v[1]] + normals[t.v[2]];
+  return dot(n, vertexSum) < 0.f ? -n : n;
+}
+
 /// Lenv(j): the radiance of each environment texel the matrix Wenv gathers (one entry, the
 /// colour, for a constant environment; colour x texel for a lat-long map).
 std::vector<Vec3f> environmentTexelRadiance(const Environment& environment);

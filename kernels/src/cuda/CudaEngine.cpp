@@ -46,11 +46,6 @@ bool enablePeerAccess(int from, int to)
 /// CudaBvhUpdate::Auto rebuilds a refit tree whose surface-area cost grew by this factor.
 constexpr double kRebuildGrowth = 1.5;
 
-template <typename T>
-void uploadVector(GPUBuffer<T>& buffer, const std::vector<T>& host, cudaStream_t stream)
-{
-  buffer.upload(host, stream);
-}
 }
 
 DeviceWorker::DeviceWorker() : thread([this] { loop(); }) {}
@@ -303,33 +298,62 @@ void Engine::updateGeometry(const engine::StageContext& c)
     bool topology, positions, geometry;
   } const mask{ (c.changes & engine::kTopology) != 0, (c.changes & (engine::kTopology | engine::kPositions)) != 0,
     (c.changes & engine::kGeometry) != 0 };
-  auto t = std::chrono::steady_clock::now();
+  const Index nv = Index(s.vertexCount()), nt = Index(s.triangleCount());
+  // Uploads through pinned memory, all queued before the GPU work that reads them.
+  const auto t = std::chrono::steady_clock::now();
+  for (const auto& dp : devices)
+  {
+    EngineDevice& d = *dp;
+    d.use();
+    d.staging.begin(PinnedStaging::room(s.triangles.size() * sizeof(Triangle)) +
+      2 * PinnedStaging::room(s.positions.size() * sizeof(Vec3f)));
+    if (mask.topology)
+    {
+      d.staging.upload(d.triangles, s.triangles, d.stream);
+    }
+    if (mask.positions)
+    {
+      d.staging.upload(d.positions, s.positions, d.stream);
+    }
+    if (mask.geometry)
+    {
+      d.staging.upload(d.normals, s.normals, d.stream);
+    }
+  }
+  // What the link rays need besides the BVH, derived on the first GPU: no host topology on
+  // the critical path (it took 5.6 ms of conference's update on 16 cores).
+  EngineDevice& d0 = *devices[0];
+  d0.use();
   if (mask.topology)
   {
-    topology = Topology::build(s.vertexCount(), s.triangles);
+    d0.topology.build(d0.triangles.data(), nt, nv, d0.stream);
   }
-  shifts = originShifts(s, topology);
-  faceNormals = frontFaceNormals(s);
-  c.part("Topology", msSince(t));
+  if (mask.geometry)
+  {
+    d0.shifts.resize(nv);
+    d0.faceNormals.resize(nt);
+    originShifts(d0.positions.data(), d0.normals.data(), d0.topology.neighbourOffsets.data(),
+      d0.topology.neighbours.data(), nv, d0.shifts.data(), d0.stream);
+    frontFaceNormals(d0.positions.data(), d0.normals.data(), d0.triangles.data(), nt, d0.faceNormals.data(), d0.stream);
+    LINKGI_CUDA_CHECK(cudaEventRecord(d0.ready, d0.stream));
+    for (std::size_t i = 1; i < devices.size(); ++i)
+    {
+      EngineDevice& d = *devices[i];
+      d.use();
+      d.shifts.resize(nv);
+      d.faceNormals.resize(nt);
+      LINKGI_CUDA_CHECK(cudaStreamWaitEvent(d.stream, d0.ready, 0));
+      LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(d.shifts.data(), d.id, d0.shifts.data(), d0.id, nv * sizeof(Vec3f), d.stream));
+      LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(d.faceNormals.data(), d.id, d0.faceNormals.data(), d0.id,
+        nt * sizeof(Vec3f), d.stream));
+    }
+  }
+  c.part("Topology", msSince(t)); // the host's part: queueing uploads and kernels
   HostBvh sah; // CudaBvhBuild::HostSah: built once here, uploaded to every device
   for (std::size_t i = 0; i < devices.size(); ++i)
   {
     EngineDevice& d = *devices[i];
     d.use();
-    if (mask.topology)
-    {
-      uploadVector(d.triangles, s.triangles, d.stream);
-    }
-    if (mask.positions)
-    {
-      uploadVector(d.positions, s.positions, d.stream);
-    }
-    if (mask.geometry)
-    {
-      uploadVector(d.normals, s.normals, d.stream);
-      uploadVector(d.shifts, shifts, d.stream);
-      uploadVector(d.faceNormals, faceNormals, d.stream);
-    }
     bool rebuild = mask.topology || (mask.positions && options.cudaBvhUpdate == CudaBvhUpdate::Rebuild);
     if (!rebuild && mask.positions)
     {
@@ -348,8 +372,7 @@ void Engine::updateGeometry(const engine::StageContext& c)
     }
     else if (rebuild)
     {
-      d.bvh.build(d.positions.data(), Index(s.vertexCount()), d.triangles.data(),
-        Index(s.triangleCount()), d.stream);
+      d.bvh.build(d.positions.data(), nv, d.triangles.data(), nt, d.stream);
       d.bvhBuildCost = options.cudaBvhUpdate == CudaBvhUpdate::Auto ? d.bvh.cost(d.stream) : 0.0;
     }
     if (i == 0)
@@ -360,21 +383,11 @@ void Engine::updateGeometry(const engine::StageContext& c)
       stats.bvhRefits += stats.refitBvh;
     }
   }
-  EngineDevice& d0 = *devices[0];
-  d0.use();
-  if (mask.topology)
-  {
-    const Topology& topo = topology;
-    uploadVector(d0.neighbourOffsets, topo.neighbourOffsets, d0.stream);
-    uploadVector(d0.neighbours, topo.neighbours, d0.stream);
-    uploadVector(d0.vertexEdges, topo.vertexEdges, d0.stream);
-    d0.edges.upload(reinterpret_cast<const Index*>(topo.edges.data()), 2 * topo.edges.size(), d0.stream);
-    static_assert(sizeof(topo.edges[0]) == 2 * sizeof(Index), "edges are pairs of indices");
-  }
   for (const auto& d : devices)
   {
     d->sync();
   }
+  edgeCount = d0.topology.edgeCount();
 }
 
 void Engine::computeDirectLight(const engine::StageContext& c)
@@ -393,7 +406,7 @@ void Engine::computeDirectLight(const engine::StageContext& c)
       lit.push_back(light);
     }
   }
-  const std::size_t edges = topology.edges.size();
+  const std::size_t edges = edgeCount;
   d.direct.resize(elements.count());
   d.direct.fillZero(d.stream);
   d.lights.upload(lit, d.stream);
@@ -406,9 +419,9 @@ void Engine::computeDirectLight(const engine::StageContext& c)
   p.positions = d.positions.data();
   p.normals = d.normals.data();
   p.shifts = d.shifts.data();
-  p.edges = d.edges.data();
-  p.neighbourOffsets = d.neighbourOffsets.data();
-  p.vertexEdges = d.vertexEdges.data();
+  p.edges = d.topology.edges.data();
+  p.neighbourOffsets = d.topology.neighbourOffsets.data();
+  p.vertexEdges = d.topology.vertexEdges.data();
   p.vertexCount = nv;
   p.edgeCount = Index(edges);
   p.eps = rayEpsilon(s);
@@ -479,10 +492,14 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
   {
     EngineDevice& d = *dp;
     d.use();
+    // Room for the shading uploads, and on the first partition for the outputs' download.
+    d.staging.begin((shading ? PinnedStaging::room(s.albedo.size() * sizeof(Vec3f)) +
+        PinnedStaging::room(s.emission.size() * sizeof(Vec3f)) : 0) +
+      (&d == &d0 ? PinnedStaging::room(3 * std::size_t(ne) * sizeof(Vec3f)) : 0));
     if (shading)
     {
-      uploadVector(d.albedo, s.albedo, d.stream);
-      uploadVector(d.emission, s.emission, d.stream);
+      d.staging.upload(d.albedo, s.albedo, d.stream);
+      d.staging.upload(d.emission, s.emission, d.stream);
     }
     if (&d != &d0)
     {
@@ -555,23 +572,25 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
   f.indirect = options.bounces > 0 ? d0.indirect.data() : nullptr;
   f.smoothing = options.smoothing;
   f.cosFeatureAngle = std::cos(options.featureAngleDegrees * (kPi / 180.f));
-  f.neighbourOffsets = d0.neighbourOffsets.data();
-  f.neighbours = d0.neighbours.data();
+  f.neighbourOffsets = d0.topology.neighbourOffsets.data();
+  f.neighbours = d0.topology.neighbours.data();
   f.normals = d0.normals.data();
   d0.output.resize(3 * std::size_t(ne));
   finish(f, d0.output.data(), d0.stream);
+  // The three outputs in one download through pinned memory.
+  const std::size_t bytes = 3 * std::size_t(ne) * sizeof(Vec3f);
+  const Vec3f* staged = static_cast<const Vec3f*>(d0.staging.download(d0.output.data(), bytes, d0.stream));
   solution.direct.resize(ne);
   solution.indirect.resize(ne);
   solution.radiance.resize(ne);
-  for (std::size_t i = 0; i < 3; ++i)
-  {
-    std::vector<Vec3f>& to = i == 0 ? solution.direct : i == 1 ? solution.indirect : solution.radiance;
-    LINKGI_CUDA_CHECK(cudaMemcpyAsync(to.data(), d0.output.data() + i * ne, ne * sizeof(Vec3f),
-      cudaMemcpyDeviceToHost, d0.stream));
-  }
   for (const auto& d : devices)
   {
     d->sync();
+  }
+  for (std::size_t i = 0; i < 3; ++i)
+  {
+    std::vector<Vec3f>& to = i == 0 ? solution.direct : i == 1 ? solution.indirect : solution.radiance;
+    PinnedStaging::copy(to.data(), staged + i * ne, ne * sizeof(Vec3f));
   }
   if (options.smoothing)
   {

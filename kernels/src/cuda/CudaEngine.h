@@ -10,7 +10,6 @@
 #include "links/LinksBackends.h"
 
 #include "linkgi/Links.h"
-#include "linkgi/Topology.h"
 
 #include <functional>
 #include <memory>
@@ -77,10 +76,7 @@ private:
   void runOnAllDevices(const std::function<void(EngineDevice&, std::size_t)>& work);
 
   std::vector<std::unique_ptr<EngineDevice>> devices;
-  // Host copies of what the light links read on the host side (edge count) and what the
-  // geometry stage derives from the scene.
-  Topology topology;
-  std::vector<Vec3f> shifts, faceNormals;
+  Index edgeCount = 0; ///< of the topology on the first partition
   std::string name;
   int physicalDevices = 0;
   std::uint64_t rawLinks = 0, rays = 0, lightRays = 0;

@@ -2,6 +2,8 @@
 #pragma once
 
 #include "CudaEngine.h"
+#include "DeviceTopology.h"
+#include "PinnedStaging.h"
 
 #include <condition_variable>
 #include <exception>
@@ -88,8 +90,10 @@ struct EngineDevice
   GPUBuffer<Vec3f> albedo, emission, direct;
   GPUBuffer<Rgba> texelRadiance, envIrradiance, fixedIrradiance, radiance[2], indirect;
 
+  PinnedStaging staging; ///< this partition's uploads and downloads
+
   // First partition only: topology, light links and the output.
-  GPUBuffer<Index> neighbourOffsets, neighbours, edges, vertexEdges;
+  DeviceTopology topology;
   GPUBuffer<Vec3f> output;
   GPUBuffer<float> vertexVisible, edgeVisible;
   GPUBuffer<Light> lights;

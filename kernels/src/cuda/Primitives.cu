@@ -18,6 +18,15 @@ void sortPairs(const std::uint64_t* keysIn, std::uint64_t* keysOut, const Index*
     valuesOut, count, 0, endBit, stream));
 }
 
+void sortKeys(const std::uint64_t* keysIn, std::uint64_t* keysOut, std::size_t count, int endBit,
+  GPUBuffer<unsigned char>& temp, cudaStream_t stream)
+{
+  std::size_t bytes = 0;
+  LINKGI_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(nullptr, bytes, keysIn, keysOut, count, 0, endBit, stream));
+  temp.resize(bytes);
+  LINKGI_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(temp.data(), bytes, keysIn, keysOut, count, 0, endBit, stream));
+}
+
 void exclusiveSum(const Index* in, Offset* out, std::size_t count, GPUBuffer<unsigned char>& temp,
   cudaStream_t stream)
 {

@@ -13,6 +13,10 @@ void sortPairs(const std::uint64_t* keysIn, std::uint64_t* keysOut, const Index*
   Index* valuesOut, std::size_t count, int endBit, GPUBuffer<unsigned char>& temp,
   cudaStream_t stream);
 
+/// Radix sort of keys on bits [0, endBit). `temp` grows as needed.
+void sortKeys(const std::uint64_t* keysIn, std::uint64_t* keysOut, std::size_t count, int endBit,
+  GPUBuffer<unsigned char>& temp, cudaStream_t stream);
+
 /// out[i] = in[0] + ... + in[i-1], summed in 64 bits (entry counts pass 2^32).
 void exclusiveSum(const Index* in, Offset* out, std::size_t count, GPUBuffer<unsigned char>& temp,
   cudaStream_t stream);
