@@ -171,8 +171,12 @@ void linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
   d.sync();
   const Offset nnz = d.totals[0] + lastCounts[0], envNnz = d.totals[2] + lastCounts[1];
   // The batch's rows stay on this partition, as one block of its matrices.
-  d.blocks.emplace_back();
-  MatrixBlock& block = d.blocks.back();
+  // A block of the last link stage is reused: same batches, no allocation.
+  if (d.blocksUsed == d.blocks.size())
+  {
+    d.blocks.emplace_back();
+  }
+  MatrixBlock& block = d.blocks[d.blocksUsed++];
   block.first = first;
   block.count = count;
   packInto(d, block.transport, false, n, count, nnz);
@@ -241,7 +245,7 @@ struct LinkStage
       d.msTrace = d.msCompress = 0.0;
       d.linked = 0;
       d.batches = 0;
-      d.blocks.clear(); // the last link stage's rows: their memory goes to this one's
+      d.blocksUsed = 0;
       scheduler.limit(i, maxBatchFor(d, n));
       Index first = 0, count = 0;
       while (scheduler.next(i, first, count))
@@ -255,6 +259,7 @@ struct LinkStage
         }
       }
       d.scratch.rawLinks.download(&d.rawLinks, 1);
+      d.blocks.resize(d.blocksUsed); // blocks of a last stage with more batches
     }
     catch (...)
     {

@@ -80,6 +80,7 @@ struct EngineDevice
   // Links (every partition): scratch, and this partition's rows, one block per batch.
   LinkScratch scratch;
   std::vector<MatrixBlock> blocks;
+  std::size_t blocksUsed = 0; ///< during the link stage: blocks written so far
   double elementsPerMs = 0.0; ///< speed of the last link batch, for the scheduler
   double msTrace = 0.0, msCompress = 0.0, msWall = 0.0;
   std::size_t linked = 0; ///< elements linked in the last link stage
