@@ -1,8 +1,11 @@
 #include "vtkGlobalIlluminationFilter.h"
 
+#include "vtkGlobalIlluminationBlockMerger.h"
 #include "vtkGlobalIlluminationSceneBuilder.h"
 
+#include "vtkCompositeDataSet.h"
 #include "vtkDataObject.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -25,6 +28,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -66,9 +70,14 @@ struct vtkGlobalIlluminationFilter::vtkInternals
 {
   linkgi::Solver Solver;
   std::vector<vtkSmartPointer<vtkLight>> Lights;
-  vtkNew<vtkPolyData> LastOutput;
-  bool HasLastOutput = false;
-  std::vector<std::string> Warnings; // the filter's own, for this update
+  vtkSmartPointer<vtkDataObject> LastOutput; // the last good output, handed out after errors
+  std::vector<std::string> Warnings;         // the filter's own, for this update
+
+  // Input that is no vtkPolyData (composite, or another dataset) is merged into one
+  // surface, lit as `Lit`, and delivered back onto its blocks.
+  vtkGlobalIlluminationBlockMerger Merger;
+  vtkNew<vtkPolyData> Lit;
+  vtkPolyData* Surface(vtkGlobalIlluminationFilter* self, vtkDataObject* input);
 
   // The triangle mesh and what it was built from; rebuilt only when one of these changes,
   // so a light-only update costs no triangulation.
@@ -149,6 +158,32 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
                                 "so the sky is black; set EnvironmentColor to 1,1,1.");
   }
   return scene;
+}
+
+//------------------------------------------------------------------------------
+vtkPolyData* vtkGlobalIlluminationFilter::vtkInternals::Surface(
+  vtkGlobalIlluminationFilter* self, vtkDataObject* input)
+{
+  if (auto poly = vtkPolyData::SafeDownCast(input))
+  {
+    return poly;
+  }
+  // The merged surface carries the colour arrays under their names, with the constant
+  // albedo (or no emission) for blocks that lack them, so UpdateScene reads it as it reads
+  // a vtkPolyData.
+  std::vector<vtkGlobalIlluminationBlockMerger::Carried> carried;
+  if (self->AlbedoArrayName && *self->AlbedoArrayName)
+  {
+    carried.push_back({ self->AlbedoArrayName, self->AlbedoArrayAssociation,
+      { { self->Albedo[0], self->Albedo[1], self->Albedo[2] } }, "albedo" });
+  }
+  if (self->EmissionArrayName && *self->EmissionArrayName)
+  {
+    carried.push_back({ self->EmissionArrayName, self->EmissionArrayAssociation,
+      { { 0.0, 0.0, 0.0 } }, "emission" });
+  }
+  this->Merger.Merge(input, carried);
+  return this->Merger.GetMerged();
 }
 
 //------------------------------------------------------------------------------
@@ -311,45 +346,103 @@ vtkGlobalIlluminationFilter::~vtkGlobalIlluminationFilter()
 }
 
 //------------------------------------------------------------------------------
+int vtkGlobalIlluminationFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationFilter::FillOutputPortInformation(int, vtkInformation* info)
+{
+  // vtkPolyData, or a composite dataset of the input's type: see RequestDataObject.
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkDataObject");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkGlobalIlluminationFilter::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()))
+  {
+    return this->RequestDataObject(request, inputVector, outputVector);
+  }
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationFilter::RequestDataObject(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // A composite input gives a dataset of its type, any other input a vtkPolyData.
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  const bool composite = vtkCompositeDataSet::SafeDownCast(input) != nullptr;
+  const char* wanted = composite ? input->GetClassName() : "vtkPolyData";
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkDataObject* output = vtkDataObject::GetData(outInfo);
+  if (!output || std::strcmp(output->GetClassName(), wanted) != 0)
+  {
+    outInfo->Set(vtkDataObject::DATA_OBJECT(),
+      vtk::TakeSmartPointer(composite ? input->NewInstance() : vtkPolyData::New()));
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const auto start = std::chrono::steady_clock::now();
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0]);
+  vtkDataObject* output = vtkDataObject::GetData(outputVector);
   if (!input || !output)
   {
-    vtkErrorMacro("No input: connect a vtkPolyData to input port 0.");
+    vtkErrorMacro("No input: connect a vtkPolyData, another vtkDataSet or a composite dataset "
+                  "to input port 0.");
     return 0;
-  }
-  if (input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
-  {
-    vtkWarningMacro("The input is empty; the output is empty too.");
-    output->ShallowCopy(input);
-    return 1;
   }
 
   vtkInternals& internals = *this->Internals;
   internals.Warnings.clear();
   try
   {
-    if (this->Asynchronous)
+    vtkPolyData* surface = internals.Surface(this, input);
+    const bool merged = surface != input;
+    vtkPolyData* lit = merged ? internals.Lit.Get() : vtkPolyData::SafeDownCast(output);
+    if (surface->GetNumberOfPoints() == 0 || surface->GetNumberOfCells() == 0)
     {
-      return internals.SolveAsynchronously(this, input, output) ? 1 : 0;
+      vtkWarningMacro("The input is empty; the output is empty too.");
+      lit->ShallowCopy(surface);
     }
-    internals.Async.reset();
-    const linkgi::Scene& scene = internals.UpdateScene(this, input);
-    internals.Solver.update(scene, internals.Options(this), internals.Progress(this));
-    output->ShallowCopy(input);
-    const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
-    internals.AttachResults(
-      this, output, elapsed.count(), internals.Solver.solution(), internals.Solver.stats());
-    for (const std::string& warning : internals.AllWarnings())
+    else if (this->Asynchronous)
     {
-      vtkWarningMacro(<< warning);
+      internals.SolveAsynchronously(this, surface, lit);
     }
-    internals.LastOutput->ShallowCopy(output);
-    internals.HasLastOutput = true;
+    else
+    {
+      internals.Async.reset();
+      const linkgi::Scene& scene = internals.UpdateScene(this, surface);
+      internals.Solver.update(scene, internals.Options(this), internals.Progress(this));
+      lit->ShallowCopy(surface);
+      const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
+      internals.AttachResults(
+        this, lit, elapsed.count(), internals.Solver.solution(), internals.Solver.stats());
+      for (const std::string& warning : internals.AllWarnings())
+      {
+        vtkWarningMacro(<< warning);
+      }
+    }
+    if (merged)
+    {
+      internals.Merger.Deliver(lit, output);
+    }
+    if (!this->Asynchronous)
+    {
+      internals.LastOutput = vtk::TakeSmartPointer(output->NewInstance());
+      internals.LastOutput->ShallowCopy(output);
+    }
     return 1;
   }
   catch (const linkgi::Aborted& aborted)
@@ -371,9 +464,10 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationFilter::RestorePreviousOutput(vtkPolyData* output)
+void vtkGlobalIlluminationFilter::RestorePreviousOutput(vtkDataObject* output)
 {
-  if (this->Internals->HasLastOutput)
+  const vtkDataObject* last = this->Internals->LastOutput;
+  if (last && std::strcmp(last->GetClassName(), output->GetClassName()) == 0)
   {
     output->ShallowCopy(this->Internals->LastOutput);
   }

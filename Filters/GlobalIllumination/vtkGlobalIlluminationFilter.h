@@ -2,7 +2,7 @@
  * @class   vtkGlobalIlluminationFilter
  * @brief   per-vertex multi-bounce diffuse global illumination of a surface
  *
- * vtkGlobalIlluminationFilter lights the polygons and triangle strips of a vtkPolyData with
+ * vtkGlobalIlluminationFilter lights the polygons and triangle strips of a surface with
  * vtkLight objects, an environment (sky) and emissive surfaces, following Schmitz,
  * Tavenrath & Kobbelt, "Interactive Global Illumination for Deformable Geometry in CUDA"
  * (2008): every vertex traces RaysPerVertex cosine-distributed rays once, and the hits
@@ -10,7 +10,7 @@
  *
  * The output is the input geometry (a shallow copy: points, cells, point, cell and field
  * data are kept; vertices and lines are passed through unlit, their points get 0) with three
- * float point arrays of linear RGB:
+ * float point arrays of linear RGB (for composite and other input, see Input below):
  * - `DirectIrradiance`: irradiance E_d from the lights, with shadows;
  * - `IndirectIrradiance`: irradiance E_ind from bounced light, emissive surfaces and the
  *   environment;
@@ -20,6 +20,17 @@
  * (lifetime numbers of BVH builds and refits, link builds, light link builds and bounce
  * runs; sizes of the link structure), the stage times of the last update in milliseconds
  * (`LinkGI.MsFilter` is the whole RequestData) and `LinkGI.Warnings`.
+ *
+ * Input: a vtkPolyData; any other vtkDataSet, lit as its surface (vtkDataSetSurfaceFilter),
+ * which is then the output; or a composite dataset (vtkMultiBlockDataSet,
+ * vtkPartitionedDataSetCollection, vtkPartitionedDataSet, nested as deep as you like) whose
+ * blocks are solved together as one scene, so that light bounces and shadows cross blocks.
+ * A composite output has the input's type and structure: each polydata block is a shallow
+ * copy with its own result arrays, other dataset blocks become their lit surfaces, empty
+ * nodes stay empty, and the `LinkGI.*` field data is on the composite (GetOutput() is for
+ * vtkPolyData output; use GetOutputDataObject(0)). Blocks without the albedo array get
+ * Albedo, blocks without the emission array emit nothing; an array that no block has is an
+ * error, as it is for a vtkPolyData.
  *
  * Units: linear RGB with no hidden factors. A point or spot vtkLight with Intensity 1 and a
  * white DiffuseColor has a radiant intensity of 1 W/sr per channel (times
@@ -330,6 +341,13 @@ protected:
   vtkGlobalIlluminationFilter();
   ~vtkGlobalIlluminationFilter() override;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  /// A vtkPolyData for a vtkDataSet input, a dataset of the input's type for a composite one.
+  virtual int RequestDataObject(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector);
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
@@ -360,7 +378,7 @@ private:
   void operator=(const vtkGlobalIlluminationFilter&) = delete;
 
   /// Hands out the last good output again after an error or an abort.
-  void RestorePreviousOutput(vtkPolyData* output);
+  void RestorePreviousOutput(vtkDataObject* output);
 
   struct vtkInternals;
   std::unique_ptr<vtkInternals> Internals;

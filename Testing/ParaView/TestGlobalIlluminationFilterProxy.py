@@ -3,8 +3,9 @@
 Checks the output arrays against the radiometry of a point light (E = I cos / r^2, a
 shadow under the sphere, bounced light under it), the LinkGI.* counters in field data
 (moving a light must not rebuild the links), a ParaView light proxy given as an additional
-light, and that progress reaches the session's progress handler (what the GUI's progress
-bar shows).
+light, that progress reaches the session's progress handler (what the GUI's progress
+bar shows), and that the sphere and the plane as two blocks of a group are one scene: each
+block gets the arrays of its points in the appended surface.
 """
 import math
 
@@ -97,3 +98,28 @@ t.check(t.field_value(proxied, "LinkGI.LinkBuilds") == 1, "changing lights kept 
 gi.RaysPerVertex = 64
 gi.UpdatePipeline()
 t.check(t.field_value(t.fetch(gi), "LinkGI.LinkBuilds") == 2, "changing the rays rebuilds the links")
+
+# The sphere and the plane as two blocks: one scene, the same light as appended.
+group = GroupDatasets(Input=[sphere, plane])
+blocks = GlobalIllumination(Input=group, Light=0, AdditionalLights=[light], RaysPerVertex=64)
+blocks.UpdatePipeline()
+appended = t.fetch(gi)
+leaves = []
+iterator = t.fetch(blocks).NewIterator()
+iterator.InitTraversal()
+while not iterator.IsDoneWithTraversal():
+    leaves.append(iterator.GetCurrentDataObject())
+    iterator.GoToNextItem()
+t.check(len(leaves) == 2 and all(leaf.IsA("vtkPolyData") for leaf in leaves),
+        "a group of two surfaces gives a group of two lit surfaces")
+first, worst = 0, 0.0
+for leaf in leaves:
+    for name in ("DirectIrradiance", "IndirectIrradiance"):
+        for i in range(0, leaf.GetNumberOfPoints(), 7):
+            a, b = t.point_rgb(leaf, name, i), t.point_rgb(appended, name, first + i)
+            worst = max(worst, max(abs(x - y) / max(1.0, abs(y)) for x, y in zip(a, b)))
+    first += leaf.GetNumberOfPoints()
+t.check(first == appended.GetNumberOfPoints() and worst < 1e-5,
+        "the blocks' arrays are those of the appended surface (largest difference %.2g)" % worst)
+t.check(t.point_rgb(leaves[0], "IndirectIrradiance", bottom)[0] > 0.01,
+        "light bounces from the plane's block onto the sphere's")

@@ -1,12 +1,14 @@
 #include "vtkGlobalIlluminationRepresentation.h"
 
-#include "vtkGlobalIlluminationBlockMerger.h"
-
 #include "vtkCamera.h"
+#include "vtkCellData.h"
 #include "vtkCommand.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkGlobalIlluminationCompositeMapper.h"
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkGlobalIlluminationShading.h"
@@ -20,10 +22,13 @@
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkScalarsToColors.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVariant.h"
 
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -45,10 +50,91 @@ vtkGlobalIlluminationShading* Shading(vtkMapper* mapper)
   return static_cast<vtkGlobalIlluminationCompositeMapper*>(mapper)->GetShading();
 }
 
-int FieldInt(vtkPolyData* data, const char* name)
+int FieldInt(vtkDataObject* data, const char* name)
 {
   vtkAbstractArray* array = data ? data->GetFieldData()->GetAbstractArray(name) : nullptr;
   return array && array->GetNumberOfTuples() > 0 ? array->GetVariantValue(0).ToInt() : 0;
+}
+
+/// Calls `visit(dataset)` for every dataset leaf of `data` (or `data` itself).
+template <typename Visit>
+void ForEachDataSet(vtkDataObject* data, Visit&& visit)
+{
+  if (auto composite = vtkCompositeDataSet::SafeDownCast(data))
+  {
+    auto it = vtk::TakeSmartPointer(composite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      if (auto leaf = vtkDataSet::SafeDownCast(it->GetCurrentDataObject()))
+      {
+        visit(leaf, it.Get());
+      }
+    }
+  }
+  else if (auto dataset = vtkDataSet::SafeDownCast(data))
+  {
+    visit(dataset, nullptr);
+  }
+}
+
+/// The colours the mapper draws: `scalars` mapped through the mapper's lookup table as
+/// float RGB times `diffuse` (vtkProperty's Diffuse), named `name`.
+vtkSmartPointer<vtkFloatArray> MappedColors(
+  vtkMapper* mapper, vtkDataArray* scalars, double diffuse, const char* name)
+{
+  auto rgba = vtk::TakeSmartPointer(mapper->GetLookupTable()->MapScalars(
+    scalars, mapper->GetColorMode(), mapper->GetArrayComponent(), VTK_RGBA));
+  auto colors = vtkSmartPointer<vtkFloatArray>::New();
+  colors->SetName(name);
+  colors->SetNumberOfComponents(3);
+  colors->SetNumberOfTuples(scalars->GetNumberOfTuples());
+  for (vtkIdType i = 0; rgba && i < scalars->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      colors->SetTypedComponent(i, c, static_cast<float>(rgba->GetTypedComponent(i, c) / 255.0 * diffuse));
+    }
+  }
+  return colors;
+}
+
+const char* const DrawnAlbedoName = "GlobalIlluminationAlbedo";
+
+vtkDataSetAttributes* AttributesOf(vtkDataSet* data, bool cells)
+{
+  if (cells)
+  {
+    return data->GetCellData();
+  }
+  return data->GetPointData();
+}
+
+/// A copy of `data` (its structure, shallow copies of its datasets) in which the datasets
+/// that have the mapper's colouring array carry its colours as DrawnAlbedoName.
+vtkSmartPointer<vtkDataObject> WithDrawnColors(
+  vtkDataObject* data, vtkMapper* mapper, bool cells, double diffuse)
+{
+  const auto colored = [&](vtkDataSet* leaf) {
+    auto copy = vtk::TakeSmartPointer(leaf->NewInstance());
+    copy->ShallowCopy(leaf);
+    vtkDataSetAttributes* attributes = AttributesOf(copy, cells);
+    if (vtkDataArray* scalars = attributes->GetArray(mapper->GetArrayName()))
+    {
+      attributes->AddArray(MappedColors(mapper, scalars, diffuse, DrawnAlbedoName));
+    }
+    return copy;
+  };
+  auto composite = vtkCompositeDataSet::SafeDownCast(data);
+  if (!composite)
+  {
+    auto dataset = vtkDataSet::SafeDownCast(data);
+    return dataset ? vtkSmartPointer<vtkDataObject>(colored(dataset)) : nullptr;
+  }
+  auto copy = vtk::TakeSmartPointer(composite->NewInstance());
+  copy->CopyStructure(composite);
+  ForEachDataSet(composite,
+    [&](vtkDataSet* leaf, vtkCompositeDataIterator* it) { copy->SetDataSet(it, colored(leaf)); });
+  return copy;
 }
 }
 
@@ -56,10 +142,19 @@ int FieldInt(vtkPolyData* data, const char* name)
 struct vtkGlobalIlluminationRepresentation::vtkInternals
 {
   vtkNew<vtkGlobalIlluminationFilter> Filter;
-  vtkGlobalIlluminationBlockMerger Merger;
   std::vector<vtkSmartPointer<vtkLight>> Lights; // world-space copies of the view's lights
-  bool Executed = false;                         // the filter ran since the last scatter
   std::set<std::string> Warnings;                // each shown once
+
+  // With colouring by an array, the delivered data with the colours as drawn
+  // (DrawnAlbedoName), remade only when the data or the colouring change.
+  vtkSmartPointer<vtkDataObject> Colored;
+  vtkDataObject* ColoredFrom = nullptr;
+  vtkMTimeType ColoredTime = 0;
+  std::string ColoredKey;
+
+  // What the mapper drew last (its block attributes are per block object).
+  vtkDataObject* Drawn = nullptr;
+  vtkMTimeType DrawnTime = 0;
 };
 
 vtkStandardNewMacro(vtkGlobalIlluminationRepresentation);
@@ -96,7 +191,6 @@ void vtkGlobalIlluminationRepresentation::OnFilterEvent(vtkObject*, unsigned lon
   }
   else if (event == vtkCommand::EndEvent)
   {
-    internals.Executed = true;
     ++this->NumberOfUpdates;
   }
   else if (event == vtkCommand::WarningEvent && data)
@@ -140,74 +234,98 @@ int vtkGlobalIlluminationRepresentation::ProcessViewRequest(
 
   // The superclass gave the mapper the delivered data; draw the lit copy instead, with the
   // block attributes (colours, visibilities) moved onto the copy's blocks.
-  vtkDataObject* delivered = vtkPVView::GetDeliveredPiece(inInfo, this);
-  vtkDataObject* before = this->Internals->Merger.GetOutput();
-  this->UpdateGlobalIllumination(delivered, view->GetRenderer());
-  vtkDataObject* lit = this->Internals->Merger.GetOutput();
+  vtkInternals& internals = *this->Internals;
+  vtkDataObject* lit =
+    this->UpdateGlobalIllumination(vtkPVView::GetDeliveredPiece(inInfo, this), view->GetRenderer());
   this->Mapper->SetInputDataObject(lit);
-  if (attributes && lit && (lit != before || attributes->GetMTime() != attributesTime))
+  // A new solution may have new blocks (the attributes are kept per block object).
+  const bool changed = lit != internals.Drawn || (lit && lit->GetMTime() != internals.DrawnTime);
+  if (attributes && lit && (changed || attributes->GetMTime() != attributesTime))
   {
     this->PopulateBlockAttributes(attributes, lit);
   }
+  internals.Drawn = lit;
+  internals.DrawnTime = lit ? lit->GetMTime() : 0;
   return 1;
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
+vtkDataObject* vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
   vtkDataObject* delivered, vtkRenderer* renderer)
 {
   vtkInternals& internals = *this->Internals;
   vtkGlobalIlluminationFilter* filter = internals.Filter;
-
-  // The albedo is what the mapper draws: coloring array through the lookup table, or the
-  // solid colour (UpdateColoringParameters already ran in the superclass's request).
-  vtkGlobalIlluminationBlockMerger::Albedo albedo;
-  const char* colorArray = this->Mapper->GetArrayName();
-  albedo.MapScalars = this->Mapper->GetScalarVisibility() && colorArray && *colorArray &&
-    this->Mapper->GetLookupTable() &&
-    this->Mapper->GetScalarMode() != VTK_SCALAR_MODE_USE_FIELD_DATA;
-  if (albedo.MapScalars)
-  {
-    albedo.ArrayName = colorArray;
-    albedo.Association = this->Mapper->GetScalarMode() == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA ? 1 : 0;
-    albedo.LookupTable = this->Mapper->GetLookupTable();
-    albedo.ColorMode = this->Mapper->GetColorMode();
-    albedo.Component = this->Mapper->GetArrayComponent();
-  }
-  this->Property->GetDiffuseColor(albedo.Color);
-  albedo.Diffuse = this->Property->GetDiffuse();
-
-  vtkGlobalIlluminationBlockMerger& merger = internals.Merger;
-  const bool merged = merger.Merge(delivered, albedo);
-  filter->SetAlbedoArrayName(merger.HasAlbedoArray() ? merger.AlbedoArrayName() : nullptr);
-  filter->SetAlbedoArrayAssociation(merger.HasAlbedoArray() ? merger.GetAlbedoAssociation() : 0);
-  filter->SetAlbedo(albedo.Color[0] * albedo.Diffuse, albedo.Color[1] * albedo.Diffuse,
-    albedo.Color[2] * albedo.Diffuse);
-  filter->SetEmissionArrayName(merger.HasEmission() ? "Emission" : nullptr);
+  // The filter solves all blocks as one scene; this only says what the albedo is and
+  // which lights shine.
+  vtkDataObject* input = this->ColorAsDrawn(delivered);
+  bool emission = false;
+  ForEachDataSet(input, [&](vtkDataSet* leaf, vtkCompositeDataIterator*) {
+    emission = emission || leaf->GetPointData()->GetArray("Emission");
+  });
+  filter->SetEmissionArrayName(emission ? "Emission" : nullptr);
   this->GatherLights(renderer);
 
   double sky[3];
   filter->GetEnvironmentColor(sky);
-  const bool dark = filter->GetNumberOfLights() == 0 && !merger.HasEmission() &&
-    sky[0] <= 0.0 && sky[1] <= 0.0 && sky[2] <= 0.0;
-  static const std::vector<std::string> arrays = { "DirectIrradiance", "IndirectIrradiance",
-    "Radiance" };
-  if (merger.GetNumberOfPoints() == 0 || dark)
+  const bool dark = filter->GetNumberOfLights() == 0 && !emission && sky[0] <= 0.0 &&
+    sky[1] <= 0.0 && sky[2] <= 0.0;
+  if (!input || input->GetNumberOfElements(vtkDataObject::POINT) == 0 || dark)
   {
-    // Nothing to solve: no indirect light (the mapper draws the direct light, if any).
-    merger.Scatter(nullptr, arrays);
-    return;
+    return delivered; // nothing to solve: no indirect light (the mapper draws direct light)
   }
-  if (filter->GetInput() != merger.GetMerged())
+  if (filter->GetInputDataObject(0, 0) != input)
   {
-    filter->SetInputData(merger.GetMerged());
+    filter->SetInputDataObject(input);
   }
   filter->Update();
-  if (merged || internals.Executed)
+  return filter->GetOutputDataObject(0);
+}
+
+//------------------------------------------------------------------------------
+vtkDataObject* vtkGlobalIlluminationRepresentation::ColorAsDrawn(vtkDataObject* delivered)
+{
+  // The albedo is what the mapper draws: an `Albedo` point array (LinkGI's convention, as
+  // for the mapper), else the coloring array through the lookup table (UpdateColoringParameters
+  // already ran in the superclass's request), else the solid colour; times Diffuse.
+  vtkInternals& internals = *this->Internals;
+  vtkGlobalIlluminationFilter* filter = internals.Filter;
+  const double diffuse = this->Property->GetDiffuse();
+  double color[3];
+  this->Property->GetDiffuseColor(color);
+  filter->SetAlbedo(color[0] * diffuse, color[1] * diffuse, color[2] * diffuse);
+  const char* colorArray = this->Mapper->GetArrayName();
+  const bool mapScalars = this->Mapper->GetScalarVisibility() && colorArray && *colorArray &&
+    this->Mapper->GetLookupTable() && this->Mapper->GetScalarMode() != VTK_SCALAR_MODE_USE_FIELD_DATA;
+  const bool cells = mapScalars && this->Mapper->GetScalarMode() == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA;
+  vtkDataObject* input = delivered;
+  const char* albedoName = "Albedo";
+  if (mapScalars)
   {
-    merger.Scatter(filter->GetOutput(), arrays);
-    internals.Executed = false;
+    std::ostringstream key;
+    vtkScalarsToColors* table = this->Mapper->GetLookupTable();
+    key << colorArray << '|' << cells << '|' << table << '|' << table->GetMTime() << '|'
+        << this->Mapper->GetColorMode() << '|' << this->Mapper->GetArrayComponent() << '|' << diffuse;
+    if (delivered != internals.ColoredFrom || !delivered ||
+      delivered->GetMTime() != internals.ColoredTime || key.str() != internals.ColoredKey)
+    {
+      internals.Colored = WithDrawnColors(delivered, this->Mapper, cells, diffuse);
+      internals.ColoredFrom = delivered;
+      internals.ColoredTime = delivered ? delivered->GetMTime() : 0;
+      internals.ColoredKey = key.str();
+    }
+    input = internals.Colored;
+    albedoName = DrawnAlbedoName;
   }
+  // Blocks without the array get the solid colour; with none at all, everything does.
+  bool anyAlbedo = false;
+  ForEachDataSet(input, [&](vtkDataSet* leaf, vtkCompositeDataIterator*) {
+    anyAlbedo = anyAlbedo ||
+      AttributesOf(leaf, cells)->GetArray(albedoName) != nullptr;
+  });
+  filter->SetAlbedoArrayName(anyAlbedo ? albedoName : nullptr);
+  filter->SetAlbedoArrayAssociation(
+    cells ? vtkDataObject::FIELD_ASSOCIATION_CELLS : vtkDataObject::FIELD_ASSOCIATION_POINTS);
+  return input;
 }
 
 //------------------------------------------------------------------------------
@@ -330,17 +448,17 @@ void vtkGlobalIlluminationRepresentation::SetUseKeyLight(bool use)
 //------------------------------------------------------------------------------
 int vtkGlobalIlluminationRepresentation::GetLinkBuilds()
 {
-  return FieldInt(this->Internals->Filter->GetOutput(), "LinkGI.LinkBuilds");
+  return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.LinkBuilds");
 }
 
 int vtkGlobalIlluminationRepresentation::GetLightLinkBuilds()
 {
-  return FieldInt(this->Internals->Filter->GetOutput(), "LinkGI.LightLinkBuilds");
+  return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.LightLinkBuilds");
 }
 
 int vtkGlobalIlluminationRepresentation::GetBounceRuns()
 {
-  return FieldInt(this->Internals->Filter->GetOutput(), "LinkGI.BounceRuns");
+  return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.BounceRuns");
 }
 
 int vtkGlobalIlluminationRepresentation::GetNumberOfLights()
@@ -350,21 +468,21 @@ int vtkGlobalIlluminationRepresentation::GetNumberOfLights()
 
 double vtkGlobalIlluminationRepresentation::GetMeanIndirectIrradiance()
 {
-  vtkPolyData* output = this->Internals->Filter->GetOutput();
-  vtkDataArray* indirect = output->GetPointData()->GetArray("IndirectIrradiance");
-  if (!indirect || indirect->GetNumberOfTuples() == 0)
-  {
-    return 0.0;
-  }
   double sum = 0.0;
-  for (vtkIdType i = 0; i < indirect->GetNumberOfTuples(); ++i)
-  {
-    for (int c = 0; c < indirect->GetNumberOfComponents(); ++c)
-    {
-      sum += indirect->GetComponent(i, c);
-    }
-  }
-  return sum / (indirect->GetNumberOfTuples() * indirect->GetNumberOfComponents());
+  vtkIdType values = 0;
+  ForEachDataSet(this->Internals->Filter->GetOutputDataObject(0),
+    [&](vtkDataSet* leaf, vtkCompositeDataIterator*) {
+      vtkDataArray* indirect = leaf->GetPointData()->GetArray("IndirectIrradiance");
+      for (vtkIdType i = 0; indirect && i < indirect->GetNumberOfTuples(); ++i)
+      {
+        for (int c = 0; c < indirect->GetNumberOfComponents(); ++c)
+        {
+          sum += indirect->GetComponent(i, c);
+        }
+      }
+      values += indirect ? indirect->GetNumberOfValues() : 0;
+    });
+  return values > 0 ? sum / values : 0.0;
 }
 
 vtkGlobalIlluminationFilter* vtkGlobalIlluminationRepresentation::GetFilter()

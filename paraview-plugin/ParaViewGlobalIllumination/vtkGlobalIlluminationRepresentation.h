@@ -7,7 +7,8 @@
  * light with shadow maps plus the per-vertex indirect light.
  *
  * The filter runs where the data is rendered, just before each render (the view's render
- * request), on all blocks at once so that light bounces between them. Its lights are the
+ * request), on the delivered composite dataset, whose blocks it solves as one scene so
+ * that light bounces between them. Its lights are the
  * view's lights in world coordinates, gathered at that moment:
  * - every light of the Light Inspector (vtkPVLight), scene or camera relative;
  * - the light kit's key light (UseKeyLight), a directional light that follows the camera.
@@ -102,8 +103,15 @@ protected:
   vtkGlobalIlluminationRepresentation();
   ~vtkGlobalIlluminationRepresentation() override;
 
-  /// Runs the filter on the delivered data with the renderer's lights if anything changed.
-  void UpdateGlobalIllumination(vtkDataObject* delivered, vtkRenderer* renderer);
+  /**
+   * Runs the filter on the delivered data with the renderer's lights if anything changed;
+   * returns what the mapper draws (the filter's output, or the delivered data when there is
+   * nothing to solve).
+   */
+  vtkDataObject* UpdateGlobalIllumination(vtkDataObject* delivered, vtkRenderer* renderer);
+
+  /// Sets the filter's albedo to the colour the mapper draws; returns the data to light.
+  vtkDataObject* ColorAsDrawn(vtkDataObject* delivered);
 
   /// Copies the renderer's lights that are bounced into the filter's own world-space lights.
   void GatherLights(vtkRenderer* renderer);
