@@ -183,7 +183,7 @@ void startBounces(const BounceParams& p, Index first, Index count, Rgba* fixedIr
 {
   if (count)
   {
-    startKernel<<<(count + kThreads - 1) / kThreads, kThreads, 0, stream>>>(p, first, count, fixedIrradiance, radiance);
+    startKernel<<<unsigned((std::size_t(count) + kThreads - 1) / kThreads), kThreads, 0, stream>>>(p, first, count, fixedIrradiance, radiance);
     LINKGI_CUDA_CHECK_LAUNCH("startKernel");
   }
 }
@@ -210,7 +210,7 @@ void finish(const FinishParams& p, Vec3f* out, cudaStream_t stream)
 {
   if (p.bounce.elements)
   {
-    finishKernel<<<(p.bounce.elements + kThreads - 1) / kThreads, kThreads, 0, stream>>>(p, out);
+    finishKernel<<<unsigned((std::size_t(p.bounce.elements) + kThreads - 1) / kThreads), kThreads, 0, stream>>>(p, out);
     LINKGI_CUDA_CHECK_LAUNCH("finishKernel");
   }
 }

@@ -3,7 +3,10 @@
 
 #include "Primitives.h"
 
+#include "linkgi/Error.h"
 #include "linkgi/Links.h"
+
+#include <string>
 
 namespace linkgi::cuda
 {
@@ -183,6 +186,12 @@ DeviceTopology::~DeviceTopology()
 void DeviceTopology::build(const Triangle* triangles, Index triangleCount, Index vertexCount, cudaStream_t stream)
 {
   const std::size_t n = 6 * std::size_t(triangleCount);
+  if (n >= kInvalidIndex)
+  {
+    // Neighbour offsets are 32-bit, as on the CPU (Topology): a clear error, not a wrap.
+    throw Error("The one-ring topology holds at most 715M triangles; got " +
+      std::to_string(triangleCount) + ".");
+  }
   neighbourOffsets.resize(std::size_t(vertexCount) + 1);
   deviceCounts.resize(2);
   deviceCounts.fillZero(stream);

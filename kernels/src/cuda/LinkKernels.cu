@@ -24,7 +24,9 @@ __device__ inline Frame elementFrame(const LinkTraceParams& p, Index x)
   return vertexFrame(p.normals[v] * sign, p.twist, p.seed, x);
 }
 
-__global__ void traceLinksKernel(LinkTraceParams p, LinkHit* hits)
+/// Six blocks per SM: at most 40 registers (47 unbounded) with 12 bytes spilled; conference's
+/// link rays measured 9.9 ms instead of 10.8 on an H200 (eight blocks spilled more and lost).
+__global__ void __launch_bounds__(kThreads, 6) traceLinksKernel(LinkTraceParams p, LinkHit* hits)
 {
   const std::size_t i = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
   if (i >= std::size_t(p.elementCount) * p.raysPerVertex)
@@ -44,17 +46,18 @@ __global__ void traceLinksKernel(LinkTraceParams p, LinkHit* hits)
   hits[i] = LinkHit{ h.triangle, h.u, h.v };
 }
 
-/// Items per thread: 3 links per ray, R rays per thread.
-template <int R>
+/// Items per thread: 3 links per ray, R rays per thread; keys of 32 bits where they fit
+/// (conference: 18 bits), which halves the sort's shared-memory traffic.
+template <int R, typename Key>
 struct Compress
 {
   static constexpr int kItems = 3 * R;
-  using Sort = cub::BlockRadixSort<unsigned long long, kThreads, kItems, float>;
+  using Sort = cub::BlockRadixSort<Key, kThreads, kItems, float>;
   using Scan = cub::BlockScan<int, kThreads>;
   static constexpr int kTotal = kThreads * kItems;
   struct Sorted
   {
-    unsigned long long keys[kTotal];
+    Key keys[kTotal];
     float values[kTotal];
   };
   union Shared
@@ -64,7 +67,6 @@ struct Compress
   };
 };
 
-constexpr unsigned long long kNoKey = ~0ull;
 
 /// Sort keys: (local row, environment?, column) packed into the fewest bits, since the block
 /// sort's passes grow with the key width: column in bits [0, columnBits), then the
@@ -73,16 +75,18 @@ struct KeyLayout
 {
   int columnBits;
   int endBit;
-  __device__ unsigned long long key(int row, bool env, Index column) const
+  template <typename Key>
+  __device__ Key key(int row, bool env, Index column) const
   {
-    return (static_cast<unsigned long long>(row) << (columnBits + 1)) |
-      (static_cast<unsigned long long>(env) << columnBits) | column;
+    return (static_cast<Key>(row) << (columnBits + 1)) | (static_cast<Key>(env) << columnBits) | column;
   }
   /// Segment = (row, environment?) = key >> columnBits.
-  __device__ int segment(unsigned long long key) const { return int(key >> columnBits); }
-  __device__ Index column(unsigned long long key) const
+  template <typename Key>
+  __device__ int segment(Key key) const { return int(key >> columnBits); }
+  template <typename Key>
+  __device__ Index column(Key key) const
   {
-    return Index(key & ((1ull << columnBits) - 1));
+    return Index(key & ((Key(1) << columnBits) - 1));
   }
 };
 
@@ -90,11 +94,12 @@ struct KeyLayout
 /// element, one ray per thread; R = 4: one element of up to 1024 rays, rays t*4..t*4+3 in
 /// thread t). Keys are (local row, environment?, column); the stable sort keeps equal keys
 /// in ray order, so weights add up in the CPU's order.
-template <int R>
+template <int R, typename Key>
 __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
   const LinkHit* hits, LinkRowsOut out, int rowsPerBlock, KeyLayout layout)
 {
-  using C = Compress<R>;
+  using C = Compress<R, Key>;
+  constexpr Key kNoKey = ~Key(0);
   __shared__ typename C::Shared shared;
   __shared__ typename C::Scan::TempStorage scanStorage;
   __shared__ int segmentStart[2 * kThreads];
@@ -114,7 +119,7 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
   lp.envWidth = p.envWidth;
   lp.envHeight = p.envHeight;
 
-  unsigned long long keys[C::kItems];
+  Key keys[C::kItems];
   float values[C::kItems];
   int raw = 0;
   for (int r = 0; r < R; ++r)
@@ -138,7 +143,7 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
     for (int j = 0; j < 3; ++j)
     {
       const bool valid = j < links.count;
-      keys[3 * r + j] = valid ? layout.key(localRow, links.environment, links.column[j]) : kNoKey;
+      keys[3 * r + j] = valid ? layout.key<Key>(localRow, links.environment, links.column[j]) : kNoKey;
       values[3 * r + j] = valid ? links.weight[j] : 0.f;
     }
   }
@@ -161,7 +166,7 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
   __syncthreads();
 
   // A head starts a run of equal keys; heads are numbered in order by a block scan.
-  const unsigned long long mask = (1ull << layout.endBit) - 1;
+  const Key mask = layout.endBit >= int(8 * sizeof(Key)) ? kNoKey : Key((Key(1) << layout.endBit) - 1);
   const auto keyAt = [&](int i) { return shared.sorted.keys[i] & mask; };
   int heads = 0;
   for (int i = 0; i < C::kItems; ++i)
@@ -175,13 +180,13 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
   for (int i = 0; i < C::kItems; ++i)
   {
     const int at = threadIdx.x * C::kItems + i;
-    const unsigned long long key = keyAt(at);
+    const Key key = keyAt(at);
     if (key == (kNoKey & mask) || (at > 0 && key == keyAt(at - 1)))
     {
       continue;
     }
     const int segment = layout.segment(key);
-    if (at == 0 || layout.segment(keyAt(at - 1)) != segment)
+    if (at == 0 || layout.segment(Key(keyAt(at - 1))) != segment)
     {
       segmentStart[segment] = headIndex;
     }
@@ -193,7 +198,7 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
   for (int i = 0; i < C::kItems; ++i)
   {
     const int at = threadIdx.x * C::kItems + i;
-    const unsigned long long key = keyAt(at);
+    const Key key = keyAt(at);
     if (key == (kNoKey & mask) || (at > 0 && key == keyAt(at - 1)))
     {
       continue;
@@ -285,18 +290,25 @@ bool compressLinks(const LinkCompressParams& p, const LinkHit* hits, const LinkR
   const unsigned texels = p.envWidth > 0 ? unsigned(p.envWidth) * unsigned(p.envHeight) : 1u;
   KeyLayout layout;
   layout.columnBits = bitsFor(std::max(unsigned(elements), texels));
+  // 32-bit keys need one bit to spare: the all-ones key marks an empty slot.
   if (n <= kThreads)
   {
     const int rowsPerBlock = int(kThreads / n);
     layout.endBit = layout.columnBits + 1 + bitsFor(unsigned(rowsPerBlock - 1));
     const unsigned blocks = unsigned((rows + rowsPerBlock - 1) / rowsPerBlock);
-    compressKernel<1><<<blocks, kThreads, 0, stream>>>(p, hits, out, rowsPerBlock, layout);
+    if (layout.endBit < 32)
+      compressKernel<1, unsigned><<<blocks, kThreads, 0, stream>>>(p, hits, out, rowsPerBlock, layout);
+    else
+      compressKernel<1, unsigned long long><<<blocks, kThreads, 0, stream>>>(p, hits, out, rowsPerBlock, layout);
     LINKGI_CUDA_CHECK_LAUNCH("compressKernel<1>");
   }
   else
   {
     layout.endBit = layout.columnBits + 1;
-    compressKernel<4><<<rows, kThreads, 0, stream>>>(p, hits, out, 1, layout);
+    if (layout.endBit < 32)
+      compressKernel<4, unsigned><<<rows, kThreads, 0, stream>>>(p, hits, out, 1, layout);
+    else
+      compressKernel<4, unsigned long long><<<rows, kThreads, 0, stream>>>(p, hits, out, 1, layout);
     LINKGI_CUDA_CHECK_LAUNCH("compressKernel<4>");
   }
   return true;
