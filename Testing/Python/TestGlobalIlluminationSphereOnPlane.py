@@ -1,6 +1,7 @@
 """vtkGlobalIlluminationFilter from Python: a sphere floating just above a floor under a
-point light casts a shadow, the floor under it still gets bounced light, and the arrays
-survive a round trip through a .vtp file.
+point light casts a shadow, the floor under it still gets bounced light, the arrays
+survive a round trip through a .vtp file, and the floor and the sphere as two blocks of a
+vtkMultiBlockDataSet are the same scene.
 
 Usage: TestGlobalIlluminationSphereOnPlane.py <output directory>
 """
@@ -9,6 +10,7 @@ import os
 import sys
 
 import linkgi
+from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet
 from vtkmodules.vtkFiltersCore import vtkAppendPolyData
 from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter
@@ -32,7 +34,31 @@ def sphere_over_floor():
     append.AddInputConnection(floor.GetOutputPort())  # floor points first
     append.AddInputConnection(sphere.GetOutputPort())
     append.Update()
-    return append.GetOutput(), floor.GetOutput().GetNumberOfPoints()
+    return append.GetOutput(), floor.GetOutput().GetNumberOfPoints(), append
+
+
+def check_blocks(append, light, appended):
+    """The inputs of `append` as two blocks give the appended surface's arrays."""
+    blocks = vtkMultiBlockDataSet()
+    for i in range(2):
+        blocks.SetBlock(i, append.GetInputDataObject(0, i))
+    gi = linkgi.vtkGlobalIlluminationFilter()
+    gi.SetInputData(blocks)
+    gi.SetRaysPerVertex(64)
+    gi.AddLight(light)
+    gi.Update()
+    out = gi.GetOutputDataObject(0)
+    assert out.IsA("vtkMultiBlockDataSet") and out.GetNumberOfBlocks() == 2
+    first = 0
+    for i in range(2):
+        block = out.GetBlock(i)
+        for name in ARRAYS:
+            a, b = block.GetPointData().GetArray(name), appended.GetPointData().GetArray(name)
+            assert a.GetNumberOfTuples() == block.GetNumberOfPoints(), name
+            assert all(math.isclose(a.GetValue(k), b.GetValue(3 * first + k), abs_tol=1e-6)
+                       for k in range(a.GetNumberOfValues())), name
+        first += block.GetNumberOfPoints()
+    assert first == appended.GetNumberOfPoints()
 
 
 def nearest(polydata, count, target):
@@ -43,7 +69,7 @@ def nearest(polydata, count, target):
 
 
 def main(outdir):
-    scene, floor_points = sphere_over_floor()
+    scene, floor_points, append = sphere_over_floor()
     light = vtkLight()  # a point light of 16 W/sr 4 m above the floor: E = 1 below it
     light.SetPositional(True)
     light.SetConeAngle(90)
@@ -93,6 +119,8 @@ def main(outdir):
         assert all(a.GetValue(i) == b.GetValue(i) for i in range(a.GetNumberOfValues())), name
     elements = back.GetFieldData().GetArray("LinkGI.Elements")
     assert elements is not None and elements.GetValue(0) == scene.GetNumberOfPoints()
+    check_blocks(append, light, out)
+    assert linkgi.vtkGlobalIlluminationAsyncWatcher().GetInterval() == 30
     print("ok")
 
 
