@@ -44,8 +44,9 @@ if has sanitize; then
   compute-sanitizer --tool memcheck --leak-check full --error-exitcode 3 "$tests" --gtest_filter="$small" \
     > "$out/sanitizer.log" 2>&1
   echo "memcheck exit $?" | tee -a "$out/sanitizer.log"
-  compute-sanitizer --tool racecheck --error-exitcode 3 "$tests" \
-    --gtest_filter='Cuda.BackendsAgreeOnARoom:Cuda.PartitionsOnOneGpuGiveTheOneGpuSolution' \
+  # Racecheck looks for shared-memory hazards in kernels, which the partition test shares
+  # with this one; on tearoom it ran past 10 minutes.
+  compute-sanitizer --tool racecheck --error-exitcode 3 "$tests" --gtest_filter='Cuda.BackendsAgreeOnARoom' \
     >> "$out/sanitizer.log" 2>&1
   echo "racecheck exit $?" | tee -a "$out/sanitizer.log"
   grep -E "ERROR SUMMARY|LEAK SUMMARY|RACECHECK SUMMARY" "$out/sanitizer.log"
