@@ -289,8 +289,9 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
     st.warnings = validateScene(s, opt.albedoPolicy);
   }
 
-  const engine::Changes knownSame = (lendGeometry ? engine::kGeometry : 0) |
-    (lendAlbedo ? engine::kAlbedo : 0) | (lendEmission ? engine::kEmission : 0);
+  const engine::Changes none = 0;
+  const engine::Changes knownSame = (lendGeometry ? engine::kGeometry : none) |
+    (lendAlbedo ? engine::kAlbedo : none) | (lendEmission ? engine::kEmission : none);
   const engine::Changes changes =
     valid ? engine::changesBetween(s, opt, scene, options, knownSame) : engine::kEverything;
   st.msPrepare = msSince(start);
