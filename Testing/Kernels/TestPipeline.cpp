@@ -4,6 +4,7 @@
 
 #include "engine/Pipeline.h"
 
+#include "linkgi/Error.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>
@@ -186,5 +187,42 @@ TEST(TestPipeline, ResetRerunsEveryStageAndKeepsValidationWarnings)
   {
     EXPECT_EQ(first.radiance[e].x, second.radiance[e].x);
     EXPECT_EQ(first.indirect[e].y, second.indirect[e].y);
+  }
+}
+
+TEST(TestPipeline, AnAbortKeepsTheCachesThatTheFailedUpdateDidNotTouch)
+{
+  Scene s = test::roomWithBlock();
+  Solver solver;
+  solver.update(s, fast());
+  const Solution before = solver.solution();
+  s.lights[0].position.x += 0.05f;
+  // Abort inside the light links: the links were never touched and stay cached.
+  EXPECT_THROW(solver.update(s, fast(), [](const char* stage, double) { return std::string(stage) != "LightLinks"; }),
+    Aborted);
+  EXPECT_EQ(solver.solution().radiance[0].x, before.radiance[0].x);
+  solver.update(s, fast());
+  EXPECT_FALSE(solver.stats().ran("Links"));
+  EXPECT_TRUE(solver.stats().ran("LightLinks"));
+  EXPECT_EQ(solver.stats().runs("LinkBuilds"), 1u);
+
+  // Abort after a deformation rebuilt the BVH: the caches belong to no committed scene now,
+  // so the next update (back to the committed geometry) redoes every stage.
+  Scene moved = s;
+  for (Vec3f& p : moved.positions)
+  {
+    p.y *= 1.01f;
+  }
+  EXPECT_THROW(solver.update(moved, fast(), [](const char* stage, double) { return std::string(stage) != "Links"; }),
+    Aborted);
+  s.lights[0].position.x += 0.05f;
+  solver.update(s, fast());
+  EXPECT_TRUE(solver.stats().ran("Geometry"));
+  EXPECT_TRUE(solver.stats().ran("Links"));
+  Solver fresh;
+  fresh.update(s, fast());
+  for (std::size_t e = 0; e < fresh.solution().elementCount(); e += 11)
+  {
+    EXPECT_EQ(solver.solution().radiance[e].x, fresh.solution().radiance[e].x);
   }
 }
