@@ -146,9 +146,10 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
     {
       scene.lights.push_back(converted);
     }
-    else if (status == vtkGlobalIlluminationLights::NO_DIRECTION)
+    const std::string skipped = vtkGlobalIlluminationLights::Explain(status, light);
+    if (!skipped.empty())
     {
-      this->Warnings.push_back(vtkGlobalIlluminationLights::Explain(status, light));
+      this->Warnings.push_back(skipped);
     }
   }
   scene.environment = Builder::ConvertEnvironment(self->EnvironmentColor, self->EnvironmentTexture);

@@ -51,6 +51,12 @@ vtkGlobalIlluminationLights::Status vtkGlobalIlluminationLights::Convert(
     {
       result.Direction[k] = axis[k];
     }
+    const bool physical = result.Intensity[k] >= 0.0 && std::isfinite(result.Intensity[k]) &&
+      std::isfinite(position[k]) && std::isfinite(focal[k]);
+    if (!physical)
+    {
+      return NOT_PHYSICAL;
+    }
   }
   out = result;
   return CONVERTED;
@@ -59,13 +65,23 @@ vtkGlobalIlluminationLights::Status vtkGlobalIlluminationLights::Convert(
 //------------------------------------------------------------------------------
 std::string vtkGlobalIlluminationLights::Explain(Status status, vtkLight* light)
 {
-  if (status != NO_DIRECTION)
+  if (status != NO_DIRECTION && status != NOT_PHYSICAL)
   {
     return std::string();
   }
   double position[3];
   light->GetTransformedPosition(position);
   std::ostringstream msg;
+  if (status == NOT_PHYSICAL)
+  {
+    double color[3];
+    light->GetDiffuseColor(color);
+    msg << "A light (vtkLight " << static_cast<const void*>(light) << ") has a negative or "
+        << "non-finite colour x intensity (" << color[0] << ", " << color[1] << ", " << color[2]
+        << ") x " << light->GetIntensity() << ", or a non-finite position or focal point, "
+        << "so it is skipped; give it a colour and an intensity of 0 or more.";
+    return msg.str();
+  }
   msg << "A " << (light->GetPositional() ? "spot" : "directional") << " light (vtkLight "
       << static_cast<const void*>(light) << ") has its focal point at its position ("
       << position[0] << ", " << position[1] << ", " << position[2]

@@ -19,6 +19,9 @@
  *   it is skipped, and the filter and the mapper both warn with Explain()'s sentence
  *   (LightIntensityScale and the rest of the scene still work; an exception would lose the
  *   whole image for one misplaced light). A point light needs no direction.
+ * - A light whose colour x intensity x scale is negative or not finite, or whose position
+ *   or focal point is not finite, gives no physical light: skipped with a warning too (the
+ *   engine would reject the whole scene; the mapper would draw negative light).
  *
  * Part of LinkGI::FiltersGlobalIllumination, which LinkGI::RenderingGlobalIllumination
  * depends on (the mapper's module sits above the filter's). Not wrapped.
@@ -64,7 +67,8 @@ public:
   {
     CONVERTED = 0,
     SWITCHED_OFF = 1, ///< skipped silently
-    NO_DIRECTION = 2  ///< a spot or directional light with focal point == position: skipped
+    NO_DIRECTION = 2, ///< a spot or directional light with focal point == position: skipped
+    NOT_PHYSICAL = 3  ///< negative or non-finite intensity, non-finite placement: skipped
   };
 
   /**
@@ -74,7 +78,7 @@ public:
   static Status Convert(vtkLight* light, double scale, Light& out);
 
   /// The warning for a light that Convert() skipped with `status` (empty for CONVERTED
-  /// and SWITCHED_OFF), naming the light.
+  /// and SWITCHED_OFF), naming the light. Callers warn whenever it is not empty.
   static std::string Explain(Status status, vtkLight* light);
 };
 

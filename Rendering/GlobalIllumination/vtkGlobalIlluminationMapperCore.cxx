@@ -273,9 +273,10 @@ void vtkGlobalIlluminationMapperCore::Prepare(
   {
     ShadowMaps::Light converted;
     const auto status = vtkGlobalIlluminationLights::Convert(light, scale, converted);
-    if (status == vtkGlobalIlluminationLights::NO_DIRECTION)
+    const std::string why = vtkGlobalIlluminationLights::Explain(status, light);
+    if (!why.empty())
     {
-      skipped.push_back(vtkGlobalIlluminationLights::Explain(status, light));
+      skipped.push_back(why);
     }
     else if (status == vtkGlobalIlluminationLights::CONVERTED)
     {

@@ -103,6 +103,40 @@ TEST(GlobalIlluminationLights, SpotAndDirectionalLightsNeedADirectionPointLights
   ExpectNear(l.Direction, 0, 0, -1); // a unit placeholder, never NaN
 }
 
+TEST(GlobalIlluminationLights, NegativeOrNonFiniteLightsAreSkippedWithAWarning)
+{
+  Lights::Light out;
+  out.Intensity = { { 7, 7, 7 } };
+  auto negative = MakeLight(Lamp, Below, -1.0);
+  EXPECT_EQ(Lights::Convert(negative, 1.0, out), Lights::NOT_PHYSICAL);
+  EXPECT_EQ(Lights::Convert(MakeLight(Lamp, Below, 1.0), -2.0, out), Lights::NOT_PHYSICAL);
+  auto reddish = MakeLight(Lamp, Below, 1.0);
+  reddish->SetDiffuseColor(1.0, -0.5, 0.0);
+  EXPECT_EQ(Lights::Convert(reddish, 1.0, out), Lights::NOT_PHYSICAL);
+  const double nowhere[3] = { std::numeric_limits<double>::quiet_NaN(), 0, 0 };
+  EXPECT_EQ(Lights::Convert(MakeLight(nowhere, Below, 1.0), 1.0, out), Lights::NOT_PHYSICAL);
+  auto huge = MakeLight(Lamp, Below, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(Lights::Convert(huge, 1.0, out), Lights::NOT_PHYSICAL);
+  ExpectNear(out.Intensity, 7, 7, 7); // untouched
+  EXPECT_NE(Lights::Explain(Lights::NOT_PHYSICAL, negative).find("negative or non-finite"),
+    std::string::npos);
+  // A dark light is physical: it is read, and lights nothing.
+  EXPECT_EQ(Lights::Convert(MakeLight(Lamp, Below, 0.0), 1.0, out), Lights::CONVERTED);
+
+  // The filter warns and solves the rest of the scene instead of failing.
+  vtkNew<vtkGlobalIlluminationFilter> gi;
+  gi->SetInputData(MakeCube());
+  gi->AddLight(negative);
+  gi->AddLight(MakeLight(Lamp, Below, 1.0)); // a point light above the unit cube
+  gi->SetRaysPerVertex(16);
+  gi->SetBackend(vtkGlobalIlluminationFilter::CPU);
+  MessageCapture messages(gi);
+  gi->Update();
+  EXPECT_TRUE(messages.Errors.empty());
+  EXPECT_TRUE(messages.HasWarning("negative or non-finite"));
+  EXPECT_GT(PointArray(gi->GetOutput(), "DirectIrradiance")->GetRange(0)[1], 0.0);
+}
+
 TEST(GlobalIlluminationLights, CameraLightsAreReadWhereTheRendererPlacedThem)
 {
   auto light = MakeLight(Lamp, Below, 1.0);
