@@ -1,15 +1,14 @@
 #include "vtkGlobalIlluminationRepresentation.h"
 
 #include "vtkCamera.h"
-#include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkGlobalIlluminationCompositeMapper.h"
+#include "vtkGlobalIlluminationDrawnAlbedo.h"
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkGlobalIlluminationShading.h"
 #include "vtkLight.h"
@@ -22,13 +21,10 @@
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
-#include "vtkScalarsToColors.h"
 #include "vtkSmartPointer.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkVariant.h"
 
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -76,66 +72,6 @@ void ForEachDataSet(vtkDataObject* data, Visit&& visit)
     visit(dataset, nullptr);
   }
 }
-
-/// The colours the mapper draws: `scalars` mapped through the mapper's lookup table as
-/// float RGB times `diffuse` (vtkProperty's Diffuse), named `name`.
-vtkSmartPointer<vtkFloatArray> MappedColors(
-  vtkMapper* mapper, vtkDataArray* scalars, double diffuse, const char* name)
-{
-  auto rgba = vtk::TakeSmartPointer(mapper->GetLookupTable()->MapScalars(
-    scalars, mapper->GetColorMode(), mapper->GetArrayComponent(), VTK_RGBA));
-  auto colors = vtkSmartPointer<vtkFloatArray>::New();
-  colors->SetName(name);
-  colors->SetNumberOfComponents(3);
-  colors->SetNumberOfTuples(scalars->GetNumberOfTuples());
-  for (vtkIdType i = 0; rgba && i < scalars->GetNumberOfTuples(); ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      colors->SetTypedComponent(i, c, static_cast<float>(rgba->GetTypedComponent(i, c) / 255.0 * diffuse));
-    }
-  }
-  return colors;
-}
-
-const char* const DrawnAlbedoName = "GlobalIlluminationAlbedo";
-
-vtkDataSetAttributes* AttributesOf(vtkDataSet* data, bool cells)
-{
-  if (cells)
-  {
-    return data->GetCellData();
-  }
-  return data->GetPointData();
-}
-
-/// A copy of `data` (its structure, shallow copies of its datasets) in which the datasets
-/// that have the mapper's colouring array carry its colours as DrawnAlbedoName.
-vtkSmartPointer<vtkDataObject> WithDrawnColors(
-  vtkDataObject* data, vtkMapper* mapper, bool cells, double diffuse)
-{
-  const auto colored = [&](vtkDataSet* leaf) {
-    auto copy = vtk::TakeSmartPointer(leaf->NewInstance());
-    copy->ShallowCopy(leaf);
-    vtkDataSetAttributes* attributes = AttributesOf(copy, cells);
-    if (vtkDataArray* scalars = attributes->GetArray(mapper->GetArrayName()))
-    {
-      attributes->AddArray(MappedColors(mapper, scalars, diffuse, DrawnAlbedoName));
-    }
-    return copy;
-  };
-  auto composite = vtkCompositeDataSet::SafeDownCast(data);
-  if (!composite)
-  {
-    auto dataset = vtkDataSet::SafeDownCast(data);
-    return dataset ? vtkSmartPointer<vtkDataObject>(colored(dataset)) : nullptr;
-  }
-  auto copy = vtk::TakeSmartPointer(composite->NewInstance());
-  copy->CopyStructure(composite);
-  ForEachDataSet(composite,
-    [&](vtkDataSet* leaf, vtkCompositeDataIterator* it) { copy->SetDataSet(it, colored(leaf)); });
-  return copy;
-}
 }
 
 //------------------------------------------------------------------------------
@@ -145,12 +81,7 @@ struct vtkGlobalIlluminationRepresentation::vtkInternals
   std::vector<vtkSmartPointer<vtkLight>> Lights; // world-space copies of the view's lights
   std::set<std::string> Warnings;                // each shown once
 
-  // With colouring by an array, the delivered data with the colours as drawn
-  // (DrawnAlbedoName), remade only when the data or the colouring change.
-  vtkSmartPointer<vtkDataObject> Colored;
-  vtkDataObject* ColoredFrom = nullptr;
-  vtkMTimeType ColoredTime = 0;
-  std::string ColoredKey;
+  vtkNew<vtkGlobalIlluminationDrawnAlbedo> DrawnAlbedo; // the albedo is what is drawn
 
   // What the mapper drew last (its block attributes are per block object).
   vtkDataObject* Drawn = nullptr;
@@ -257,7 +188,9 @@ vtkDataObject* vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
   vtkGlobalIlluminationFilter* filter = internals.Filter;
   // The filter solves all blocks as one scene; this only says what the albedo is and
   // which lights shine.
-  vtkDataObject* input = this->ColorAsDrawn(delivered);
+  // The albedo is what the mapper draws (UpdateColoringParameters already ran in the
+  // superclass's request).
+  vtkDataObject* input = internals.DrawnAlbedo->Apply(delivered, this->Mapper, this->Property, filter);
   bool emission = false;
   ForEachDataSet(input, [&](vtkDataSet* leaf, vtkCompositeDataIterator*) {
     emission = emission || leaf->GetPointData()->GetArray("Emission");
@@ -279,53 +212,6 @@ vtkDataObject* vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
   }
   filter->Update();
   return filter->GetOutputDataObject(0);
-}
-
-//------------------------------------------------------------------------------
-vtkDataObject* vtkGlobalIlluminationRepresentation::ColorAsDrawn(vtkDataObject* delivered)
-{
-  // The albedo is what the mapper draws: an `Albedo` point array (LinkGI's convention, as
-  // for the mapper), else the coloring array through the lookup table (UpdateColoringParameters
-  // already ran in the superclass's request), else the solid colour; times Diffuse.
-  vtkInternals& internals = *this->Internals;
-  vtkGlobalIlluminationFilter* filter = internals.Filter;
-  const double diffuse = this->Property->GetDiffuse();
-  double color[3];
-  this->Property->GetDiffuseColor(color);
-  filter->SetAlbedo(color[0] * diffuse, color[1] * diffuse, color[2] * diffuse);
-  const char* colorArray = this->Mapper->GetArrayName();
-  const bool mapScalars = this->Mapper->GetScalarVisibility() && colorArray && *colorArray &&
-    this->Mapper->GetLookupTable() && this->Mapper->GetScalarMode() != VTK_SCALAR_MODE_USE_FIELD_DATA;
-  const bool cells = mapScalars && this->Mapper->GetScalarMode() == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA;
-  vtkDataObject* input = delivered;
-  const char* albedoName = "Albedo";
-  if (mapScalars)
-  {
-    std::ostringstream key;
-    vtkScalarsToColors* table = this->Mapper->GetLookupTable();
-    key << colorArray << '|' << cells << '|' << table << '|' << table->GetMTime() << '|'
-        << this->Mapper->GetColorMode() << '|' << this->Mapper->GetArrayComponent() << '|' << diffuse;
-    if (delivered != internals.ColoredFrom || !delivered ||
-      delivered->GetMTime() != internals.ColoredTime || key.str() != internals.ColoredKey)
-    {
-      internals.Colored = WithDrawnColors(delivered, this->Mapper, cells, diffuse);
-      internals.ColoredFrom = delivered;
-      internals.ColoredTime = delivered ? delivered->GetMTime() : 0;
-      internals.ColoredKey = key.str();
-    }
-    input = internals.Colored;
-    albedoName = DrawnAlbedoName;
-  }
-  // Blocks without the array get the solid colour; with none at all, everything does.
-  bool anyAlbedo = false;
-  ForEachDataSet(input, [&](vtkDataSet* leaf, vtkCompositeDataIterator*) {
-    anyAlbedo = anyAlbedo ||
-      AttributesOf(leaf, cells)->GetArray(albedoName) != nullptr;
-  });
-  filter->SetAlbedoArrayName(anyAlbedo ? albedoName : nullptr);
-  filter->SetAlbedoArrayAssociation(
-    cells ? vtkDataObject::FIELD_ASSOCIATION_CELLS : vtkDataObject::FIELD_ASSOCIATION_POINTS);
-  return input;
 }
 
 //------------------------------------------------------------------------------

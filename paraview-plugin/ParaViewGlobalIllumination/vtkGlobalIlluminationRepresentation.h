@@ -110,9 +110,6 @@ protected:
    */
   vtkDataObject* UpdateGlobalIllumination(vtkDataObject* delivered, vtkRenderer* renderer);
 
-  /// Sets the filter's albedo to the colour the mapper draws; returns the data to light.
-  vtkDataObject* ColorAsDrawn(vtkDataObject* delivered);
-
   /// Copies the renderer's lights that are bounced into the filter's own world-space lights.
   void GatherLights(vtkRenderer* renderer);
 

@@ -1,0 +1,186 @@
+#include "vtkGlobalIlluminationDrawnAlbedo.h"
+
+#include "vtkCellData.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataSet.h"
+#include "vtkFloatArray.h"
+#include "vtkGlobalIlluminationFilter.h"
+#include "vtkMapper.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkProperty.h"
+#include "vtkScalarsToColors.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <sstream>
+#include <string>
+
+namespace
+{
+/// Calls `visit(leaf, iterator)` for every dataset leaf of `data` (iterator null for a lone
+/// dataset).
+template <typename Visit>
+void ForEachDataSet(vtkDataObject* data, Visit&& visit)
+{
+  if (auto composite = vtkCompositeDataSet::SafeDownCast(data))
+  {
+    auto it = vtk::TakeSmartPointer(composite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      if (auto leaf = vtkDataSet::SafeDownCast(it->GetCurrentDataObject()))
+      {
+        visit(leaf, it.Get());
+      }
+    }
+  }
+  else if (auto dataset = vtkDataSet::SafeDownCast(data))
+  {
+    visit(dataset, nullptr);
+  }
+}
+
+vtkDataSetAttributes* AttributesOf(vtkDataSet* data, bool cells)
+{
+  return cells ? static_cast<vtkDataSetAttributes*>(data->GetCellData()) : data->GetPointData();
+}
+
+/// `scalars` through the mapper's lookup table, as float RGB times `diffuse`.
+vtkSmartPointer<vtkFloatArray> MappedColors(vtkMapper* mapper, vtkDataArray* scalars, double diffuse)
+{
+  auto rgba = vtk::TakeSmartPointer(mapper->GetLookupTable()->MapScalars(
+    scalars, mapper->GetColorMode(), mapper->GetArrayComponent(), VTK_RGBA));
+  auto colors = vtkSmartPointer<vtkFloatArray>::New();
+  colors->SetName(vtkGlobalIlluminationDrawnAlbedo::GetMappedAlbedoName());
+  colors->SetNumberOfComponents(3);
+  colors->SetNumberOfTuples(scalars->GetNumberOfTuples());
+  for (vtkIdType i = 0; rgba && i < scalars->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      colors->SetTypedComponent(i, c, static_cast<float>(rgba->GetTypedComponent(i, c) / 255.0 * diffuse));
+    }
+  }
+  return colors;
+}
+
+/// A copy of `data` (its structure, shallow copies of its datasets) in which the datasets
+/// that have the mapper's colouring array carry its colours.
+vtkSmartPointer<vtkDataObject> WithMappedColors(vtkDataObject* data, vtkMapper* mapper, bool cells, double diffuse)
+{
+  const auto colored = [&](vtkDataSet* leaf) {
+    auto copy = vtk::TakeSmartPointer(leaf->NewInstance());
+    copy->ShallowCopy(leaf);
+    vtkDataSetAttributes* attributes = AttributesOf(copy, cells);
+    if (vtkDataArray* scalars = attributes->GetArray(mapper->GetArrayName()))
+    {
+      attributes->AddArray(MappedColors(mapper, scalars, diffuse));
+    }
+    return copy;
+  };
+  auto composite = vtkCompositeDataSet::SafeDownCast(data);
+  if (!composite)
+  {
+    auto dataset = vtkDataSet::SafeDownCast(data);
+    return dataset ? vtkSmartPointer<vtkDataObject>(colored(dataset)) : nullptr;
+  }
+  auto copy = vtk::TakeSmartPointer(composite->NewInstance());
+  copy->CopyStructure(composite);
+  ForEachDataSet(composite,
+    [&](vtkDataSet* leaf, vtkCompositeDataIterator* it) { copy->SetDataSet(it, colored(leaf)); });
+  return copy;
+}
+
+bool AnyArray(vtkDataObject* data, const char* name, bool cells)
+{
+  bool any = false;
+  ForEachDataSet(data, [&](vtkDataSet* leaf, vtkCompositeDataIterator*) {
+    any = any || AttributesOf(leaf, cells)->GetArray(name) != nullptr;
+  });
+  return any;
+}
+}
+
+//------------------------------------------------------------------------------
+struct vtkGlobalIlluminationDrawnAlbedo::vtkInternals
+{
+  // The data with the mapped colours, remade only when the data or the colouring change.
+  vtkSmartPointer<vtkDataObject> Colored;
+  vtkDataObject* ColoredFrom = nullptr;
+  vtkMTimeType ColoredTime = 0;
+  std::string ColoredKey;
+};
+
+vtkStandardNewMacro(vtkGlobalIlluminationDrawnAlbedo);
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationDrawnAlbedo::vtkGlobalIlluminationDrawnAlbedo()
+  : Internals(new vtkInternals)
+{
+  this->SetAlbedoArrayName("Albedo");
+}
+
+//------------------------------------------------------------------------------
+vtkGlobalIlluminationDrawnAlbedo::~vtkGlobalIlluminationDrawnAlbedo()
+{
+  this->SetAlbedoArrayName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+vtkDataObject* vtkGlobalIlluminationDrawnAlbedo::Apply(vtkDataObject* data, vtkMapper* mapper,
+  vtkProperty* property, vtkGlobalIlluminationFilter* filter)
+{
+  if (!data || !mapper || !property || !filter)
+  {
+    return data;
+  }
+  const double diffuse = property->GetDiffuse();
+  double color[3];
+  property->GetDiffuseColor(color);
+  filter->SetAlbedo(color[0] * diffuse, color[1] * diffuse, color[2] * diffuse);
+  filter->SetAlbedoArrayAssociation(vtkDataObject::FIELD_ASSOCIATION_POINTS);
+
+  // The mapper's own albedo array comes first, as in its shaders.
+  const char* albedo = this->AlbedoArrayName;
+  if (albedo && *albedo && AnyArray(data, albedo, false))
+  {
+    filter->SetAlbedoArrayName(albedo);
+    return data;
+  }
+  const char* colorArray = mapper->GetArrayName();
+  const bool mapScalars = mapper->GetScalarVisibility() && colorArray && *colorArray &&
+    mapper->GetLookupTable() && mapper->GetScalarMode() != VTK_SCALAR_MODE_USE_FIELD_DATA;
+  if (!mapScalars)
+  {
+    filter->SetAlbedoArrayName(nullptr);
+    return data;
+  }
+  const bool cells = mapper->GetScalarMode() == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA;
+  vtkInternals& internals = *this->Internals;
+  std::ostringstream key;
+  vtkScalarsToColors* table = mapper->GetLookupTable();
+  key << colorArray << '|' << cells << '|' << table << '|' << table->GetMTime() << '|'
+      << mapper->GetColorMode() << '|' << mapper->GetArrayComponent() << '|' << diffuse;
+  if (data != internals.ColoredFrom || data->GetMTime() != internals.ColoredTime ||
+    key.str() != internals.ColoredKey)
+  {
+    internals.Colored = WithMappedColors(data, mapper, cells, diffuse);
+    internals.ColoredFrom = data;
+    internals.ColoredTime = data->GetMTime();
+    internals.ColoredKey = key.str();
+  }
+  // Blocks without the colouring array get the solid colour; with none at all, all do.
+  const bool any = AnyArray(internals.Colored, GetMappedAlbedoName(), cells);
+  filter->SetAlbedoArrayName(any ? GetMappedAlbedoName() : nullptr);
+  filter->SetAlbedoArrayAssociation(
+    cells ? vtkDataObject::FIELD_ASSOCIATION_CELLS : vtkDataObject::FIELD_ASSOCIATION_POINTS);
+  return internals.Colored;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationDrawnAlbedo::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Albedo Array Name: " << (this->AlbedoArrayName ? this->AlbedoArrayName : "(none)") << "\n";
+}
