@@ -1,0 +1,235 @@
+#include "vtkGlobalIlluminationFilterInternals.h"
+
+#include "vtkCompositeDataSet.h"
+#include "vtkDataObject.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkVersionMacros.h"
+
+#include "linkgi/Error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+using Builder = vtkGlobalIlluminationSceneBuilder;
+
+namespace
+{
+bool AbortRequested(vtkAlgorithm* self)
+{
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 3, 0)
+  return self->CheckAbort();
+#else
+  return self->GetAbortExecute() != 0;
+#endif
+}
+
+linkgi::Vec3f ToVec3f(const double v[3])
+{
+  return { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
+}
+
+linkgi::Backend ToEngineBackend(int backend)
+{
+  switch (backend)
+  {
+    case vtkGlobalIlluminationFilter::CPU:
+      return linkgi::Backend::Cpu;
+    case vtkGlobalIlluminationFilter::CUDA:
+      return linkgi::Backend::Cuda;
+    default:
+      return linkgi::Backend::Auto;
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
+  vtkGlobalIlluminationFilter* self, vtkPolyData* input)
+{
+  const bool computeNormals = self->ComputeNormals != 0;
+  const bool stale = !this->MeshValid || this->MeshInput != input ||
+    this->MeshInputTime != input->GetMTime() || this->MeshComputeNormals != computeNormals ||
+    (this->Mesh.NormalsComputed && this->MeshFeatureAngle != self->FeatureAngle);
+  if (stale)
+  {
+    this->MeshValid = false;
+    this->Mesh = Builder::BuildMesh(input, computeNormals, self->FeatureAngle);
+    this->MeshInput = input;
+    this->MeshInputTime = input->GetMTime();
+    this->MeshComputeNormals = computeNormals;
+    this->MeshFeatureAngle = self->FeatureAngle;
+    this->MeshValid = true;
+  }
+
+  linkgi::Scene& scene = this->Mesh.Scene;
+  scene.albedo = Builder::GatherColors(input, this->Mesh, self->AlbedoArrayName,
+    self->AlbedoArrayAssociation, ToVec3f(self->Albedo), "albedo");
+  scene.emission.clear();
+  if (self->EmissionArrayName && *self->EmissionArrayName)
+  {
+    scene.emission = Builder::GatherColors(input, this->Mesh, self->EmissionArrayName,
+      self->EmissionArrayAssociation, linkgi::Vec3f(0.f), "emission");
+  }
+  scene.lights.clear();
+  for (vtkLight* light : this->Lights)
+  {
+    linkgi::Light converted;
+    const auto status = Builder::ConvertLight(light, self->LightIntensityScale, converted);
+    if (status == vtkGlobalIlluminationLights::CONVERTED)
+    {
+      scene.lights.push_back(converted);
+    }
+    const std::string skipped = vtkGlobalIlluminationLights::Explain(status, light);
+    if (!skipped.empty())
+    {
+      this->Warnings.push_back(skipped);
+    }
+  }
+  scene.environment = Builder::ConvertEnvironment(self->EnvironmentColor, self->EnvironmentTexture);
+  if (self->EnvironmentTexture && scene.environment.color == linkgi::Vec3f(0.f))
+  {
+    this->Warnings.emplace_back("EnvironmentTexture is set but EnvironmentColor is black, "
+                                "so the sky is black; set EnvironmentColor to 1,1,1.");
+  }
+  return scene;
+}
+
+//------------------------------------------------------------------------------
+vtkPolyData* vtkGlobalIlluminationFilter::vtkInternals::Surface(
+  vtkGlobalIlluminationFilter* self, vtkDataObject* input)
+{
+  if (auto poly = vtkPolyData::SafeDownCast(input))
+  {
+    return poly;
+  }
+  // The merged surface carries the colour arrays under their names, with the constant
+  // albedo (or no emission) for blocks that lack them, so UpdateScene reads it as it reads
+  // a vtkPolyData.
+  std::vector<vtkGlobalIlluminationBlockMerger::Carried> carried;
+  if (self->AlbedoArrayName && *self->AlbedoArrayName)
+  {
+    carried.push_back({ self->AlbedoArrayName, self->AlbedoArrayAssociation,
+      { { self->Albedo[0], self->Albedo[1], self->Albedo[2] } }, "albedo" });
+  }
+  if (self->EmissionArrayName && *self->EmissionArrayName)
+  {
+    carried.push_back({ self->EmissionArrayName, self->EmissionArrayAssociation,
+      { { 0.0, 0.0, 0.0 } }, "emission" });
+  }
+  this->Merger.Merge(input, carried);
+  return this->Merger.GetMerged();
+}
+
+//------------------------------------------------------------------------------
+linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
+  vtkGlobalIlluminationFilter* self)
+{
+  // The engine decides CPU or GPU (Auto: the GPU when a CUDA device exists) and reports the
+  // choice in its stats; a CUDA request it cannot honour comes back as a warning.
+  linkgi::SolverOptions options;
+  options.backend = ToEngineBackend(self->Backend);
+  options.raysPerVertex = static_cast<std::uint32_t>(self->RaysPerVertex);
+  options.bounces = static_cast<std::uint32_t>(self->NumberOfBounces);
+  options.smoothing = self->Smoothing != 0;
+  options.featureAngleDegrees = static_cast<float>(self->FeatureAngle);
+  options.twoSided = self->TwoSided != 0;
+  options.twist = self->Twist != 0;
+  options.seed = static_cast<std::uint32_t>(self->Seed);
+  options.lightOversampling = self->LightOversampling != 0;
+  options.albedoPolicy = self->ClampAlbedo ? linkgi::AlbedoPolicy::Clamp : linkgi::AlbedoPolicy::Reject;
+  return options;
+}
+
+//------------------------------------------------------------------------------
+linkgi::ProgressCallback vtkGlobalIlluminationFilter::vtkInternals::Progress(
+  vtkGlobalIlluminationFilter* self)
+{
+  struct State
+  {
+    std::string Stage;
+    double Last = 0.0;
+  };
+  auto state = std::make_shared<State>();
+  // The engine calls this on this thread between chunks of work (so VTK events may fire
+  // here) with the fraction of the whole update done.
+  return [self, state](const char* stage, double fraction) {
+    if (state->Stage != stage)
+    {
+      state->Stage = stage;
+      self->SetProgressText(stage);
+    }
+    if (fraction > state->Last)
+    {
+      state->Last = fraction;
+      self->UpdateProgress(std::min(fraction, 1.0));
+    }
+    return !AbortRequested(self);
+  };
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(vtkGlobalIlluminationFilter* self,
+  vtkPolyData* output, double msFilter, const linkgi::Solution& solution,
+  const linkgi::SolverStats& s)
+{
+  const std::size_t elements = this->Mesh.ElementPoint.size();
+  vtkPointData* pd = output->GetPointData();
+  for (std::size_t side = 0; side < (self->TwoSided ? 2 : 1); ++side)
+  {
+    const std::string suffix = side ? "Back" : "";
+    const std::size_t offset = side * elements;
+    pd->AddArray(Builder::MapToPoints(this->Mesh, solution.direct, offset, ("DirectIrradiance" + suffix).c_str()));
+    pd->AddArray(Builder::MapToPoints(this->Mesh, solution.indirect, offset, ("IndirectIrradiance" + suffix).c_str()));
+    pd->AddArray(Builder::MapToPoints(this->Mesh, solution.radiance, offset, ("Radiance" + suffix).c_str()));
+  }
+
+  Builder::AddStatistics(output->GetFieldData(), s, msFilter, this->Warnings);
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
+  vtkGlobalIlluminationFilter* self, vtkPolyData* input, vtkPolyData* output)
+{
+  const auto start = std::chrono::steady_clock::now();
+  if (!this->Async)
+  {
+    this->Async = std::make_unique<linkgi::AsyncSolver>();
+  }
+  this->Async->setBlend(static_cast<float>(self->TemporalBlend));
+  // Returns at once; repeating the request of the scene already solved starts nothing.
+  this->Async->request(this->UpdateScene(self, input), this->Options(self));
+  output->ShallowCopy(input);
+  const std::string error = this->Async->lastError();
+  if (!error.empty())
+  {
+    this->Warnings.push_back("The last asynchronous update failed: " + error);
+  }
+  const std::shared_ptr<const linkgi::AsyncResult> latest = this->Async->latest();
+  const std::size_t elements = this->Mesh.ElementPoint.size() * (self->TwoSided ? 2 : 1);
+  linkgi::Solution shown;
+  linkgi::SolverStats stats;
+  if (latest && latest->solution.elementCount() == elements)
+  {
+    // The newest finished result for a mesh of this size: possibly one update behind.
+    shown = latest->solution;
+    stats = latest->stats;
+    this->ShownRequest = latest->request;
+  }
+  else
+  {
+    // Nothing solved for this mesh yet: black, until the worker delivers.
+    shown.direct.assign(elements, linkgi::Vec3f(0.f));
+    shown.indirect = shown.radiance = shown.direct;
+  }
+  const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
+  this->AttachResults(self, output, elapsed.count(), shown, stats);
+  Builder::AddFieldValue(output->GetFieldData(), "Pending", std::uint64_t(this->Async->busy() ? 1 : 0));
+  Builder::AddFieldValue(output->GetFieldData(), "ShownRequest", this->ShownRequest);
+  return true;
+}
+

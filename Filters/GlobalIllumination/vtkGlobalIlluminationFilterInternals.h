@@ -1,0 +1,68 @@
+// The state and the steps of vtkGlobalIlluminationFilter behind its API: scene building,
+// options, progress, results and the asynchronous worker. Private to the module; split from
+// vtkGlobalIlluminationFilter.cxx so that the filter's file holds its API and RequestData.
+#ifndef vtkGlobalIlluminationFilterInternals_h
+#define vtkGlobalIlluminationFilterInternals_h
+
+#include "vtkGlobalIlluminationFilter.h"
+
+#include "vtkGlobalIlluminationBlockMerger.h"
+#include "vtkGlobalIlluminationSceneBuilder.h"
+
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include "linkgi/AsyncSolver.h"
+#include "linkgi/Solver.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+struct vtkGlobalIlluminationFilter::vtkInternals
+{
+  linkgi::Solver Solver;
+  std::vector<vtkSmartPointer<vtkLight>> Lights;
+  vtkSmartPointer<vtkDataObject> LastOutput; // the last good output, handed out after errors
+  std::vector<std::string> Warnings;         // the filter's own, for this update
+
+  // Input that is no vtkPolyData (composite, or another dataset) is merged into one
+  // surface, lit as `Lit`, and delivered back onto its blocks.
+  vtkGlobalIlluminationBlockMerger Merger;
+  vtkNew<vtkPolyData> Lit;
+  vtkPolyData* Surface(vtkGlobalIlluminationFilter* self, vtkDataObject* input);
+
+  // The triangle mesh and what it was built from; rebuilt only when one of these changes,
+  // so a light-only update costs no triangulation.
+  vtkGlobalIlluminationSceneBuilder::Mesh Mesh;
+  bool MeshValid = false;
+  const vtkPolyData* MeshInput = nullptr;
+  vtkMTimeType MeshInputTime = 0;
+  bool MeshComputeNormals = false;
+  double MeshFeatureAngle = 0.0;
+
+  const linkgi::Scene& UpdateScene(vtkGlobalIlluminationFilter* self, vtkPolyData* input);
+  linkgi::SolverOptions Options(vtkGlobalIlluminationFilter* self);
+  linkgi::ProgressCallback Progress(vtkGlobalIlluminationFilter* self);
+  void AttachResults(vtkGlobalIlluminationFilter* self, vtkPolyData* output, double msFilter,
+    const linkgi::Solution& solution, const linkgi::SolverStats& stats);
+
+  // Asynchronous mode: the worker, and the request whose result the output shows.
+  std::unique_ptr<linkgi::AsyncSolver> Async;
+  std::uint64_t ShownRequest = 0;
+  bool SolveAsynchronously(vtkGlobalIlluminationFilter* self, vtkPolyData* input, vtkPolyData* output);
+
+  /// The filter's warnings of this update, then the engine's.
+  std::vector<std::string> AllWarnings() const
+  {
+    std::vector<std::string> all = this->Warnings;
+    const auto& engine = this->Solver.stats().warnings;
+    all.insert(all.end(), engine.begin(), engine.end());
+    return all;
+  }
+};
+
+#endif
+// VTK-HeaderTest-Exclude: vtkGlobalIlluminationFilterInternals.h
