@@ -19,28 +19,6 @@
 
 namespace
 {
-/// Calls `visit(leaf, iterator)` for every dataset leaf of `data` (iterator null for a lone
-/// dataset).
-template <typename Visit>
-void ForEachDataSet(vtkDataObject* data, Visit&& visit)
-{
-  if (auto composite = vtkCompositeDataSet::SafeDownCast(data))
-  {
-    auto it = vtk::TakeSmartPointer(composite->NewIterator());
-    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
-    {
-      if (auto leaf = vtkDataSet::SafeDownCast(it->GetCurrentDataObject()))
-      {
-        visit(leaf, it.Get());
-      }
-    }
-  }
-  else if (auto dataset = vtkDataSet::SafeDownCast(data))
-  {
-    visit(dataset, nullptr);
-  }
-}
-
 vtkDataSetAttributes* AttributesOf(vtkDataSet* data, bool cells)
 {
   return cells ? static_cast<vtkDataSetAttributes*>(data->GetCellData()) : data->GetPointData();
@@ -87,18 +65,27 @@ vtkSmartPointer<vtkDataObject> WithMappedColors(vtkDataObject* data, vtkMapper* 
   }
   auto copy = vtk::TakeSmartPointer(composite->NewInstance());
   copy->CopyStructure(composite);
-  ForEachDataSet(composite,
-    [&](vtkDataSet* leaf, vtkCompositeDataIterator* it) { copy->SetDataSet(it, colored(leaf)); });
+  auto it = vtk::TakeSmartPointer(composite->NewIterator());
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    if (auto leaf = vtkDataSet::SafeDownCast(it->GetCurrentDataObject()))
+    {
+      copy->SetDataSet(it, colored(leaf));
+    }
+  }
   return copy;
 }
 
 bool AnyArray(vtkDataObject* data, const char* name, bool cells)
 {
-  bool any = false;
-  ForEachDataSet(data, [&](vtkDataSet* leaf, vtkCompositeDataIterator*) {
-    any = any || AttributesOf(leaf, cells)->GetArray(name) != nullptr;
-  });
-  return any;
+  for (vtkDataSet* leaf : vtkCompositeDataSet::GetDataSets<vtkDataSet>(data))
+  {
+    if (AttributesOf(leaf, cells)->GetArray(name))
+    {
+      return true;
+    }
+  }
+  return false;
 }
 }
 

@@ -2,7 +2,6 @@
 
 #include "vtkCamera.h"
 #include "vtkCommand.h"
-#include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkDataArray.h"
@@ -50,27 +49,6 @@ int FieldInt(vtkDataObject* data, const char* name)
 {
   vtkAbstractArray* array = data ? data->GetFieldData()->GetAbstractArray(name) : nullptr;
   return array && array->GetNumberOfTuples() > 0 ? array->GetVariantValue(0).ToInt() : 0;
-}
-
-/// Calls `visit(dataset)` for every dataset leaf of `data` (or `data` itself).
-template <typename Visit>
-void ForEachDataSet(vtkDataObject* data, Visit&& visit)
-{
-  if (auto composite = vtkCompositeDataSet::SafeDownCast(data))
-  {
-    auto it = vtk::TakeSmartPointer(composite->NewIterator());
-    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
-    {
-      if (auto leaf = vtkDataSet::SafeDownCast(it->GetCurrentDataObject()))
-      {
-        visit(leaf, it.Get());
-      }
-    }
-  }
-  else if (auto dataset = vtkDataSet::SafeDownCast(data))
-  {
-    visit(dataset, nullptr);
-  }
 }
 }
 
@@ -192,9 +170,10 @@ vtkDataObject* vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
   // superclass's request).
   vtkDataObject* input = internals.DrawnAlbedo->Apply(delivered, this->Mapper, this->Property, filter);
   bool emission = false;
-  ForEachDataSet(input, [&](vtkDataSet* leaf, vtkCompositeDataIterator*) {
+  for (vtkDataSet* leaf : vtkCompositeDataSet::GetDataSets<vtkDataSet>(input))
+  {
     emission = emission || leaf->GetPointData()->GetArray("Emission");
-  });
+  }
   filter->SetEmissionArrayName(emission ? "Emission" : nullptr);
   this->GatherLights(renderer);
 
@@ -356,18 +335,19 @@ double vtkGlobalIlluminationRepresentation::GetMeanIndirectIrradiance()
 {
   double sum = 0.0;
   vtkIdType values = 0;
-  ForEachDataSet(this->Internals->Filter->GetOutputDataObject(0),
-    [&](vtkDataSet* leaf, vtkCompositeDataIterator*) {
-      vtkDataArray* indirect = leaf->GetPointData()->GetArray("IndirectIrradiance");
-      for (vtkIdType i = 0; indirect && i < indirect->GetNumberOfTuples(); ++i)
+  vtkDataObject* lit = this->Internals->Filter->GetOutputDataObject(0);
+  for (vtkDataSet* leaf : vtkCompositeDataSet::GetDataSets<vtkDataSet>(lit))
+  {
+    vtkDataArray* indirect = leaf->GetPointData()->GetArray("IndirectIrradiance");
+    for (vtkIdType i = 0; indirect && i < indirect->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < indirect->GetNumberOfComponents(); ++c)
       {
-        for (int c = 0; c < indirect->GetNumberOfComponents(); ++c)
-        {
-          sum += indirect->GetComponent(i, c);
-        }
+        sum += indirect->GetComponent(i, c);
       }
-      values += indirect ? indirect->GetNumberOfValues() : 0;
-    });
+    }
+    values += indirect ? indirect->GetNumberOfValues() : 0;
+  }
   return values > 0 ? sum / values : 0.0;
 }
 
