@@ -4,6 +4,7 @@
 
 #include "engine/Pipeline.h"
 
+#include "linkgi/Cuda.h"
 #include "linkgi/Error.h"
 #include "linkgi/Solver.h"
 
@@ -222,6 +223,38 @@ TEST(TestPipeline, AnAbortKeepsTheCachesThatTheFailedUpdateDidNotTouch)
   Solver fresh;
   fresh.update(s, fast());
   for (std::size_t e = 0; e < fresh.solution().elementCount(); e += 11)
+  {
+    EXPECT_EQ(solver.solution().radiance[e].x, fresh.solution().radiance[e].x);
+  }
+}
+
+TEST(TestPipeline, AnAbortBeforeAnyStageKeepsABackendOutOfDateOutOfDate)
+{
+  // The CPU solves scene A, the GPU then solves scene B (the CPU's caches are now out of
+  // date), an update on the CPU is aborted before its first stage: the CPU must still count
+  // as out of date, or a light change would reuse its links of scene A.
+  if (cuda::devices().empty())
+  {
+    GTEST_SKIP() << "needs a CUDA device: the only other backend";
+  }
+  Scene a = test::roomWithBlock(), b = test::roomWithBlock();
+  for (Vec3f& p : b.positions)
+  {
+    p.y *= 0.8f;
+  }
+  SolverOptions gpu = fast();
+  gpu.backend = Backend::Cuda;
+  Solver solver;
+  solver.update(a, fast());
+  solver.update(b, gpu);
+  ASSERT_EQ(solver.stats().backend, "cuda");
+  EXPECT_THROW(solver.update(b, fast(), [](const char*, double) { return false; }), Aborted);
+  b.lights[0].position.x += 0.05f;
+  solver.update(b, fast());
+  EXPECT_TRUE(solver.stats().ran("Links")) << "the CPU's links belong to scene A";
+  Solver fresh;
+  fresh.update(b, fast());
+  for (std::size_t e = 0; e < fresh.solution().elementCount(); e += 7)
   {
     EXPECT_EQ(solver.solution().radiance[e].x, fresh.solution().radiance[e].x);
   }

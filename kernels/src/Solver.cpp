@@ -116,8 +116,7 @@ struct Solver::Impl
   Solution spare; // the solution before last: its buffers are reused by the next update
 
   BackendSlot cpu, cuda;
-  int cudaDevicesFound = -1; // devices seen for cudaDevicesFor; -1 = not asked yet
-  int cudaDevicesFor = -1;   // the cudaDevices option they were counted for
+  int cudaDevicesFound = 0; // GPUs the CUDA backend was made for
 
   void solve(const Scene& input, const SolverOptions& options, const ProgressCallback& progress);
   bool chooseCuda(const SolverOptions& opt, SolverStats& st);
@@ -203,6 +202,7 @@ void Solver::Impl::runStages(BackendSlot& slot, bool onCuda, const engine::Metho
     shareSum += (stale >> i & 1u) ? stages[i].progressShare : 0.0;
   }
   st.stages = stageRecords(spec, st);
+  const bool wasSynced = slot.synced;
   slot.synced = false; // until this update has committed
   try
   {
@@ -234,7 +234,9 @@ void Solver::Impl::runStages(BackendSlot& slot, bool onCuda, const engine::Metho
   }
   catch (...)
   {
-    slot.synced = slot.impl->discard();
+    // Caches that followed an older commit (another backend ran since) stay unusable even
+    // when the failed update left them alone.
+    slot.synced = slot.impl->discard() && wasSynced;
     throw;
   }
   slot.impl->commit();
