@@ -164,3 +164,90 @@ TEST(TestBadInput, ErrorKeepsThePreviousSolution)
     ASSERT_EQ(solver.solution().radiance[i], before.radiance[i]);
   }
 }
+
+namespace
+{
+/// A sphere over a floor under the sky and a slanted sun: direct, bounced and sky light.
+Scene sphereOverFloor()
+{
+  MeshBuilder b;
+  b.addQuadGrid({ -2, 0, 2 }, { 4, 0, 0 }, { 0, 0, -4 }, 12, 12, Vec3f(0.6f, 0.6f, 0.6f));
+  b.addIcosphere({ 0, 0.8f, 0 }, 0.6f, 2, Vec3f(0.8f, 0.3f, 0.2f));
+  Scene s = b.take();
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = normalize(Vec3f(0.4f, -1.f, 0.2f));
+  sun.intensity = { 2.f, 2.f, 2.f };
+  s.lights.push_back(sun);
+  s.environment.color = { 0.2f, 0.3f, 0.5f };
+  return s;
+}
+}
+
+TEST(TestBadInput, SceneSizeDoesNotMatter)
+{
+  // A mesh of size 1e30 used to lose most triangles as "degenerate" (the area test
+  // overflowed) and one of size 1e-30 all of them; rays and 1/r^2 overflow or underflow in
+  // single precision long before that. The solver rescales by a power of two internally.
+  const Scene unit = sphereOverFloor();
+  SolverOptions o = fast();
+  o.backend = Backend::Cpu;
+  const Solution reference = Solver().update(unit, o);
+  for (const float scale : { 1e30f, 1e-30f, 1e12f })
+  {
+    Scene s = unit;
+    for (Vec3f& p : s.positions)
+    {
+      p = p * scale;
+    }
+    Solver solver;
+    const Solution& sol = solver.update(s, o);
+    EXPECT_TRUE(solver.stats().warnings.empty()) << scale << ": " << solver.stats().warnings.at(0);
+    ASSERT_EQ(sol.elementCount(), reference.elementCount());
+    double sumRef = 0.0, sumSol = 0.0;
+    for (std::size_t e = 0; e < sol.elementCount(); ++e)
+    {
+      ASSERT_TRUE(isFinite(sol.radiance[e]));
+      EXPECT_NEAR(sol.direct[e].y, reference.direct[e].y, 1e-3f * (1.f + reference.direct[e].y));
+      sumRef += reference.indirect[e].y;
+      sumSol += sol.indirect[e].y;
+    }
+    EXPECT_NEAR(sumSol, sumRef, 1e-3 * sumRef) << "scale " << scale;
+    // A light-only update on the rescaled geometry (the lent arrays) scales the lights alike.
+    s.lights[0].intensity = { 1.f, 1.f, 1.f };
+    const Solution& half = solver.update(s, o);
+    EXPECT_FALSE(solver.stats().ran("Links"));
+    EXPECT_NEAR(half.direct[5].y, 0.5f * reference.direct[5].y, 1e-3f * (1.f + reference.direct[5].y));
+  }
+}
+
+TEST(TestBadInput, PointLightsFollowTheRescaledGeometry)
+{
+  // A point light's irradiance I cos / r^2 at scale 1e12: I and r^2 grow by 1e24 together.
+  Scene unit = sphereOverFloor();
+  unit.lights[0].type = LightType::Point;
+  unit.lights[0].position = { 0.5f, 3.f, 0.2f };
+  SolverOptions o = fast();
+  o.backend = Backend::Cpu;
+  const Solution reference = Solver().update(unit, o);
+  Scene big = unit;
+  for (Vec3f& p : big.positions)
+  {
+    p = p * 1e12f;
+  }
+  big.lights[0].position = big.lights[0].position * 1e12f;
+  big.lights[0].intensity = big.lights[0].intensity * 1e24f;
+  const Solution sol = Solver().update(big, o);
+  for (std::size_t e = 0; e < sol.elementCount(); e += 3)
+  {
+    EXPECT_NEAR(sol.direct[e].x, reference.direct[e].x, 1e-3f * (1.f + reference.direct[e].x));
+  }
+  // A light too bright for a scene this small is an error, not an infinity.
+  Scene tiny = unit;
+  for (Vec3f& p : tiny.positions)
+  {
+    p = p * 1e-30f;
+  }
+  tiny.lights[0].position = tiny.lights[0].position * 1e-30f;
+  expectError(tiny, "exceeds single precision", o);
+}

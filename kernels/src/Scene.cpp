@@ -3,7 +3,9 @@
 #include "linkgi/Error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 namespace linkgi
@@ -42,7 +44,8 @@ bool sameScene(const Scene& a, const Scene& b)
     sameBits(a.albedo, b.albedo) && sameBits(a.emission, b.emission) &&
     sameBits(a.triangles, b.triangles) && sameBits(a.lights, b.lights) &&
     a.environment.color == b.environment.color && a.environment.width == b.environment.width &&
-    a.environment.height == b.environment.height && sameBits(a.environment.texels, b.environment.texels);
+    a.environment.height == b.environment.height && sameBits(a.environment.texels, b.environment.texels) &&
+    a.lengthExponent == b.lengthExponent;
 }
 
 float boundingDiagonal(const std::vector<Vec3f>& positions)
@@ -60,7 +63,13 @@ float boundingDiagonal(const std::vector<Vec3f>& positions)
       hi[k] = std::max(hi[k], p[k]);
     }
   }
-  return length(hi - lo);
+  double squared = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double extent = double(hi[k]) - double(lo[k]);
+    squared += extent * extent;
+  }
+  return static_cast<float>(std::min(std::sqrt(squared), double(std::numeric_limits<float>::max())));
 }
 
 namespace
@@ -112,6 +121,51 @@ void checkLights(const std::vector<Light>& lights)
     if (l.type != LightType::Point && length(l.direction) == 0.f)
     {
       fail("Light " + std::to_string(i) + " is a spot or directional light without a direction.");
+    }
+  }
+}
+
+/// Multiplies the lights' positions by 2^-exponent and point and spot intensities by
+/// 4^-exponent (see Scene::lengthExponent). Throws where an intensity leaves float range.
+void scaleLights(std::vector<Light>& lights, int exponent)
+{
+  for (std::size_t i = 0; exponent != 0 && i < lights.size(); ++i)
+  {
+    Light& l = lights[i];
+    for (int k = 0; k < 3; ++k)
+    {
+      l.position[k] = std::ldexp(l.position[k], -exponent);
+      if (l.type != LightType::Directional)
+      {
+        l.intensity[k] = std::ldexp(l.intensity[k], -2 * exponent);
+      }
+    }
+    if (!isFinite(l.intensity))
+    {
+      fail("Light " + std::to_string(i) + " is so bright for a scene this small that the "
+        "irradiance it gives (intensity / r^2) exceeds single precision; lower its intensity "
+        "or scale the data up.");
+    }
+  }
+}
+
+/// Rescales a scene far from unit size by a power of two (Scene::lengthExponent): exact, so
+/// results do not change, and ray tests and 1/r^2 stay within single precision.
+void normalizeLength(Scene& scene)
+{
+  constexpr int kFarExponent = 16;
+  const float diagonal = boundingDiagonal(scene.positions);
+  const int exponent = diagonal > 0.f ? std::ilogb(diagonal) : 0;
+  scene.lengthExponent = std::abs(exponent) > kFarExponent ? exponent : 0;
+  if (scene.lengthExponent == 0)
+  {
+    return;
+  }
+  for (Vec3f& p : scene.positions)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      p[k] = std::ldexp(p[k], -scene.lengthExponent);
     }
   }
 }
@@ -277,6 +331,8 @@ std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy)
   checkArray(scene.positions, "position", notFinite, "a non-finite (NaN or Inf)");
   checkArray(scene.normals, "normal", notFinite, "a non-finite (NaN or Inf)");
   checkShading(scene);
+  normalizeLength(scene);
+  scaleLights(scene.lights, scene.lengthExponent);
 
   if (const std::size_t removed = removeDegenerateTriangles(scene))
   {
@@ -301,6 +357,7 @@ std::vector<std::string> validateShading(
   std::vector<std::string> warnings;
   checkShadingSizes(scene);
   checkShading(scene, albedoValidated, emissionValidated);
+  scaleLights(scene.lights, scene.lengthExponent); // the lent geometry's scale
   repairShading(scene, policy, warnings, albedoValidated);
   return warnings;
 }

@@ -52,6 +52,7 @@ private:
       to.positions = std::move(from.positions);
       to.normals = std::move(from.normals);
       to.triangles = std::move(from.triangles);
+      to.lengthExponent = from.lengthExponent; // the scale the lent positions are in
     }
     if (albedo)
     {

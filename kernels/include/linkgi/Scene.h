@@ -78,6 +78,12 @@ struct Scene
   std::vector<Triangle> triangles;
   std::vector<Light> lights;
   Environment environment;
+  /// 0 in an input. validateScene sets it for a scene far from unit size (outside 2^-16 to
+  /// 2^16): the validated positions and light positions are multiplied by 2^-lengthExponent
+  /// and point and spot intensities by 4^-lengthExponent (exact powers of two), so that ray
+  /// tests and 1/r^2 stay within single precision for a mesh of size 1e30 or 1e-30. The
+  /// irradiance and radiance of the solution are unchanged by it.
+  int lengthExponent = 0;
 
   std::size_t vertexCount() const { return positions.size(); }
   std::size_t triangleCount() const { return triangles.size(); }
@@ -96,7 +102,8 @@ enum class AlbedoPolicy
 /// positions/normals/albedo/emission/light data, negative albedo or emission.
 /// Repairs (each listed in the returned warnings): degenerate triangles (zero area or repeated
 /// indices) are removed; zero-length normals are replaced by the area-weighted face normal;
-/// albedo above 1 is clamped (AlbedoPolicy::Clamp). A scene with no lights and a black
+/// albedo above 1 is clamped (AlbedoPolicy::Clamp). A scene far from unit size is rescaled
+/// by a power of two (see Scene::lengthExponent), which changes no result. A scene with no lights and a black
 /// environment and no emission is valid: its solution is all zero (warned).
 std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp);
 
@@ -111,6 +118,7 @@ std::vector<std::string> validateShading(Scene& scene, AlbedoPolicy policy = Alb
 /// True if every array, light and the environment of `a` and `b` are bitwise equal.
 bool sameScene(const Scene& a, const Scene& b);
 
-/// Axis-aligned bounding box diagonal length (used to scale ray offsets).
+/// Axis-aligned bounding box diagonal length (used to scale ray offsets), computed in double
+/// (no overflow for coordinates near the float limit).
 float boundingDiagonal(const std::vector<Vec3f>& positions);
 }
