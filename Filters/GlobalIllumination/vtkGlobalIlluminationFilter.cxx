@@ -220,10 +220,13 @@ void vtkGlobalIlluminationFilter::SetRaysPerVertex(int rays)
 {
   const int root = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, rays)))));
   const int square = std::min(root, 256) * std::min(root, 256);
+  this->Internals->RaysRounded.clear();
   if (square != rays)
   {
-    vtkWarningMacro("RaysPerVertex must be a perfect square k*k in [1, 65536]; using "
-      << square << " instead of " << rays << ".");
+    // Kept, so that every update's LinkGI.Warnings says it, not only this call's log line.
+    this->Internals->RaysRounded = "RaysPerVertex must be a perfect square k*k in [1, 65536]; using " +
+      std::to_string(square) + " instead of " + std::to_string(rays) + ".";
+    vtkWarningMacro(<< this->Internals->RaysRounded);
   }
   if (this->RaysPerVertex != square)
   {

@@ -159,9 +159,11 @@ public:
 
   ///@{
   /**
-   * Name of the array holding the diffuse albedo (reflectance in [0,1], linear RGB). Arrays
-   * with 1 or 2 components are grey, with 3 or more the first three are RGB; unsigned char
-   * arrays are divided by 255. When empty, Albedo is used. The default value is empty.
+   * Name of the array holding the diffuse albedo (reflectance in [0,1], linear RGB). An
+   * array with 1 component is grey, with 3 RGB, with 4 RGBA (alpha unused); any other
+   * component count, or a non-numeric array, is an error naming the array (as for
+   * EmissionArrayName). Unsigned char arrays are divided by 255. When empty, Albedo is used.
+   * The default value is empty.
    */
   vtkSetStringMacro(AlbedoArrayName);
   vtkGetStringMacro(AlbedoArrayName);

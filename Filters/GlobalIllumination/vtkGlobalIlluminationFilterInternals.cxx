@@ -142,6 +142,10 @@ linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
   options.seed = static_cast<std::uint32_t>(self->Seed);
   options.lightOversampling = self->LightOversampling != 0;
   options.albedoPolicy = self->ClampAlbedo ? linkgi::AlbedoPolicy::Clamp : linkgi::AlbedoPolicy::Reject;
+  if (!this->RaysRounded.empty())
+  {
+    this->Warnings.push_back(this->RaysRounded); // in LinkGI.Warnings with the others
+  }
   return options;
 }
 

@@ -27,6 +27,7 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   std::vector<vtkSmartPointer<vtkLight>> Lights;
   vtkSmartPointer<vtkDataObject> LastOutput; // the last good output, handed out after errors
   std::vector<std::string> Warnings;         // the filter's own, for this update
+  std::string RaysRounded; // why SetRaysPerVertex changed the value asked for, or empty
 
   // Input that is no vtkPolyData (composite, or another dataset) is merged into one
   // surface, lit as `Lit`, and delivered back onto its blocks.

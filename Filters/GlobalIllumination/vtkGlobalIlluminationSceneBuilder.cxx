@@ -254,8 +254,16 @@ std::vector<linkgi::Vec3f> vtkGlobalIlluminationSceneBuilder::GatherColors(vtkPo
     Fail(std::string("The ") + role + " array '" + arrayName + "' is not a numeric array of the input's " +
       (onPoints ? "point" : "cell") + " data; check the array name and association.");
   }
+  const int components = array->GetNumberOfComponents();
+  if (components != 1 && components != 3 && components != 4)
+  {
+    std::ostringstream msg;
+    msg << "The " << role << " array '" << arrayName << "' has " << components
+        << " components; a colour has 1 (grey), 3 (RGB) or 4 (RGBA, alpha unused).";
+    Fail(msg.str());
+  }
   const vtkIdType needed = onPoints ? input->GetNumberOfPoints() : input->GetNumberOfCells();
-  if (array->GetNumberOfTuples() < needed || array->GetNumberOfComponents() < 1)
+  if (array->GetNumberOfTuples() < needed)
   {
     std::ostringstream msg;
     msg << "The " << role << " array '" << arrayName << "' has " << array->GetNumberOfTuples()

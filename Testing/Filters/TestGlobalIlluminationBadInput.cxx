@@ -7,6 +7,7 @@
 #include "vtkExecutive.h"
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkImageData.h"
+#include "vtkStringArray.h"
 
 #include <gtest/gtest.h>
 
@@ -289,4 +290,75 @@ TEST(GlobalIlluminationFilterBadInput, AbortKeepsThePreviousOutput)
   EXPECT_NEAR(Value(out, "DirectIrradiance", 0), 3.0, 3e-4);
   EXPECT_EQ(Stat(out, "LightLinkBuilds"), 2.0);
   EXPECT_EQ(Stat(out, "LinkBuilds"), 1.0) << "an abort leaves the engine's caches intact";
+}
+
+TEST(GlobalIlluminationFilterBadInput, ColourArraysOfTheWrongShapeAreErrorsNamingThemAndKeepThePreviousOutput)
+{
+  vtkSmartPointer<vtkPolyData> input = WithOwnPoints(MakeFloor(1, 4));
+  auto filter = FloorFilter(input);
+  filter->Update();
+  const double before = Value(filter->GetOutput(), "DirectIrradiance", 3);
+  ASSERT_NEAR(before, 1.0, 1e-4);
+
+  vtkNew<vtkFloatArray> twoComponents; // e.g. luminance + alpha, or a 2D vector field
+  twoComponents->SetName("Glow");
+  twoComponents->SetNumberOfComponents(2);
+  twoComponents->SetNumberOfTuples(input->GetNumberOfPoints());
+  twoComponents->Fill(0.5);
+  input->GetPointData()->AddArray(twoComponents);
+  filter->SetEmissionArrayName("Glow");
+  MessageCapture messages(filter);
+  filter->Update();
+  EXPECT_TRUE(messages.HasError("The emission array 'Glow' has 2 components"));
+  EXPECT_EQ(Value(filter->GetOutput(), "DirectIrradiance", 3), before) << "the previous output is kept";
+
+  filter->SetEmissionArrayName(nullptr);
+  vtkNew<vtkStringArray> names;
+  names->SetName("Names");
+  names->SetNumberOfTuples(input->GetNumberOfPoints());
+  input->GetPointData()->AddArray(names);
+  filter->SetAlbedoArrayName("Names");
+  messages.Clear();
+  filter->Update();
+  EXPECT_TRUE(messages.HasError("The albedo array 'Names' is not a numeric array"));
+  EXPECT_EQ(Value(filter->GetOutput(), "DirectIrradiance", 3), before);
+
+  // Four components (RGBA) are a colour.
+  vtkNew<vtkFloatArray> rgba;
+  rgba->SetName("RGBA");
+  rgba->SetNumberOfComponents(4);
+  rgba->SetNumberOfTuples(input->GetNumberOfPoints());
+  rgba->Fill(0.5);
+  input->GetPointData()->AddArray(rgba);
+  filter->SetAlbedoArrayName("RGBA");
+  messages.Clear();
+  filter->Update();
+  EXPECT_TRUE(messages.Errors.empty());
+}
+
+TEST(GlobalIlluminationFilterBadInput, RoundedRaysPerVertexIsInTheOutputsWarnings)
+{
+  auto filter = FloorFilter(WithOwnPoints(MakeFloor(1, 4)));
+  const auto warnings = [&filter] {
+    auto* list = vtkStringArray::SafeDownCast(
+      filter->GetOutput()->GetFieldData()->GetAbstractArray("LinkGI.Warnings"));
+    std::string all;
+    for (vtkIdType i = 0; list && i < list->GetNumberOfValues(); ++i)
+    {
+      all += list->GetValue(i) + "\n";
+    }
+    return all;
+  };
+  MessageCapture messages(filter);
+  filter->SetRaysPerVertex(7);
+  EXPECT_EQ(filter->GetRaysPerVertex(), 9);
+  filter->Update();
+  EXPECT_NE(warnings().find("using 9 instead of 7"), std::string::npos);
+  filter->SetNumberOfBounces(2); // a later update still says it
+  filter->Update();
+  EXPECT_NE(warnings().find("using 9 instead of 7"), std::string::npos);
+  filter->SetRaysPerVertex(16); // a valid value clears it
+  filter->Update();
+  EXPECT_EQ(warnings().find("perfect square"), std::string::npos);
+  EXPECT_TRUE(messages.Errors.empty());
 }
