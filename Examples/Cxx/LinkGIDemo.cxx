@@ -32,20 +32,6 @@
 
 namespace
 {
-/// Exposure so the 95th percentile of luminance lands at 0.85 after the 1 - exp(-x) curve
-/// (the mapper's default tone curve, followed by its display gamma).
-double exposureFor(vtkDataArray* radiance)
-{
-  const vtkIdType n = radiance->GetNumberOfTuples();
-  std::vector<double> lum(n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const double* c = radiance->GetTuple3(i);
-    lum[i] = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
-  }
-  std::nth_element(lum.begin(), lum.begin() + n * 95 / 100, lum.end());
-  return -std::log(1.0 - 0.85) / std::max(lum[n * 95 / 100], 1e-12);
-}
 
 void printTimings(vtkFieldData* fd)
 {
@@ -107,7 +93,7 @@ int main(int argc, char* argv[])
   mapper->SetInputData(lit);
   mapper->ScalarVisibilityOff();
   mapper->GetShading()->SetDisplayModeToCombined();
-  mapper->GetShading()->SetExposure(exposureFor(radiance));
+  mapper->GetShading()->SetExposure(mapper->GetShading()->SuggestExposure(radiance));
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   renderer->AddActor(actor);

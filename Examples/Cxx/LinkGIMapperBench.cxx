@@ -180,18 +180,11 @@ void Isosurface(Scene& scene, int rays)
   };
 }
 
-/// Exposure putting the 95th percentile of the luminance of Radiance at 0.85 (as linkgi-demo).
+/// The Exposure that the default shading suggests for the scene's Radiance.
 double Exposure(vtkPolyData* lit)
 {
-  vtkDataArray* radiance = lit->GetPointData()->GetArray("Radiance");
-  std::vector<double> lum;
-  for (vtkIdType i = 0; i < radiance->GetNumberOfTuples(); ++i)
-  {
-    const double* c = radiance->GetTuple3(i);
-    lum.push_back(0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]);
-  }
-  std::nth_element(lum.begin(), lum.begin() + lum.size() * 95 / 100, lum.end());
-  return -std::log(1.0 - 0.85) / std::max(lum[lum.size() * 95 / 100], 1e-12);
+  vtkNew<vtkGlobalIlluminationShading> shading;
+  return shading->SuggestExposure(lit->GetPointData()->GetArray("Radiance"));
 }
 
 /// A renderer drawing the scene with `mapper` under the scene's lights.

@@ -5,6 +5,7 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkDataSet.h"
 #include "vtkFloatArray.h"
+#include "vtkGlobalIlluminationColors.h"
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkMapper.h"
 #include "vtkObjectFactory.h"
@@ -24,7 +25,9 @@ vtkDataSetAttributes* AttributesOf(vtkDataSet* data, bool cells)
   return cells ? static_cast<vtkDataSetAttributes*>(data->GetCellData()) : data->GetPointData();
 }
 
-/// `scalars` through the mapper's lookup table, as float RGB times `diffuse`.
+/// `scalars` through the mapper's lookup table, times `diffuse`, as linear float RGB: the
+/// table's colours are display (sRGB) values, which the filter would otherwise take as
+/// linear reflectance.
 vtkSmartPointer<vtkFloatArray> MappedColors(vtkMapper* mapper, vtkDataArray* scalars, double diffuse)
 {
   auto rgba = vtk::TakeSmartPointer(mapper->GetLookupTable()->MapScalars(
@@ -37,7 +40,8 @@ vtkSmartPointer<vtkFloatArray> MappedColors(vtkMapper* mapper, vtkDataArray* sca
   {
     for (int c = 0; c < 3; ++c)
     {
-      colors->SetTypedComponent(i, c, static_cast<float>(rgba->GetTypedComponent(i, c) / 255.0 * diffuse));
+      const double drawn = rgba->GetTypedComponent(i, c) / 255.0 * diffuse;
+      colors->SetTypedComponent(i, c, static_cast<float>(vtkGlobalIlluminationColors::ToLinear(drawn)));
     }
   }
   return colors;
@@ -125,7 +129,9 @@ vtkDataObject* vtkGlobalIlluminationDrawnAlbedo::Apply(vtkDataObject* data, vtkM
   const double diffuse = property->GetDiffuse();
   double color[3];
   property->GetDiffuseColor(color);
-  filter->SetAlbedo(color[0] * diffuse, color[1] * diffuse, color[2] * diffuse);
+  // The solid colour is a display (sRGB) value; the filter's albedo is linear.
+  const auto linear = [&](int c) { return vtkGlobalIlluminationColors::ToLinear(color[c] * diffuse); };
+  filter->SetAlbedo(linear(0), linear(1), linear(2));
   filter->SetAlbedoArrayAssociation(vtkDataObject::FIELD_ASSOCIATION_POINTS);
 
   // The mapper's own albedo array comes first, as in its shaders.

@@ -8,10 +8,14 @@
  * - the point array AlbedoArrayName ("Albedo", as vtkGlobalIlluminationShading's default);
  * - else, with scalar visibility on, the mapper's colouring array through its lookup table
  *   (colour mode, array component and point or cell scalars as the mapper uses them),
- *   added to a shallow copy of the data as the float array "GlobalIlluminationAlbedo";
+ *   added to a shallow copy of the data as the float array "GlobalIlluminationAlbedo"
+ *   (linear);
  * - else the property's solid colour;
  * the last two times the property's Diffuse. Blocks of a composite dataset without the
- * array take the solid colour. Colours are used as they are (no colour-space conversion).
+ * array take the solid colour. The lookup table's colours and the solid colour are display
+ * (sRGB) values: they reach the filter decoded to linear reflectance
+ * (vtkGlobalIlluminationColors::ToLinear), as the filter itself reads an unsigned char
+ * Albedo array; a float Albedo array is linear already.
  *
  * The copy with mapped colours is kept and remade only when the data, the lookup table or
  * the colouring parameters change, so calling Apply() before every update of a render loop

@@ -12,7 +12,21 @@
  * - direct:   L = Le + albedo / pi * E_d + glossy,  E_d from the renderer's lights with shadows;
  * - indirect: L = albedo / pi * E_ind,  E_ind from the IndirectIrradiance point array;
  * - combined: the sum, which is the filter's `Radiance` up to shadow filtering.
- * The displayed value is (ToneCurve(Exposure * L))^(1/Gamma).
+ * The albedo is linear: colours that VTK draws (colour maps, solid colours, unsigned char
+ * arrays) are display (sRGB) values and are decoded first (vtkGlobalIlluminationColors).
+ *
+ * Calibration: a surface lit directly and unoccluded, with no indirect light, shows what
+ * VTK's own Lambert shading (vtkOpenGLPolyDataMapper, ParaView's Surface) shows under the
+ * same lights: its drawn colour times the irradiance, colour x intensity x cos summed over
+ * the lights. So with the default HUE_PRESERVING tone mapping the displayed value is
+ * KeepHue(Exposure * (C * (E_d + E_ind) + pi * (Le + glossy))), C the drawn (display)
+ * colour: global illumination only adds light (bounces, sky, emission) and removes it
+ * (shadows), and a colour map's colours stay the data's colours. (VTK multiplies display
+ * values by the irradiance; encoding linear light, sRGB(albedo * E), would match it only
+ * where E = 1, and would lighten every colour under the light kit's E of about 0.8.)
+ * With the photographic curves (LINEAR, EXPONENTIAL, REINHARD) the displayed value is
+ * (ToneCurve(Exposure * L))^(1/Gamma): linear light encoded for display (a white surface
+ * facing irradiance 1 has L = 1 / pi: Exposure pi shows it white).
  *
  * Changing the array names, the display mode or the tone curve rebuilds shaders and
  * buffers at the next render; Exposure, Gamma and the shadow filtering are uniforms and
@@ -23,6 +37,8 @@
 
 #include "LinkGIRenderingGlobalIlluminationModule.h" // for export macro
 #include "vtkObject.h"
+
+class vtkDataArray;
 
 class LINKGIRENDERINGGLOBALILLUMINATION_EXPORT vtkGlobalIlluminationShading : public vtkObject
 {
@@ -39,12 +55,16 @@ public:
     INDIRECT = 2  ///< per-vertex indirect light only
   };
 
-  /// Tone curve applied to Exposure * radiance, before the 1/Gamma encoding.
+  /// How radiance becomes a display value (see the class description).
   enum ToneMappingTypes
   {
     LINEAR = 0,      ///< none: values above 1 clip in an 8-bit framebuffer, stay in a float one
-    EXPONENTIAL = 1, ///< 1 - exp(-x), as vtkToneMappingPass's Exponential
-    REINHARD = 2     ///< x / (1 + x)
+    EXPONENTIAL = 1, ///< 1 - exp(-x) per channel, as vtkToneMappingPass's Exponential
+    REINHARD = 2,    ///< x / (1 + x) per channel
+    /// Calibrated to VTK's Lambert shading; colours within display range are shown as they
+    /// are; a colour beyond it keeps its luminance (up to white) and hue and loses only as
+    /// much saturation as it must, so over-exposed areas turn white instead of changing hue.
+    HUE_PRESERVING = 3
   };
 
   ///@{
@@ -62,8 +82,8 @@ public:
   ///@{
   /**
    * Point array holding the diffuse albedo (linear RGB in [0,1]; 1 or 2 components are
-   * grey, unsigned char is divided by 255, values above 1 are clamped, as in
-   * vtkGlobalIlluminationFilter). Where the input has no such array, the actor's diffuse
+   * grey, unsigned char is a display colour decoded from sRGB, values above 1 are clamped,
+   * as in vtkGlobalIlluminationFilter). Where the input has no such array, the actor's diffuse
    * colour (or the mapped scalar colour) times its Diffuse coefficient is the albedo.
    * The default value is "Albedo".
    */
@@ -110,22 +130,34 @@ public:
   vtkGetMacro(Exposure, double);
   ///@}
 
+  /**
+   * An Exposure that shows a high percentile of the luminance of `radiance` (the filter's
+   * Radiance array, or any linear RGB radiance) at 85 % of display white with the current
+   * tone mapping (and Gamma): the 80th with HUE_PRESERVING, which does not compress
+   * highlights, the 95th with the other curves. For scenes whose lights are not on VTK's
+   * scale (a Cornell box's lamp, physical units). Returns 1 for an empty or black array.
+   */
+  double SuggestExposure(vtkDataArray* radiance) const;
+
   ///@{
   /**
-   * LINEAR, EXPONENTIAL or REINHARD. To tone map with vtkToneMappingPass instead, choose
-   * LINEAR with Gamma 2.2 (the encoding that pass expects). The default value is EXPONENTIAL.
+   * HUE_PRESERVING, LINEAR, EXPONENTIAL or REINHARD. To tone map with vtkToneMappingPass
+   * instead, choose LINEAR with Gamma 2.2 (the encoding that pass expects). The default
+   * value is HUE_PRESERVING.
    */
-  vtkSetClampMacro(ToneMapping, int, LINEAR, REINHARD);
+  vtkSetClampMacro(ToneMapping, int, LINEAR, HUE_PRESERVING);
   vtkGetMacro(ToneMapping, int);
   void SetToneMappingToLinear() { this->SetToneMapping(LINEAR); }
   void SetToneMappingToExponential() { this->SetToneMapping(EXPONENTIAL); }
   void SetToneMappingToReinhard() { this->SetToneMapping(REINHARD); }
+  void SetToneMappingToHuePreserving() { this->SetToneMapping(HUE_PRESERVING); }
   ///@}
 
   ///@{
   /**
-   * Display gamma: the output is the tone-mapped value to the power 1/Gamma. 1 writes
-   * linear values. The default value is 2.2.
+   * Display gamma of the photographic curves (LINEAR, EXPONENTIAL, REINHARD): the output is
+   * the tone-mapped value to the power 1/Gamma; 1 writes linear values. HUE_PRESERVING
+   * does not use it. The default value is 2.2.
    */
   vtkSetClampMacro(Gamma, double, 0.1, 10.0);
   vtkGetMacro(Gamma, double);
@@ -194,7 +226,7 @@ protected:
   char* EmissionArrayName = nullptr;
   double LightIntensityScale = 1.0;
   double Exposure = 1.0;
-  int ToneMapping = EXPONENTIAL;
+  int ToneMapping = HUE_PRESERVING;
   double Gamma = 2.2;
   vtkTypeBool Shadows = 1;
   int ShadowMapResolution = 1024;

@@ -319,7 +319,8 @@ TEST(GlobalIlluminationFilter, PointAndCellAlbedoAgreeAndColourArraysConvert)
       EXPECT_NEAR(Value(points, "Radiance", i, c), rho[c] / pi, 1e-5);
       EXPECT_NEAR(Value(cells, "Radiance", i, c), rho[c] / pi, 1e-5);
       EXPECT_NEAR(Value(greys, "Radiance", i, c), 0.4 / pi, 1e-5);
-      EXPECT_NEAR(Value(rgba, "Radiance", i, c), (c == 0 ? 1.0 : c == 1 ? 0.2 : 0.0) / pi, 1e-5);
+      // Bytes are display colours: 51 / 255 is 0.0331 in linear light.
+      EXPECT_NEAR(Value(rgba, "Radiance", i, c), (c == 0 ? 1.0 : c == 1 ? 0.0331 : 0.0) / pi, 1e-5);
     }
   }
 }

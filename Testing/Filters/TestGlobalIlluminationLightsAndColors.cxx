@@ -149,13 +149,14 @@ TEST(GlobalIlluminationLights, CameraLightsAreReadWhereTheRendererPlacedThem)
   ExpectNear(l.Direction, 0, -1, 0);
 }
 
-TEST(GlobalIlluminationColors, UnsignedCharIsDividedBy255OtherTypesAreTakenAsTheyAre)
+TEST(GlobalIlluminationColors, UnsignedCharIsDecodedFromSRGBOtherTypesAreTakenAsTheyAre)
 {
   vtkNew<vtkUnsignedCharArray> bytes;
   bytes->SetNumberOfComponents(4);
-  const unsigned char rgba[4] = { 255, 51, 0, 7 };
+  const unsigned char rgba[4] = { 255, 188, 0, 7 };
   bytes->InsertNextTypedTuple(rgba);
-  ExpectNear(Colors::Read(bytes, 0), 1.0, 0.2, 0.0); // alpha ignored
+  // sRGB 188 / 255 is 50 % linear light; alpha ignored.
+  ExpectNear(Colors::Read(bytes, 0), 1.0, 0.5029, 0.0, 1e-4);
 
   vtkNew<vtkFloatArray> floats;
   floats->SetNumberOfComponents(3);
@@ -173,13 +174,25 @@ TEST(GlobalIlluminationColors, OneAndTwoComponentsAreGrey)
 
   vtkNew<vtkUnsignedCharArray> greyAlpha;
   greyAlpha->SetNumberOfComponents(2);
-  greyAlpha->InsertNextTuple2(102, 255);
-  ExpectNear(Colors::Read(greyAlpha, 0), 0.4, 0.4, 0.4);
+  greyAlpha->InsertNextTuple2(10, 255); // on the sRGB curve's linear segment
+  ExpectNear(Colors::Read(greyAlpha, 0), 10 / 255. / 12.92, 10 / 255. / 12.92, 10 / 255. / 12.92);
 
   vtkNew<vtkFloatArray> five; // more than four: the first three
   five->SetNumberOfComponents(5);
   five->InsertNextTuple(std::array<double, 5>{ { 0.1, 0.2, 0.3, 0.4, 0.5 } }.data());
   ExpectNear(Colors::Read(five, 0), 0.1, 0.2, 0.3, 1e-7);
+}
+
+TEST(GlobalIlluminationColors, DisplayAndLinearAreInverseSRGBCurves)
+{
+  for (int i = 0; i <= 255; ++i)
+  {
+    EXPECT_NEAR(Colors::ToDisplay(Colors::ToLinear(i / 255.0)), i / 255.0, 1e-12);
+  }
+  EXPECT_NEAR(Colors::ToLinear(0.5), 0.21404, 1e-5);
+  EXPECT_EQ(Colors::ToLinear(2.0), 1.0);
+  EXPECT_EQ(Colors::ToDisplay(-1.0), 0.0);
+  EXPECT_EQ(Colors::ToLinear(std::numeric_limits<double>::quiet_NaN()), 0.0);
 }
 
 TEST(GlobalIlluminationColors, ClampKeepsAlbedoInZeroOneAndRadiometryNonNegative)

@@ -48,19 +48,11 @@
 
 namespace linkgi_test
 {
-/// Exposure that puts the 95th percentile of the luminance of `radiance` at 0.85 after the
-/// exponential curve, as linkgi-demo does.
+/// The Exposure that the default shading suggests for `radiance` (the filter's Radiance).
 inline double AutoExposure(vtkDataArray* radiance)
 {
-  const vtkIdType n = radiance->GetNumberOfTuples();
-  std::vector<double> lum(static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const double* c = radiance->GetTuple3(i);
-    lum[i] = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
-  }
-  std::nth_element(lum.begin(), lum.begin() + n * 95 / 100, lum.end());
-  return -std::log(1.0 - 0.85) / std::max(lum[n * 95 / 100], 1e-12);
+  vtkNew<vtkGlobalIlluminationShading> shading;
+  return shading->SuggestExposure(radiance);
 }
 
 /// Adds every light of `lights` to `renderer`.

@@ -138,6 +138,10 @@ vtkSmartPointer<vtkActor> MapperActor(
   mapper->GetShading()->SetDisplayMode(mode);
   mapper->GetShading()->SetIndirectIrradianceArrayName(indirect);
   mapper->GetShading()->SetExposure(exposure);
+  // The photographic curve displays the radiance itself, which the filter's Radiance is
+  // compared with; the default (hue preserving) display is checked against VTK's own
+  // shading by python.GlobalIlluminationColourCalibration.
+  mapper->GetShading()->SetToneMappingToExponential();
   auto actor = vtkSmartPointer<vtkActor>::New();
   actor->SetMapper(mapper);
   return actor;

@@ -1,10 +1,11 @@
 // The optional glossy lobe: normalized Blinn-Phong, (m + 8) / (8 pi) (n.h)^m times the
 // irradiance, scaled by the actor's Specular and SpecularColor, m = SpecularPower.
 //
-// A plane (albedo 0.8) under a point light at (-0.5, 0, 1), seen from (0.5, 0, 1): at the
-// origin the half vector is the normal, so the pixel there is (0.8 / pi + ks (m + 8) /
+// A plane (colour 0.8: albedo 0.604 in linear light) under a point light at (-0.5, 0, 1), seen from (0.5, 0, 1): at the
+// origin the half vector is the normal, so the pixel there is (0.604 / pi + ks (m + 8) /
 // (8 pi)) E with E = 1 / 1.25^1.5, in linear output. Without Specular only the diffuse part.
 #include "RenderingTestUtilities.h"
+#include "vtkGlobalIlluminationColors.h"
 
 namespace
 {
@@ -48,7 +49,7 @@ int TestGlobalIlluminationMapperGlossy(int, char*[])
   auto window = MakeWindow(200, 200);
 
   const double e = 1.0 / std::pow(1.25, 1.5), pi = vtkMath::Pi();
-  const double diffuse = 0.8 / pi * e, glossy = 0.3 * 58.0 / (8.0 * pi) * e;
+  const double diffuse = vtkGlobalIlluminationColors::ToLinear(0.8) / pi * e, glossy = 0.3 * 58.0 / (8.0 * pi) * e;
   const double matte = CentreValue(window, source->GetOutput(), light, 0.0);
   const double shiny = CentreValue(window, source->GetOutput(), light, 0.3);
   std::printf("centre pixel: matte %.1f (expected %.1f), glossy %.1f (expected %.1f)\n", matte,

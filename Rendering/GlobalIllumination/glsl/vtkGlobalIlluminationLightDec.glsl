@@ -2,7 +2,7 @@
 // indirect light, in linear RGB and world coordinates. #defined before this text:
 // GI_LIGHT_COUNT, GI_HAS_ALBEDO, GI_HAS_INDIRECT, GI_HAS_INDIRECT_BACK, GI_HAS_EMISSION,
 // GI_GLOSSY, GI_MODE (0 combined, 1 direct, 2 indirect), GI_TONE_MAPPING (0 linear,
-// 1 exponential, 2 Reinhard), GI_SOFT_SHADOWS (four filter taps instead of one), and, with
+// 1 exponential, 2 Reinhard, 3 hue preserving), GI_SOFT_SHADOWS (four filter taps instead of one), and, with
 // lights, GI_LIGHT_TYPES and GI_SHADOW_KINDS (one integer per light).
 #define GI_PI 3.14159265358979
 
@@ -153,6 +153,20 @@ vec3 giDirectIrradiance(vec3 p, vec3 n, vec3 g, vec3 eye, float shininess, out v
   return irradiance;
 }
 
+// The sRGB curves of vtkGlobalIlluminationColors (ToLinear, ToDisplay).
+vec3 giToLinear(vec3 c)
+{
+  c = clamp(c, 0.0, 1.0);
+  return mix(pow((c + 0.055) / 1.055, vec3(2.4)), c / 12.92, lessThanEqual(c, vec3(0.04045)));
+}
+
+vec3 giToDisplay(vec3 c)
+{
+  c = clamp(c, 0.0, 1.0);
+  return mix(1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, 12.92 * c, lessThanEqual(c, vec3(0.0031308)));
+}
+
+// The photographic curves: radiance to display values.
 vec3 giToneMap(vec3 radiance)
 {
   vec3 x = max(radiance * giExposure, vec3(0.0));
@@ -162,4 +176,18 @@ vec3 giToneMap(vec3 radiance)
   x = x / (vec3(1.0) + x);
 #endif
   return pow(x, vec3(giInvGamma));
+}
+
+// Hue-preserving display of a colour c (display units, 1 = white): within [0, 1] it is
+// shown as it is. Beyond, its luminance is kept (up to white) and it is blended towards the
+// grey of that luminance just enough to fit: hue kept, saturation given up, rather than
+// per-channel clipping or compression, which turn a saturated red orange or pink.
+vec3 giKeepHue(vec3 c)
+{
+  c = max(c, vec3(0.0));
+  float top = max(c.r, max(c.g, c.b));
+  float y = dot(c, vec3(0.2126, 0.7152, 0.0722));
+  float grey = min(y, 1.0);
+  float keep = top > 1.0 ? clamp((1.0 - grey) / max(top - y, 1e-6), 0.0, 1.0) : 1.0;
+  return min(vec3(grey) + (c - vec3(y)) * keep, vec3(1.0));
 }

@@ -1,4 +1,5 @@
-  // LinkGI: outgoing radiance L = Le + albedo / pi (E_d + E_ind) + glossy, tone mapped.
+  // LinkGI: outgoing radiance L = Le + albedo / pi * E + glossy (linear light), and its
+  // display (vtkGlobalIlluminationShading: calibrated to VTK's Lambert shading by default).
   vec3 giPosition = (giViewToWorld * vec4(vertexVC.xyz, 1.0)).xyz;
   vec3 giNormal = normalize(mat3(giViewToWorld) * normalVCVSOutput);
   // The triangle's own normal (from the position derivatives taken in uniform control
@@ -6,28 +7,36 @@
   vec3 giTriangle = mat3(giViewToWorld) * giTriangleNormalVC;
   giTriangle = dot(giTriangle, giTriangle) > 0.0 ? normalize(giTriangle) : giNormal;
   giTriangle = dot(giTriangle, giNormal) < 0.0 ? -giTriangle : giTriangle;
+  // The colour VTK draws (diffuseColor) is a display value; the albedo array is linear.
 #if GI_HAS_ALBEDO
-  vec3 giAlbedo = mix(diffuseColor, giAlbedoVSOutput.rgb, giAlbedoVSOutput.a);
+  vec3 giAlbedo = mix(giToLinear(diffuseColor), giAlbedoVSOutput.rgb, giAlbedoVSOutput.a);
+  vec3 giDrawn = mix(diffuseColor, giToDisplay(giAlbedoVSOutput.rgb), giAlbedoVSOutput.a);
 #else
-  vec3 giAlbedo = diffuseColor;
+  vec3 giAlbedo = giToLinear(diffuseColor);
+  vec3 giDrawn = diffuseColor;
 #endif
-  vec3 giRadiance = vec3(0.0);
+  vec3 giIrradiance = vec3(0.0);
+  vec3 giEmitted = vec3(0.0); // Le + glossy
 #if GI_MODE != 2
   vec3 giEye = giCamera.w > 0.5 ? giCamera.xyz : normalize(giCamera.xyz - giPosition);
   vec3 giGlossy;
-  vec3 giDirect =
+  giIrradiance +=
     giDirectIrradiance(giPosition, giNormal, giTriangle, giEye, specularPower, giGlossy);
-  giRadiance += giAlbedo * (1.0 / GI_PI) * giDirect + specularColor * giGlossy;
+  giEmitted += specularColor * giGlossy;
 #if GI_HAS_EMISSION
-  giRadiance += giEmissionVSOutput;
+  giEmitted += giEmissionVSOutput;
 #endif
 #endif
 #if GI_MODE != 1 && GI_HAS_INDIRECT
 #if GI_HAS_INDIRECT_BACK
-  vec3 giIndirect = gl_FrontFacing ? giIndirectVSOutput : giIndirectBackVSOutput;
+  giIrradiance += gl_FrontFacing ? giIndirectVSOutput : giIndirectBackVSOutput;
 #else
-  vec3 giIndirect = giIndirectVSOutput;
+  giIrradiance += giIndirectVSOutput;
 #endif
-  giRadiance += giAlbedo * (1.0 / GI_PI) * giIndirect;
 #endif
-  fragOutput0 = vec4(giToneMap(giRadiance), opacity);
+#if GI_TONE_MAPPING == 3
+  vec3 giDisplay = giKeepHue(giExposure * (giDrawn * giIrradiance + GI_PI * giEmitted));
+#else
+  vec3 giDisplay = giToneMap(giAlbedo * (1.0 / GI_PI) * giIrradiance + giEmitted);
+#endif
+  fragOutput0 = vec4(giDisplay, opacity);
