@@ -131,6 +131,8 @@ def main():
                  if output else None for m in ("plain", "gi")]
         plain = render(surface, table, lights, False, paths[0])
         gi = render(surface, table, lights, True, paths[1])
+        if len(set(plain)) != len(colours) or min(sum(p) for p in plain) == 0:
+            sys.exit("FAILED: the patches do not show their colours under the %s light(s)" % lights)
         for (name, _), p, g in zip(colours, plain, gi):
             difference = colour.pixel_difference(p, g)
             worst = max(worst, difference)

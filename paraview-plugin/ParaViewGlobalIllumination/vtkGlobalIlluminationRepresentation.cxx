@@ -300,6 +300,11 @@ void vtkGlobalIlluminationRepresentation::SetExposure(double exposure)
   Shading(this->Mapper)->SetExposure(exposure);
 }
 
+void vtkGlobalIlluminationRepresentation::SetToneMapping(int toneMapping)
+{
+  Shading(this->Mapper)->SetToneMapping(toneMapping);
+}
+
 void vtkGlobalIlluminationRepresentation::SetShadows(int shadows)
 {
   Shading(this->Mapper)->SetShadows(shadows);

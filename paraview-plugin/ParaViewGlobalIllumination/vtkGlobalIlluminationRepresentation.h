@@ -66,10 +66,12 @@ public:
   ///@{
   /**
    * Forwarded to the mapper's vtkGlobalIlluminationShading: display mode (0 combined,
-   * 1 direct, 2 indirect), exposure and shadows.
+   * 1 direct, 2 indirect), exposure, tone mapping (vtkGlobalIlluminationShading's
+   * ToneMappingTypes) and shadows.
    */
   void SetDisplayMode(int mode);
   void SetExposure(double exposure);
+  void SetToneMapping(int toneMapping);
   void SetShadows(int shadows);
   ///@}
 

@@ -49,6 +49,10 @@ display = Show(box, view)
 display.Representation = "Global Illumination"
 display.GlobalIlluminationBounces = 3
 display.GlobalIlluminationDisplayMode = "Combined"  # or "Direct", "Indirect"
+# The lamp, close to the ceiling, lights the box over a wide range: a photographic curve
+# compresses it. (The default, "Hue Preserving", shows what Surface shows under VTK-scale
+# lights such as the light kit.)
+display.GlobalIlluminationToneMapping = "Exponential"
 
 view.CameraPosition = [0.278, 0.274, -0.75]
 view.CameraFocalPoint = [0.278, 0.274, 0.28]
