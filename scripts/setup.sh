@@ -14,6 +14,7 @@ packages=(
   libembree-dev libtbb-dev libopenmesh-dev
   libgtest-dev libgmock-dev
   xvfb xauth libgl1-mesa-dri
+  dpkg-dev file
 )
 
 missing=()

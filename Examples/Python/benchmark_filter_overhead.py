@@ -1,7 +1,7 @@
 """The filter's own cost (triangulation, normals, array conversion, output arrays) against
 the engine's, for a full and a light-only update of a standard scene.
 
-    PYTHONPATH=build/lib/python3/site-packages /usr/bin/python3 \\
+    PYTHONPATH=build/lib/python3.11/dist-packages /usr/bin/python3 \\
         Examples/Python/benchmark_filter_overhead.py [scene]
 
 Prints one JSON line per update: LinkGI.MsFilter is all of RequestData, LinkGI.MsTotal the

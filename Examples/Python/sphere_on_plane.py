@@ -1,6 +1,7 @@
 """A sphere resting on a plane, lit by one point light; writes out.vtp with the point arrays
 DirectIrradiance, IndirectIrradiance and Radiance (linear RGB).
-Usage: PYTHONPATH=build/lib/python3/site-packages /usr/bin/python3 sphere_on_plane.py out.vtp"""
+Usage: /usr/bin/python3 sphere_on_plane.py out.vtp          (LinkGI installed)
+       PYTHONPATH=build/lib/python3.11/dist-packages /usr/bin/python3 sphere_on_plane.py out.vtp"""
 import sys
 import linkgi
 from vtkmodules.vtkFiltersCore import vtkAppendPolyData

@@ -11,6 +11,8 @@
 #   LINKGI_PARAVIEW_PLUGIN_FILE     the plugin library, for LoadPlugin()
 #   LINKGI_PVBATCH                  pvbatch
 #   LINKGI_PARAVIEW_PYTHONPATH      the PYTHONPATH that pvbatch needs
+#   LINKGI_PARAVIEW_PLUGIN_INSTALL_DIR  where `cmake --install` puts LinkGI/ and LinkGI.xml,
+#                                   relative to the prefix
 
 set(LINKGI_BUILD_PARAVIEW_PLUGIN AUTO CACHE STRING
   "Build the ParaView plugin against ParaView's own VTK (AUTO: when ParaView 5.11 is found)")
@@ -98,4 +100,18 @@ if(LINKGI_PARAVIEW_PLUGIN_ENABLED)
     USES_TERMINAL_CONFIGURE ON
     USES_TERMINAL_BUILD     ON
     BUILD_BYPRODUCTS  "${LINKGI_PARAVIEW_PLUGIN_FILE}")
+
+  # `cmake --install` of this build installs the plugin too (component `paraview`), where
+  # ParaView keeps its plugins: <prefix>/<libdir>/paraview-5.11/plugins/LinkGI/, plus the
+  # plugin list LinkGI.xml beside that directory. It runs the plugin build's own install
+  # script with this install's prefix and DESTDIR, restricted to its `paraview` component:
+  # the script also has rules for the client-server archives (`development`), which are
+  # linked into LinkGI.so and have no use installed.
+  set(LINKGI_PARAVIEW_PLUGIN_INSTALL_DIR "${CMAKE_INSTALL_LIBDIR}/paraview-5.11/plugins")
+  install(CODE "
+    set(_linkgi_component \"\${CMAKE_INSTALL_COMPONENT}\")
+    set(CMAKE_INSTALL_COMPONENT paraview)
+    include(\"${_linkgi_plugin_build}/cmake_install.cmake\")
+    set(CMAKE_INSTALL_COMPONENT \"\${_linkgi_component}\")"
+    COMPONENT paraview)
 endif()

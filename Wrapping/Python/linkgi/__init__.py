@@ -8,7 +8,8 @@
     gi.AddLight(vtkLight())
     gi.Update()  # point arrays DirectIrradiance, IndirectIrradiance, Radiance
 
-Needs Debian's /usr/bin/python3 (the one with VTK 9.1) and PYTHONPATH=<build>/lib/python3/site-packages.
+Needs Debian's /usr/bin/python3 (the one with VTK 9.1). Installed (`cmake --install`, or the
+linkgi .deb) it needs nothing else; from a build tree, PYTHONPATH=<build>/lib/python3.11/dist-packages.
 """
 # The wrapped classes derive from and take VTK classes of these modules: load them first.
 from vtkmodules import vtkCommonCore as _core  # noqa: F401

@@ -1,0 +1,39 @@
+"""`import linkgi` from an installed LinkGI with nothing but its Python directory added to the
+system Python's path, as Python finds it under the default prefix (no PYTHONPATH there).
+
+Checks that the package, its wrapped modules and the LinkGI libraries they load (found by
+relative RPATHs) all come from the prefix, then runs the installed example
+sphere_on_plane.py and checks the light it computed.
+
+Usage: /usr/bin/python3 CheckInstalledPython.py <prefix> <python directory, relative to it>
+       <examples directory> <output .vtp>
+"""
+import os
+import runpy
+import sys
+
+from linkgi_install_checks import check, check_inside, check_sphere_on_plane
+
+prefix, site, examples, output = sys.argv[1:5]
+site_dir = os.path.join(os.path.realpath(prefix), site)
+check(os.path.isdir(os.path.join(site_dir, "linkgi")), "a linkgi package in %s" % site_dir)
+sys.path.insert(0, site_dir)
+
+import linkgi  # noqa: E402
+
+check_inside(site_dir, [linkgi.__file__], "linkgi")
+check(hasattr(linkgi, "vtkGlobalIlluminationFilter") and hasattr(linkgi, "vtkGlobalIlluminationMapper"),
+      "both modules wrapped: vtkGlobalIlluminationFilter, vtkGlobalIlluminationMapper")
+# The LinkGI libraries in this process, from its memory map.
+with open("/proc/self/maps") as maps:
+    loaded = {line.split()[-1] for line in maps if "LinkGI" in line and ".so" in line}
+check(any("libLinkGIRenderingGlobalIllumination" in path for path in loaded),
+      "the wrapped modules loaded the LinkGI libraries")
+check_inside(prefix, loaded, "the wrapped modules and the libraries they loaded")
+
+sys.argv = ["sphere_on_plane.py", output]
+try:
+    runpy.run_path(os.path.join(examples, "sphere_on_plane.py"), run_name="__main__")
+except SystemExit as exit_:  # the example ends with sys.exit(<whether it wrote the file>)
+    check(exit_.code in (0, None), "the example sphere_on_plane.py ran")
+check_sphere_on_plane(output)
