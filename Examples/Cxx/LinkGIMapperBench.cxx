@@ -57,6 +57,8 @@ struct Scene
   vtkSmartPointer<vtkPolyData> Lit; // the filter's output
   vtkNew<vtkLightCollection> Lights;
   std::function<void(vtkCamera*)> Camera;
+  /// The display: calibrated to VTK's shading, or a photographic curve for lamp-lit rooms.
+  int ToneMapping = vtkGlobalIlluminationShading::HUE_PRESERVING;
 };
 
 vtkSmartPointer<vtkLight> MakeLight(double x, double y, double z, double fx, double fy, double fz,
@@ -110,6 +112,8 @@ void Cornell(Scene& scene, bool eightLights, int rays)
     scene.Name = "cornell";
   }
   Illuminate(scene, source->GetOutput(), rays);
+  // Lamps close to the walls light the box over a wide range (1/r^2): compress it.
+  scene.ToneMapping = vtkGlobalIlluminationShading::EXPONENTIAL;
   scene.Camera = [](vtkCamera* camera)
   {
     camera->SetPosition(0.278, 0.273, -0.8); // the published camera, in metres
@@ -180,11 +184,11 @@ void Isosurface(Scene& scene, int rays)
   };
 }
 
-/// The Exposure that the default shading suggests for the scene's Radiance.
-double Exposure(vtkPolyData* lit)
+/// Sets the scene's tone mapping and the exposure it suggests for the scene's Radiance.
+void SetDisplay(vtkGlobalIlluminationShading* shading, const Scene& scene)
 {
-  vtkNew<vtkGlobalIlluminationShading> shading;
-  return shading->SuggestExposure(lit->GetPointData()->GetArray("Radiance"));
+  shading->SetToneMapping(scene.ToneMapping);
+  shading->SetExposure(shading->SuggestExposure(scene.Lit->GetPointData()->GetArray("Radiance")));
 }
 
 /// A renderer drawing the scene with `mapper` under the scene's lights.
@@ -234,8 +238,8 @@ void Benchmark(Scene& scene, vtkRenderWindow* window, int frames, int width, int
   window->SetSize(width, height);
   vtkNew<vtkOpenGLPolyDataMapper> plainMapper;
   vtkNew<vtkGlobalIlluminationMapper> giMapper, singleMapper;
-  giMapper->GetShading()->SetExposure(Exposure(scene.Lit));
-  singleMapper->GetShading()->SetExposure(Exposure(scene.Lit));
+  SetDisplay(giMapper->GetShading(), scene);
+  SetDisplay(singleMapper->GetShading(), scene);
   singleMapper->GetShading()->SetShadowFilterRadius(0.0); // one filter tap per light
   vtkSmartPointer<vtkRenderer> renderers[3] = { MakeRenderer(scene, plainMapper),
     MakeRenderer(scene, giMapper), MakeRenderer(scene, singleMapper) };
@@ -274,13 +278,12 @@ void WriteImage(Scene& scene, vtkRenderWindow* window, const std::string& direct
 {
   window->GetRenderers()->RemoveAllItems();
   window->SetSize(2 * 480, 400);
-  const double exposure = Exposure(scene.Lit);
   for (int i = 0; i < 2; ++i)
   {
     vtkNew<vtkGlobalIlluminationMapper> mapper;
     mapper->GetShading()->SetDisplayMode(
       i == 0 ? vtkGlobalIlluminationShading::DIRECT : vtkGlobalIlluminationShading::COMBINED);
-    mapper->GetShading()->SetExposure(exposure);
+    SetDisplay(mapper->GetShading(), scene);
     vtkSmartPointer<vtkRenderer> renderer = MakeRenderer(scene, mapper);
     renderer->SetViewport(0.5 * i, 0.0, 0.5 * (i + 1), 1.0);
     window->AddRenderer(renderer);

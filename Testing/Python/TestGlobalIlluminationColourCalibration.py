@@ -4,9 +4,11 @@ colour of a colour map as the plain VTK mapper does, within CIEDE2000 2.0. The c
 ParaView's default map, Cool to Warm, at 9 points, and the primaries and secondaries; the
 lights are one directional light of intensity 1, and VTK's light kit (ParaView's default
 lights: key, fill, two back lights and a head light, of other intensities and tints).
+Over-exposed by half, the default display keeps every colour's hue (or turns it white).
 
 Usage: TestGlobalIlluminationColourCalibration.py [output directory for the images]
 """
+import colorsys
 import os
 import sys
 
@@ -65,7 +67,7 @@ def add_lights(renderer, kind):
     renderer.AddLight(light)
 
 
-def render(surface, table, lights, global_illumination, image_path):
+def render(surface, table, lights, global_illumination, image_path, exposure=1.0):
     """The patches' centre pixels, drawn by the plain or the GI mapper."""
     n = table.GetNumberOfTableValues()
     renderer = vtkRenderer()
@@ -84,6 +86,7 @@ def render(surface, table, lights, global_illumination, image_path):
     renderer.ResetCameraClippingRange()
     if global_illumination:
         mapper = linkgi.vtkGlobalIlluminationMapper()
+        mapper.GetShading().SetExposure(exposure)
         colour_by(mapper, table)
         actor = vtkActor()
         window.Render()  # places the light kit's camera lights
@@ -142,6 +145,21 @@ def main():
                 sys.exit("FAILED: %s under the %s light(s) differs by CIEDE2000 %.2f"
                          % (name, lights, difference))
     print("ok: largest CIEDE2000 difference %.2f" % worst)
+
+    # Over-exposed by half: a saturated colour beyond display white keeps its hue and gets
+    # lighter, towards white; one whose luminance passes white turns white (no other hue).
+    plain = render(surface, table, "directional", False, None)
+    bright = render(surface, table, "directional", True, None, exposure=1.5)
+    for (name, _), p, b in zip(colours, plain, bright):
+        h, s, v = colorsys.rgb_to_hsv(*(c / 255.0 for c in p))
+        hb, sb, vb = colorsys.rgb_to_hsv(*(c / 255.0 for c in b))
+        shift = 360.0 * min(abs(h - hb), 1.0 - abs(h - hb))
+        print("exposure 1.5 %-20s plain %-22s GI %-22s hue shift %.1f degrees"
+              % (name, tuple(int(c) for c in p), tuple(int(c) for c in b), shift))
+        white = sb < 0.02 and vb > 0.99
+        if s > 0.2 and not white and (shift > 2.0 or sb > s + 0.01 or vb < v):
+            sys.exit("FAILED: over-exposed, %s changes hue or darkens" % name)
+    print("ok: over-exposed colours keep their hue")
 
 
 if __name__ == "__main__":
