@@ -162,7 +162,9 @@ public:
    * Name of the array holding the diffuse albedo (reflectance in [0,1], linear RGB). An
    * array with 1 component is grey, with 3 RGB, with 4 RGBA (alpha unused); any other
    * component count, or a non-numeric array, is an error naming the array (as for
-   * EmissionArrayName). Unsigned char arrays are divided by 255. When empty, Albedo is used.
+   * EmissionArrayName). Unsigned char arrays hold display colours: divided by 255 and
+   * decoded from sRGB to linear (vtkGlobalIlluminationColors::Read); other types are
+   * linear. When empty, Albedo is used.
    * The default value is empty.
    */
   vtkSetStringMacro(AlbedoArrayName);
