@@ -41,7 +41,8 @@ vtkSmartPointer<vtkFloatArray> MappedColors(vtkMapper* mapper, vtkDataArray* sca
     for (int c = 0; c < 3; ++c)
     {
       const double drawn = rgba->GetTypedComponent(i, c) / 255.0 * diffuse;
-      colors->SetTypedComponent(i, c, static_cast<float>(vtkGlobalIlluminationColors::ToLinear(drawn)));
+      const double linear = vtkGlobalIlluminationColors::ToLinear(drawn);
+      colors->SetTypedComponent(i, c, static_cast<float>(linear));
     }
   }
   return colors;
@@ -130,7 +131,8 @@ vtkDataObject* vtkGlobalIlluminationDrawnAlbedo::Apply(vtkDataObject* data, vtkM
   double color[3];
   property->GetDiffuseColor(color);
   // The solid colour is a display (sRGB) value; the filter's albedo is linear.
-  const auto linear = [&](int c) { return vtkGlobalIlluminationColors::ToLinear(color[c] * diffuse); };
+  const auto linear = [&](int c)
+  { return vtkGlobalIlluminationColors::ToLinear(color[c] * diffuse); };
   filter->SetAlbedo(linear(0), linear(1), linear(2));
   filter->SetAlbedoArrayAssociation(vtkDataObject::FIELD_ASSOCIATION_POINTS);
 

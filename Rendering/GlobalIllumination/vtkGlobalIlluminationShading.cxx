@@ -43,7 +43,8 @@ const char* vtkGlobalIlluminationShading::GetDisplayModeAsString()
 //------------------------------------------------------------------------------
 double vtkGlobalIlluminationShading::SuggestExposure(vtkDataArray* radiance) const
 {
-  const vtkIdType n = radiance && radiance->GetNumberOfComponents() >= 3 ? radiance->GetNumberOfTuples() : 0;
+  const vtkIdType n =
+    radiance && radiance->GetNumberOfComponents() >= 3 ? radiance->GetNumberOfTuples() : 0;
   if (n == 0)
   {
     return 1.0;

@@ -83,20 +83,23 @@ int TestGlobalIlluminationDrawnAlbedo(int, char*[])
       gi->GetAlbedoArrayAssociation() == vtkDataObject::FIELD_ASSOCIATION_POINTS,
     "the filter reads the mapped colours as point albedo");
   // Drawn colours are display (sRGB) values; the filter gets them as linear reflectance.
-  const auto linear = [](double drawnValue) { return vtkGlobalIlluminationColors::ToLinear(drawnValue); };
+  const auto linear = [](double drawnValue)
+  { return vtkGlobalIlluminationColors::ToLinear(drawnValue); };
   ok &= Check(colors && Near(colors->GetComponent(0, 0), linear(0.5)) &&
       Near(colors->GetComponent(0, 2), 0.0) && Near(colors->GetComponent(1, 0), 0.0) &&
       Near(colors->GetComponent(1, 2), linear(0.5)),
     "red and blue from the table, times Diffuse 0.5, linear");
   double solid[3];
   gi->GetAlbedo(solid);
-  ok &= Check(Near(solid[0], linear(0.1)) && Near(solid[1], linear(0.2)) && Near(solid[2], linear(0.3)),
+  ok &= Check(
+    Near(solid[0], linear(0.1)) && Near(solid[1], linear(0.2)) && Near(solid[2], linear(0.3)),
     "the solid colour times Diffuse for what has no array, linear");
   ok &= Check(drawn->Apply(plane, mapper, property, gi) == input, "unchanged input: the copy is kept");
   table->SetTableValue(1, 0, 1, 0);
   vtkDataObject* recolored = drawn->Apply(plane, mapper, property, gi);
   vtkDataArray* green = vtkPolyData::SafeDownCast(recolored)->GetPointData()->GetArray(mapped);
-  ok &= Check(Near(green->GetComponent(1, 1), linear(0.5)), "a changed table is mapped again");
+  ok &= Check(
+    Near(green->GetComponent(1, 1), linear(0.5)), "a changed table is mapped again");
 
   // Cell scalars.
   mapper->SetScalarModeToUseCellFieldData();

@@ -103,6 +103,7 @@ int TestGlobalIlluminationMapperIndirectAdds(int, char*[])
   auto window = MakeWindow(300, 300);
   bool ok = CheckAdds(window, lighting, box, vtkGlobalIlluminationShading::HUE_PRESERVING,
     "hue preserving");
-  ok = CheckAdds(window, lighting, box, vtkGlobalIlluminationShading::EXPONENTIAL, "exponential") && ok;
+  ok = CheckAdds(window, lighting, box, vtkGlobalIlluminationShading::EXPONENTIAL, "exponential") &&
+    ok;
   return ok ? 0 : 1;
 }

@@ -2,8 +2,8 @@
 // indirect light, in linear RGB and world coordinates. #defined before this text:
 // GI_LIGHT_COUNT, GI_HAS_ALBEDO, GI_HAS_INDIRECT, GI_HAS_INDIRECT_BACK, GI_HAS_EMISSION,
 // GI_GLOSSY, GI_MODE (0 combined, 1 direct, 2 indirect), GI_TONE_MAPPING (0 linear,
-// 1 exponential, 2 Reinhard, 3 hue preserving), GI_SOFT_SHADOWS (four filter taps instead of one), and, with
-// lights, GI_LIGHT_TYPES and GI_SHADOW_KINDS (one integer per light).
+// 1 exponential, 2 Reinhard, 3 hue preserving), GI_SOFT_SHADOWS (four filter taps instead
+// of one), and, with lights, GI_LIGHT_TYPES and GI_SHADOW_KINDS (one integer per light).
 #define GI_PI 3.14159265358979
 
 uniform mat4 giViewToWorld;
