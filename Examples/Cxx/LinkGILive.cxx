@@ -68,6 +68,10 @@ struct LiveScene
 
     this->mapper->SetInputConnection(this->gi->GetOutputPort());
     this->mapper->ScalarVisibilityOff();
+    // Point lights near the geometry light it over a wide range (1/r^2): the exponential
+    // curve compresses it (these exposures, and Documentation/live-torso-strip.png, are
+    // for it); the default display is calibrated to VTK's own shading instead.
+    this->mapper->GetShading()->SetToneMappingToExponential();
     this->mapper->GetShading()->SetExposure(exposure);
     vtkNew<vtkActor> actor;
     actor->SetMapper(this->mapper);
