@@ -35,7 +35,8 @@ print(os.path.relpath(path, root))
     RESULT_VARIABLE _linkgi_result)
   if(NOT _linkgi_result EQUAL 0 OR _linkgi_site STREQUAL "" OR IS_ABSOLUTE "${_linkgi_site}"
      OR _linkgi_site MATCHES "^\\.\\.")
-    set(_linkgi_site "${CMAKE_INSTALL_LIBDIR}/python${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}/site-packages")
+    set(_linkgi_site "${CMAKE_INSTALL_LIBDIR}/python${Python3_VERSION_MAJOR}.")
+    string(APPEND _linkgi_site "${Python3_VERSION_MINOR}/site-packages")
     message(WARNING "LinkGI: could not ask ${Python3_EXECUTABLE} where it reads packages; "
       "installing the Python package into ${_linkgi_site} (set LINKGI_PYTHON_SITE_PACKAGES).")
   endif()
@@ -48,5 +49,6 @@ endif()
 if(NOT LINKGI_DOC_DESTINATION)
   set(LINKGI_DOC_DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/doc/linkgi")
 endif()
-message(STATUS "LinkGI: installs into ${CMAKE_INSTALL_PREFIX}: libraries in ${CMAKE_INSTALL_LIBDIR}, "
-  "Python package in ${LINKGI_PYTHON_SITE_PACKAGES}, CMake package in ${LINKGI_CMAKE_DESTINATION}")
+message(STATUS "LinkGI: installs into ${CMAKE_INSTALL_PREFIX}: libraries in "
+  "${CMAKE_INSTALL_LIBDIR}, Python package in ${LINKGI_PYTHON_SITE_PACKAGES}, CMake package in "
+  "${LINKGI_CMAKE_DESTINATION}")

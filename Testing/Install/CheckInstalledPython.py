@@ -22,7 +22,8 @@ sys.path.insert(0, site_dir)
 import linkgi  # noqa: E402
 
 check_inside(site_dir, [linkgi.__file__], "linkgi")
-check(hasattr(linkgi, "vtkGlobalIlluminationFilter") and hasattr(linkgi, "vtkGlobalIlluminationMapper"),
+check(hasattr(linkgi, "vtkGlobalIlluminationFilter")
+      and hasattr(linkgi, "vtkGlobalIlluminationMapper"),
       "both modules wrapped: vtkGlobalIlluminationFilter, vtkGlobalIlluminationMapper")
 # The LinkGI libraries in this process, from its memory map.
 with open("/proc/self/maps") as maps:

@@ -104,7 +104,7 @@ environment = dict(os.environ, PATH=stubs + os.pathsep + os.environ["PATH"])
 # The root's empty database lacks every dependency: dpkg says so at length, and goes on.
 run(*dpkg, "-i", *debs.values(), env=environment, quiet=True)
 check(os.path.exists(ldconfig_log), "the maintainer scripts ran (ldconfig after the libraries)")
-listed = output(*dpkg, "-L", "linkgi").splitlines() + output(*dpkg, "-L", "linkgi-paraview").splitlines()
+listed = [path for name in debs for path in output(*dpkg, "-L", name).splitlines()]
 multiarch = output("dpkg-architecture", "-qDEB_HOST_MULTIARCH")
 for path in ("/usr/lib/python3/dist-packages/linkgi/__init__.py",
              "/usr/lib/%s/cmake/LinkGI/LinkGIConfig.cmake" % multiarch,
