@@ -17,6 +17,7 @@ and knows nothing of the root.
 
 Usage: /usr/bin/python3 TestDebianPackage.py <source dir> <work dir> <LinkGI version>
 """
+import fcntl
 import glob
 import os
 import shutil
@@ -29,6 +30,11 @@ source, work, version = sys.argv[1:4]
 build = os.path.join(work, "package-build")
 root = os.path.join(work, "root")
 here = os.path.dirname(os.path.abspath(__file__))
+# Two ctest runs in one build tree would configure, package and install into the same
+# directories at once: the second waits.
+os.makedirs(work, exist_ok=True)
+lock = open(os.path.join(work, "lock"), "w")
+fcntl.flock(lock, fcntl.LOCK_EX)
 
 
 def run(*command, quiet=False, **kwargs):
