@@ -32,7 +32,7 @@ else()
   \"configured with -DCMAKE_INSTALL_PREFIX=/usr).\")\n")
 endif()
 
-# Two packages: one per component group (only the first without the plugin).
+# Two packages, one per component group (without the plugin, only linkgi).
 set(CPACK_DEB_COMPONENT_INSTALL ON)
 set(CPACK_COMPONENTS_ALL runtime python development examples)
 if(LINKGI_PARAVIEW_PLUGIN_ENABLED)
@@ -42,7 +42,8 @@ set(CPACK_COMPONENTS_GROUPING ONE_PER_GROUP)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION "science")
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-# The plugin's own modules, beside LinkGI.so, are not in the system's library path.
+# Where dpkg-shlibdeps finds the libraries that the packages hold themselves (their
+# build-tree copies): the LinkGI modules, and the plugin's own, beside LinkGI.so.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS
   "${CMAKE_BINARY_DIR}/paraview-plugin/${CMAKE_INSTALL_LIBDIR}/paraview-5.11/plugins/LinkGI"
   "${CMAKE_BINARY_DIR}/lib")

@@ -2,9 +2,10 @@
 # relies on: the files of each part are there, and no installed file refers to the build
 # tree (a path into it would break once the build is gone, or on another machine).
 #
-# Usage: cmake -DBUILD_DIR=<build> -DPREFIX=<prefix> -DPYTHON_SITE=<rel> -DPLUGIN_DIR=<rel>
-#              -P InstallTree.cmake                       (PLUGIN_DIR empty: no plugin)
-foreach(var BUILD_DIR PREFIX PYTHON_SITE)
+# Usage: cmake -DBUILD_DIR=<build> -DPREFIX=<prefix> -DLIB_DIR=<rel> -DPYTHON_SITE=<rel>
+#              -DCMAKE_DIR=<rel> -DDOC_DIR=<rel> -DPLUGIN_DIR=<rel> -P InstallTree.cmake
+# (directories relative to the prefix; PLUGIN_DIR empty: no plugin)
+foreach(var BUILD_DIR PREFIX LIB_DIR PYTHON_SITE CMAKE_DIR DOC_DIR)
   if(NOT ${var})
     message(FATAL_ERROR "InstallTree.cmake: ${var} is not set")
   endif()
@@ -20,16 +21,14 @@ endif()
 set(expected
   "include/linkgi/vtkGlobalIlluminationFilter.h"
   "include/linkgi/vtkGlobalIlluminationMapper.h"
-  "lib/cmake/LinkGI/LinkGIConfig.cmake"
-  "lib/cmake/LinkGI/LinkGIConfigVersion.cmake"
-  "lib/cmake/LinkGI/LinkGI-targets.cmake"
+  "${LIB_DIR}/libLinkGIFiltersGlobalIllumination.so"
+  "${LIB_DIR}/libLinkGIRenderingGlobalIllumination.so"
+  "${CMAKE_DIR}/LinkGIConfig.cmake"
+  "${CMAKE_DIR}/LinkGIConfigVersion.cmake"
+  "${CMAKE_DIR}/LinkGI-targets.cmake"
   "${PYTHON_SITE}/linkgi/__init__.py"
-  "share/doc/linkgi/examples/Cxx/CMakeLists.txt"
-  "share/doc/linkgi/examples/Python/sphere_on_plane.py")
-file(GLOB libraries RELATIVE "${PREFIX}" "${PREFIX}/lib*/libLinkGIFiltersGlobalIllumination.so*")
-if(NOT libraries)
-  message(FATAL_ERROR "no libLinkGIFiltersGlobalIllumination.so in ${PREFIX}/lib*")
-endif()
+  "${DOC_DIR}/examples/Cxx/CMakeLists.txt"
+  "${DOC_DIR}/examples/Python/sphere_on_plane.py")
 file(GLOB python_modules "${PREFIX}/${PYTHON_SITE}/linkgi/LinkGIFiltersGlobalIllumination*.so")
 if(NOT python_modules)
   message(FATAL_ERROR "no wrapped module LinkGIFiltersGlobalIllumination in ${PYTHON_SITE}/linkgi")
