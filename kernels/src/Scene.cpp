@@ -29,15 +29,6 @@ Vec3f Environment::radiance(const Vec3f& d) const
   return hasTexture() ? color * texels[texelIndex(d)] : color;
 }
 
-namespace
-{
-template <typename T>
-bool sameBits(const std::vector<T>& a, const std::vector<T>& b)
-{
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), sizeof(T) * a.size()) == 0);
-}
-}
-
 bool sameScene(const Scene& a, const Scene& b)
 {
   return sameBits(a.positions, b.positions) && sameBits(a.normals, b.normals) &&

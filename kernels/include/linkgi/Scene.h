@@ -3,6 +3,7 @@
 
 #include "linkgi/Math.h"
 
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,14 @@ std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy = Albed
 /// not scanned again (on a large mesh the scans cost more than a light update's GPU work).
 std::vector<std::string> validateShading(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp,
   bool albedoValidated = false, bool emissionValidated = false);
+
+/// Bitwise equality of two arrays. One thread: on the 16-core GPU machine splitting the
+/// comparison over the thread pool measured twice as slow as one memcmp of conference's 8 MB.
+template <typename T>
+bool sameBits(const std::vector<T>& a, const std::vector<T>& b)
+{
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), sizeof(T) * a.size()) == 0);
+}
 
 /// True if every array, light and the environment of `a` and `b` are bitwise equal.
 bool sameScene(const Scene& a, const Scene& b);

@@ -88,16 +88,16 @@ Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& be
       c |= bit;
     }
   };
-  differs(kTopology, now.vertexCount() != before.vertexCount() || !sameArray(now.triangles, before.triangles));
-  differs(kPositions, !sameArray(now.positions, before.positions));
-  differs(kNormals, !sameArray(now.normals, before.normals));
-  differs(kLights, !sameArray(now.lights, before.lights));
-  differs(kAlbedo, !sameArray(now.albedo, before.albedo));
-  differs(kEmission, !sameArray(now.emission, before.emission));
+  differs(kTopology, now.vertexCount() != before.vertexCount() || !sameBits(now.triangles, before.triangles));
+  differs(kPositions, !sameBits(now.positions, before.positions));
+  differs(kNormals, !sameBits(now.normals, before.normals));
+  differs(kLights, !sameBits(now.lights, before.lights));
+  differs(kAlbedo, !sameBits(now.albedo, before.albedo));
+  differs(kEmission, !sameBits(now.emission, before.emission));
   const Environment &en = now.environment, &eb = before.environment;
   differs(kEnvironmentLayout, en.hasTexture() != eb.hasTexture() || en.width != eb.width || en.height != eb.height);
   const bool sameColor = std::memcmp(&en.color, &eb.color, sizeof(Vec3f)) == 0;
-  differs(kEnvironmentRadiance, !sameColor || !sameArray(en.texels, eb.texels));
+  differs(kEnvironmentRadiance, !sameColor || !sameBits(en.texels, eb.texels));
   differs(kSampling, o.raysPerVertex != b.raysPerVertex || o.twist != b.twist || o.seed != b.seed);
   differs(kSides, o.twoSided != b.twoSided);
   differs(kLightSampling, o.lightOversampling != b.lightOversampling);

@@ -9,7 +9,6 @@
 #include "linkgi/SolverTypes.h"
 
 #include <cstdint>
-#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,14 +39,6 @@ enum : Changes
   kGeometry = kTopology | kPositions | kNormals,
   kEverything = ~0u
 };
-
-/// Bitwise equality of two arrays. One thread: on the 16-core GPU machine splitting the
-/// comparison over the thread pool measured twice as slow as one memcmp of conference's 8 MB.
-template <typename T>
-bool sameArray(const std::vector<T>& a, const std::vector<T>& b)
-{
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), sizeof(T) * a.size()) == 0);
-}
 
 /// Which bits differ between two inputs (both validated) and two option sets. Bits in
 /// `knownSame` are not compared (the orchestrator lent those arrays from `before`).
