@@ -1,0 +1,464 @@
+#include "iv/ImplicitLinks.h"
+
+#include "linkgi/Error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace linkgi::iv
+{
+namespace
+{
+/// Clusters whose normals agree within this (radians) are flat: one normal for all.
+constexpr float kFlatCone = 1e-3f;
+
+/// Solid angle of the cube-face rectangle [0, x] x [0, y] at distance 1.
+double cornerSolidAngle(double x, double y)
+{
+  return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
+}
+
+/// Whether some disc point of `a` can see some disc point of `b` in front of it (a can
+/// receive from b); conservative, from the nodes' bounds. d = p_b - p_a, r = |d|.
+bool canReceive(const ClusterTree& t, Index a, Index b, const Vec3f& d, float r, float eps)
+{
+  const Vec3f& na = t.normal[a];
+  // How far b's points rise above the plane through b's centre with a's normal.
+  const float along = std::abs(dot(na, t.normal[b]));
+  const float across = std::sqrt(std::max(0.f, 1.f - along * along));
+  const float rise = std::min(t.radius[b], along * t.planeDeviation[b] + across * t.radius[b]);
+  if (t.coneAngle[a] < kFlatCone)
+  {
+    // Every receiving normal is n_a: q in b is in front of p in a when n_a.(q - p) > 0.
+    return dot(na, d) + rise + t.planeDeviation[a] > eps;
+  }
+  const float reach = t.radius[a] + t.radius[b];
+  if (r <= reach)
+  {
+    return true;
+  }
+  const float spread = t.coneAngle[a] + std::asin(reach / r);
+  return spread >= 0.5f * kPi || dot(na, d) > -r * std::sin(spread);
+}
+
+struct PairVisitor
+{
+  const ClusterTree& t;
+  float binSolidAngle;
+  const LinkCreationOptions& o;
+
+  /// One step of the recursion over the pair (a, b): links it, prunes it, or pushes the
+  /// pairs of a subdivision.
+  template <typename Emit, typename Push>
+  void operator()(Index a, Index b, Emit&& emit, Push&& push) const
+  {
+    if (a == b)
+    {
+      if (!t.isLeaf(a))
+      {
+        const std::size_t i = a - t.leafCount;
+        push(t.left[i], t.left[i]);
+        push(t.right[i], t.right[i]);
+        push(t.left[i], t.right[i]);
+      }
+      return;
+    }
+    const Vec3f d = t.position[b] - t.position[a];
+    const float r2 = dot(d, d), r = std::sqrt(r2);
+    const bool aReceives = canReceive(t, a, b, d, r, o.planeEpsilon);
+    const bool bReceives = canReceive(t, b, a, -d, r, o.planeEpsilon);
+    if (!aReceives && !bReceives)
+    {
+      return;
+    }
+    // pi R^2 / r^2 > bin solid angle: the node covers more than a bin from the other end.
+    const float limit = binSolidAngle * r2 * (1.f / kPi);
+    const auto tooBig = [&](Index x) {
+      return !t.isLeaf(x) && (t.radius[x] * t.radius[x] > limit || t.coneAngle[x] > o.maxConeAngle);
+    };
+    const bool bigA = tooBig(a), bigB = tooBig(b);
+    if (bigA || bigB)
+    {
+      const Index split = bigA && (!bigB || t.radius[a] >= t.radius[b]) ? a : b;
+      const Index other = split == a ? b : a;
+      const std::size_t i = split - t.leafCount;
+      push(t.left[i], other);
+      push(t.right[i], other);
+      return;
+    }
+    if (aReceives)
+    {
+      emit(a, b);
+    }
+    if (bReceives)
+    {
+      emit(b, a);
+    }
+  }
+};
+
+using Pair = std::pair<Index, Index>;
+
+/// Rows from (row, column) pairs: a counting sort, columns in the pairs' order.
+SparseMatrix rowsOf(const std::vector<std::vector<Pair>>& parts, std::size_t rows)
+{
+  SparseMatrix m;
+  std::vector<Index> counts(rows, 0);
+  for (const auto& part : parts)
+  {
+    for (const Pair& p : part)
+    {
+      ++counts[p.first];
+    }
+  }
+  exclusiveOffsets(counts, 0, m.rowOffsets);
+  m.columns.resize(m.rowOffsets.back());
+  std::vector<Offset> next(m.rowOffsets.begin(), m.rowOffsets.end() - 1);
+  for (const auto& part : parts)
+  {
+    for (const Pair& p : part)
+    {
+      m.columns[next[p.first]++] = p.second;
+    }
+  }
+  return m;
+}
+
+/// Rows [begin, end) of a matrix, built by one task.
+struct RowSlice
+{
+  std::vector<Index> counts, columns, envCounts, envColumns;
+  std::vector<float> weights, envWeights;
+};
+
+/// Sorts one row's (column, weight) entries by column and merges equal columns.
+void mergeRow(std::vector<std::pair<Index, float>>& row, std::vector<Index>& columns,
+  std::vector<float>& weights, std::vector<Index>& counts)
+{
+  std::sort(row.begin(), row.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  Index count = 0;
+  for (std::size_t i = 0; i < row.size(); ++i)
+  {
+    if (i > 0 && row[i].first == row[i - 1].first)
+    {
+      weights.back() += row[i].second;
+      continue;
+    }
+    columns.push_back(row[i].first);
+    weights.push_back(row[i].second);
+    ++count;
+  }
+  counts.push_back(count);
+  row.clear();
+}
+
+void concatenate(const std::vector<RowSlice>& slices, bool environment, SparseMatrix& m)
+{
+  std::vector<Index> counts;
+  for (const RowSlice& s : slices)
+  {
+    const auto& c = environment ? s.envCounts : s.counts;
+    counts.insert(counts.end(), c.begin(), c.end());
+  }
+  exclusiveOffsets(counts, 0, m.rowOffsets);
+  m.columns.clear();
+  m.weights.clear();
+  m.columns.reserve(m.rowOffsets.back());
+  m.weights.reserve(m.rowOffsets.back());
+  for (const RowSlice& s : slices)
+  {
+    const auto& c = environment ? s.envColumns : s.columns;
+    const auto& w = environment ? s.envWeights : s.weights;
+    m.columns.insert(m.columns.end(), c.begin(), c.end());
+    m.weights.insert(m.weights.end(), w.begin(), w.end());
+  }
+}
+
+/// A leaf disc wider than a bin as seen from the receiver (it cannot be subdivided), at a
+/// distance r of more than twice its radius: offers points on rings of the disc, spaced a
+/// bin apart as seen from the receiver, so that every bin it covers holds it.
+template <typename Offer>
+void splatDisc(const ClusterTree& t, Index leaf, float r, float binAngle, Offer&& offer)
+{
+  const Frame f = Frame::fromNormal(t.normal[leaf]);
+  const float radius = t.radius[leaf], step = binAngle * r;
+  const int rings = std::min(8, int(std::ceil(radius / step)));
+  for (int i = 1; i <= rings; ++i)
+  {
+    const float ringRadius = radius * float(i) / float(rings);
+    const int points = std::min(64, std::max(6, int(std::ceil(2.f * kPi * ringRadius / step))));
+    for (int k = 0; k < points; ++k)
+    {
+      const float phi = 2.f * kPi * (float(k) + 0.5f * float(i % 2)) / float(points);
+      offer(t.position[leaf] + f.toWorld(Vec3f(std::cos(phi) * ringRadius, std::sin(phi) * ringRadius, 0.f)));
+    }
+  }
+}
+
+/// Leaf discs nearer than twice their radius (neighbours; a disc across a contact) cover
+/// many bins of the receiver at p: each is drawn into every bin whose centre ray hits it, at
+/// the hit's distance, so that the bins beside close neighbours and across a contact do
+/// not stay empty and see through the surface.
+void rasterizeNearDiscs(const ClusterTree& t, const std::vector<Index>& discs, const Vec3f& p,
+  const Vec3f& n, const CubeBins& bins, std::vector<float>& bestDistance, std::vector<Index>& bestSource)
+{
+  if (discs.empty())
+  {
+    return;
+  }
+  for (std::size_t b = 0; b < bins.count(); ++b)
+  {
+    const Vec3f& dir = bins.center[b];
+    if (dot(dir, n) <= 0.f)
+    {
+      continue;
+    }
+    for (Index src : discs)
+    {
+      const Vec3f& c = t.position[src];
+      const float denom = dot(dir, t.normal[src]);
+      if (denom == 0.f)
+      {
+        continue;
+      }
+      const float along = dot(c - p, t.normal[src]) / denom;
+      const Vec3f off = p + dir * along - c;
+      if (!(along > 0.f) || dot(off, off) > t.radius[src] * t.radius[src])
+      {
+        continue;
+      }
+      const float d2 = along * along;
+      if (bestSource[b] == kInvalidIndex || d2 < bestDistance[b] || (d2 == bestDistance[b] && src < bestSource[b]))
+      {
+        bestDistance[b] = d2;
+        bestSource[b] = src;
+      }
+    }
+  }
+}
+
+bool progressSays(const ProgressCallback& progress, double fraction)
+{
+  return !progress || progress("ImplicitLinks", fraction);
+}
+}
+
+CubeBins CubeBins::make(int n)
+{
+  if (n < 1 || n > 64)
+  {
+    throw Error("Cube-map bins per face must be between 1 and 64 per side; got " + std::to_string(n) + ".");
+  }
+  CubeBins bins;
+  bins.n = n;
+  bins.center.resize(6 * std::size_t(n) * n);
+  bins.solidAngle.resize(bins.center.size());
+  for (int face = 0; face < 6; ++face)
+  {
+    for (int row = 0; row < n; ++row)
+    {
+      for (int col = 0; col < n; ++col)
+      {
+        const double u0 = 2.0 * col / n - 1.0, u1 = 2.0 * (col + 1) / n - 1.0;
+        const double v0 = 2.0 * row / n - 1.0, v1 = 2.0 * (row + 1) / n - 1.0;
+        const float u = float(0.5 * (u0 + u1)), v = float(0.5 * (v0 + v1));
+        const float s = (face % 2 == 0) ? 1.f : -1.f;
+        Vec3f c = face < 2 ? Vec3f(s, u, v) : face < 4 ? Vec3f(u, s, v) : Vec3f(u, v, s);
+        const std::size_t bin = (std::size_t(face) * n + row) * n + col;
+        bins.center[bin] = normalize(c);
+        bins.solidAngle[bin] = float(cornerSolidAngle(u1, v1) - cornerSolidAngle(u0, v1) -
+          cornerSolidAngle(u1, v0) + cornerSolidAngle(u0, v0));
+      }
+    }
+  }
+  return bins;
+}
+
+NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
+  const LinkCreationOptions& options, const ProgressCallback& progress)
+{
+  const PairVisitor visit{ tree, bins.meanSolidAngle(), options };
+  NodeLinks out;
+  // Breadth-first from (root, root) until there are enough independent pairs for every
+  // core; the links found on the way are the first part.
+  std::vector<std::vector<Pair>> parts(1);
+  std::vector<Pair> frontier{ { tree.root(), tree.root() } }, next;
+  const std::size_t target = std::size_t(workerCount()) * 256;
+  while (!frontier.empty() && frontier.size() < target)
+  {
+    next.clear();
+    for (const Pair& p : frontier)
+    {
+      visit(p.first, p.second, [&](Index r, Index s) { parts[0].emplace_back(r, s); },
+        [&](Index a, Index b) { next.emplace_back(a, b); });
+    }
+    out.pairsVisited += frontier.size();
+    std::swap(frontier, next);
+  }
+  // Then depth first, one part per slice of the frontier.
+  const std::size_t slices = std::min<std::size_t>(frontier.size(), 64);
+  parts.resize(1 + slices);
+  std::vector<std::uint64_t> visited(slices, 0);
+  parallelFor("ImplicitLinks", slices, 1, [&](std::size_t begin, std::size_t end) {
+    std::vector<Pair> stack;
+    for (std::size_t s = begin; s < end; ++s)
+    {
+      std::vector<Pair>& part = parts[1 + s];
+      for (std::size_t i = s * frontier.size() / slices; i < (s + 1) * frontier.size() / slices; ++i)
+      {
+        stack.push_back(frontier[i]);
+        while (!stack.empty())
+        {
+          const Pair p = stack.back();
+          stack.pop_back();
+          ++visited[s];
+          visit(p.first, p.second, [&](Index r, Index src) { part.emplace_back(r, src); },
+            [&](Index a, Index b) { stack.emplace_back(a, b); });
+        }
+      }
+    }
+  }, [&progress](const char*, double f) { return progressSays(progress, 0.6 * f); });
+  for (std::uint64_t v : visited)
+  {
+    out.pairsVisited += v;
+  }
+  out.byReceiver = rowsOf(parts, tree.nodeCount());
+  return out;
+}
+
+LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
+  const Environment& environment, const std::vector<Vec3f>& receiverOffsets,
+  const ProgressCallback& progress)
+{
+  const std::size_t leaves = tree.leafCount, nb = bins.count();
+  const std::size_t sliceCount = std::min<std::size_t>(leaves, std::size_t(workerCount()) * 16);
+  std::vector<RowSlice> slices(sliceCount);
+  std::vector<std::uint64_t> occupied(sliceCount, 0), empty(sliceCount, 0);
+  const SparseMatrix& m = links.byReceiver;
+  const float binAngle = std::sqrt(bins.meanSolidAngle());
+  parallelFor("ImplicitLinks", sliceCount, 1, [&](std::size_t first, std::size_t last) {
+    std::vector<float> bestDistance(nb);
+    std::vector<Index> bestSource(nb, kInvalidIndex);
+    std::vector<std::pair<Index, float>> row, envRow;
+    std::vector<Index> nearDiscs;
+    for (std::size_t s = first; s < last; ++s)
+    {
+      RowSlice& out = slices[s];
+      for (std::size_t leaf = s * leaves / sliceCount; leaf < (s + 1) * leaves / sliceCount; ++leaf)
+      {
+        const Vec3f n = tree.normal[leaf];
+        const Vec3f p = receiverOffsets.empty() ? tree.position[leaf] : tree.position[leaf] + receiverOffsets[leaf];
+        for (Index node = Index(leaf); node != kInvalidIndex; node = tree.parent[node])
+        {
+          for (Offset e = m.rowOffsets[node]; e < m.rowOffsets[node + 1]; ++e)
+          {
+            const Index src = m.columns[e];
+            const auto offer = [&](const Vec3f& q) {
+              const Vec3f d = q - p;
+              const float d2 = dot(d, d);
+              if (!(d2 > 0.f) || dot(n, d) <= 0.f)
+              {
+                return; // behind this leaf's plane, though its ancestor could see it
+              }
+              const int b = cubeBin(d, bins.n);
+              if (bestSource[b] == kInvalidIndex || d2 < bestDistance[b] ||
+                (d2 == bestDistance[b] && src < bestSource[b]))
+              {
+                bestDistance[b] = d2;
+                bestSource[b] = src;
+              }
+            };
+            offer(tree.position[src]);
+            if (tree.isLeaf(src))
+            {
+              const float r = length(tree.position[src] - p);
+              if (2.f * tree.radius[src] > r)
+              {
+                nearDiscs.push_back(src); // a neighbour, or a disc across a contact
+              }
+              else if (tree.radius[src] > 0.5f * binAngle * r)
+              {
+                splatDisc(tree, src, r, binAngle, offer);
+              }
+            }
+          }
+        }
+        rasterizeNearDiscs(tree, nearDiscs, p, n, bins, bestDistance, bestSource);
+        nearDiscs.clear();
+        float hemisphere = 0.f;
+        for (std::size_t b = 0; b < nb; ++b)
+        {
+          hemisphere += bins.solidAngle[b] * std::max(0.f, dot(n, bins.center[b]));
+        }
+        const float scale = hemisphere > 0.f ? kPi / hemisphere : 0.f;
+        for (std::size_t b = 0; b < nb; ++b)
+        {
+          const float c = dot(n, bins.center[b]);
+          const Index src = bestSource[b];
+          bestSource[b] = kInvalidIndex;
+          if (c <= 0.f)
+          {
+            continue;
+          }
+          const float w = bins.solidAngle[b] * c * scale;
+          if (src == kInvalidIndex)
+          {
+            envRow.emplace_back(environment.texelIndex(bins.center[b]), w);
+            ++empty[s];
+            continue;
+          }
+          ++occupied[s];
+          if (dot(tree.normal[src], p - tree.position[src]) > 0.f)
+          {
+            row.emplace_back(src, w);
+          }
+        }
+        mergeRow(row, out.columns, out.weights, out.counts);
+        mergeRow(envRow, out.envColumns, out.envWeights, out.envCounts);
+      }
+    }
+  }, [&progress](const char*, double f) { return progressSays(progress, 0.6 + 0.4 * f); });
+  LeafLinks result;
+  concatenate(slices, false, result.transport);
+  concatenate(slices, true, result.environment);
+  for (std::size_t s = 0; s < sliceCount; ++s)
+  {
+    result.occupiedBins += occupied[s];
+    result.emptyBins += empty[s];
+  }
+  return result;
+}
+
+std::vector<Vec3f> iterateHierarchicalBounces(const ClusterTree& tree,
+  const SparseMatrix& transport, const BounceInputs& inputs, std::uint32_t bounces,
+  const ProgressCallback& progress)
+{
+  const std::size_t leaves = tree.leafCount;
+  std::vector<Vec3f> indirect(leaves, Vec3f(0.f)), radiance(tree.nodeCount());
+  for (std::uint32_t b = 0; b < bounces; ++b)
+  {
+    if (progress && !progress("Bounces", double(b) / bounces))
+    {
+      throw Aborted();
+    }
+    parallelRanges(leaves, 4096, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t e = begin; e < end; ++e)
+      {
+        radiance[e] = outgoingRadiance(inputs.albedo[e], inputs.fixedIrradiance[e], indirect[e],
+          inputs.emission.empty() ? Vec3f(0.f) : inputs.emission[e]);
+      }
+    });
+    // Pull up: children precede their parent, so one pass in index order.
+    for (std::size_t i = 0; i < tree.left.size(); ++i)
+    {
+      const std::size_t id = leaves + i;
+      const Index l = tree.left[i], r = tree.right[i];
+      radiance[id] = tree.area[id] > 0.f
+        ? (radiance[l] * tree.area[l] + radiance[r] * tree.area[r]) / tree.area[id]
+        : Vec3f(0.f);
+    }
+    gatherRgb(transport, radiance.data(), indirect.data());
+  }
+  return indirect;
+}
+}

@@ -1,0 +1,23 @@
+// The implicit-visibility method's stages and backends, as its MethodSpec creates them
+// (IvMethod.cpp).
+#pragma once
+
+#include "engine/Pipeline.h"
+
+namespace linkgi::iv
+{
+/// The stages, in the order of IvMethod.cpp's table.
+enum Stage : std::size_t
+{
+  kElementStage,   ///< discs, one-ring, cluster tree build or refit, shadow-ray BVH
+  kLinkStage,      ///< hierarchical links, refinement, push to the leaves
+  kLightLinkStage, ///< shadow rays: E_d (the shared light-link code)
+  kBounceStage     ///< E_env, gather / pull-up iterations, smoothing, outgoing radiance
+};
+
+std::unique_ptr<engine::MethodBackend> createCpuBackend(const SolverOptions& options);
+/// There is no CUDA backend yet: throws CudaError, and the orchestrator runs the CPU.
+std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions& options);
+
+const engine::MethodSpec& implicitVisibilityMethod();
+}

@@ -1,0 +1,194 @@
+// The implicit-visibility method on the CPU: the cluster tree, links and gathers on all
+// cores (the engine's thread pool); shadow rays for the point, spot and directional lights
+// through the shared light-link code on Embree (or our BVH).
+#include "iv/ImplicitLinks.h"
+#include "iv/IvBackends.h"
+
+#include "engine/CpuGeometry.h"
+
+#include "linkgi/DirectLight.h"
+#include "linkgi/Error.h"
+#include "linkgi/Links.h"
+#include "linkgi/Metrics.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace linkgi::iv
+{
+namespace
+{
+using namespace engine;
+
+double msSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+class IvCpu final : public MethodBackend
+{
+public:
+  void run(std::size_t stage, const StageContext& c) override
+  {
+    switch (stage)
+    {
+      case kElementStage:
+        return updateElements(c);
+      case kLinkStage:
+        return buildLinks(c);
+      case kLightLinkStage:
+        return lightLinks(c);
+      case kBounceStage:
+        return bounce(c);
+    }
+  }
+
+  void commit() override
+  {
+    if (linksStaged)
+    {
+      std::swap(links, nextLinks);
+      nextLinks = LeafLinks();
+      nodeLinkCount = nextNodeLinkCount;
+    }
+    if (directStaged)
+    {
+      std::swap(direct, nextDirect);
+    }
+    linksStaged = directStaged = geometryTouched = false;
+  }
+
+  bool discard() override
+  {
+    linksStaged = directStaged = false;
+    // The tree, the tracer and the one-ring are updated in place: after a failure they may
+    // belong to the failed scene, and the next update must rebuild them.
+    const bool whole = !geometryTouched;
+    geometryTouched = false;
+    return whole;
+  }
+
+  void describe(SolverStats& st) const override
+  {
+    st.backend = "cpu";
+    st.device = geometry.tracer ? geometry.tracer->name() : "";
+    st.devices = 0;
+    st.linkedPerDevice.clear();
+    st.batchesPerDevice.clear();
+    st.msTracePerDevice.clear();
+    st.msCompressPerDevice.clear();
+    st.msWallPerDevice.clear();
+    st.gpuBytesAllocated = 0;
+    st.rays = 0; // visibility is implied: no link rays
+    st.linksRaw = nodeLinkCount;
+    st.linksCompressed = links.transport.nonZeros();
+    st.linkBytes = links.transport.bytes() + links.environment.bytes();
+    st.lightRays = direct.shadowRays;
+  }
+
+private:
+  void updateElements(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    geometryTouched = true;
+    geometry.update(c); // one-ring, ray-origin shifts, shadow-ray BVH (shared)
+    const auto t = std::chrono::steady_clock::now();
+    areas = vertexAreas(s);
+    if ((c.changes & kTopology) || tree.leafCount != s.vertexCount())
+    {
+      tree = ClusterTree::build(s, areas);
+      c.part("HierarchyBuild", msSince(t));
+    }
+    else
+    {
+      tree.refit(s, areas);
+      c.part("HierarchyRefit", msSince(t));
+    }
+  }
+
+  void buildLinks(const StageContext& c)
+  {
+    const int n = int(c.options.implicitVisibility.binsPerSide);
+    if (bins.n != n)
+    {
+      bins = CubeBins::make(n);
+    }
+    LinkCreationOptions lo;
+    lo.planeEpsilon = 0.1f * rayEpsilon(c.scene);
+    const auto within = [&c](double lo, double hi) -> ProgressCallback {
+      return [&c, lo, hi](const char*, double f) { return !c.progress || c.progress("ImplicitLinks", lo + (hi - lo) * f); };
+    };
+    const NodeLinks created = createNodeLinks(tree, bins, lo, within(0.0, 0.6));
+    const auto t = std::chrono::steady_clock::now();
+    nextLinks = pushToLeaves(tree, created, bins, c.scene.environment, geometry.shifts, within(0.6, 1.0));
+    nextNodeLinkCount = created.byReceiver.nonZeros();
+    c.part("RefinePush", msSince(t));
+    linksStaged = true;
+  }
+
+  void lightLinks(const StageContext& c)
+  {
+    nextDirect = computeDirectLight(c.scene, geometry.topology, geometry.shifts, *geometry.tracer, false,
+      c.options.lightOversampling, c.progress);
+    directStaged = true;
+  }
+
+  void bounce(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    const SolverOptions& o = c.options;
+    const LeafLinks& linksNow = linksStaged ? nextLinks : links;
+    const DirectLightResult& directNow = directStaged ? nextDirect : direct;
+    const std::size_t nv = s.vertexCount();
+
+    const std::vector<Vec3f> texels = environmentTexelRadiance(s.environment);
+    std::vector<Vec3f> envIrradiance(nv);
+    gatherRgb(linksNow.environment, texels.data(), envIrradiance.data());
+    BounceInputs inputs;
+    inputs.fixedIrradiance.resize(nv);
+    for (std::size_t v = 0; v < nv; ++v)
+    {
+      inputs.fixedIrradiance[v] = directNow.irradiance[v] + envIrradiance[v];
+    }
+    inputs.albedo = s.albedo;
+    inputs.emission = s.emission;
+    std::vector<Vec3f> indirect = iterateHierarchicalBounces(tree, linksNow.transport, inputs, o.bounces, c.progress);
+    for (std::size_t v = 0; v < nv; ++v)
+    {
+      indirect[v] += envIrradiance[v];
+    }
+    if (o.smoothing)
+    {
+      const auto t = std::chrono::steady_clock::now();
+      const float cosFeature = std::cos(o.featureAngleDegrees * (kPi / 180.f));
+      indirect = smoothFeatureAware(indirect, geometry.topology, s.normals, Elements{ nv, false }, cosFeature);
+      c.part("Smoothing", msSince(t));
+    }
+    Solution& sol = c.solution;
+    sol.direct = directNow.irradiance;
+    sol.radiance.resize(nv);
+    for (std::size_t v = 0; v < nv; ++v)
+    {
+      const Vec3f le = s.emission.empty() ? Vec3f(0.f) : s.emission[v];
+      sol.radiance[v] = outgoingRadiance(inputs.albedo[v], sol.direct[v], indirect[v], le);
+    }
+    sol.indirect = std::move(indirect);
+  }
+
+  CpuGeometry geometry;
+  std::vector<float> areas;
+  ClusterTree tree;
+  CubeBins bins;
+  bool geometryTouched = false;
+  LeafLinks links, nextLinks;
+  std::uint64_t nodeLinkCount = 0, nextNodeLinkCount = 0;
+  DirectLightResult direct, nextDirect;
+  bool linksStaged = false, directStaged = false;
+};
+}
+
+std::unique_ptr<MethodBackend> createCpuBackend(const SolverOptions&)
+{
+  return std::make_unique<IvCpu>();
+}
+}

@@ -1,0 +1,45 @@
+// The implicit-visibility method (Dong, Kautz, Theobalt & Seidel 2007): its stages and what
+// makes each stale. Formulas in ClusterTree.h and ImplicitLinks.h; the CPU backend in
+// IvCpu.cpp. Documentation/Methods.md, "Implicit visibility".
+#include "iv/IvBackends.h"
+
+#include "linkgi/Cuda.h"
+
+namespace linkgi::iv
+{
+namespace
+{
+using namespace engine;
+
+class ImplicitVisibilityMethod final : public MethodSpec
+{
+public:
+  const char* name() const override { return "implicit-visibility"; }
+  const std::vector<StageSpec>& stages() const override
+  {
+    // The links are rebuilt whenever the geometry moves: that is the method (no rays, so
+    // a new structure per frame is affordable). Shares: torso on the CPU at N = 12.
+    static const std::vector<StageSpec> table = {
+      { "Elements", "ElementUpdates", kGeometry, 0u, 5.0 },
+      { "ImplicitLinks", "ImplicitLinkBuilds", kMethodOptions | kEnvironmentLayout, 1u << kElementStage, 80.0 },
+      { "LightLinks", "LightLinkBuilds", kLights | kLightSampling | kSides, 1u << kElementStage, 10.0 },
+      { "Bounces", "BounceRuns", kEverything, (1u << kElementStage) | (1u << kLinkStage) | (1u << kLightLinkStage), 5.0 },
+    };
+    return table;
+  }
+  std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
+  std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+};
+}
+
+std::unique_ptr<MethodBackend> createCudaBackend(const SolverOptions&)
+{
+  throw CudaError("The implicit-visibility method has no CUDA backend yet.", false);
+}
+
+const MethodSpec& implicitVisibilityMethod()
+{
+  static const ImplicitVisibilityMethod method;
+  return method;
+}
+}
