@@ -18,9 +18,16 @@ double cornerSolidAngle(double x, double y)
   return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
 }
 
+/// sin and cos of each node's cone half angle, for canReceive.
+struct ConeTrig
+{
+  std::vector<float> sin, cos;
+};
+
 /// Whether some disc point of `a` can see some disc point of `b` in front of it (a can
 /// receive from b); conservative, from the nodes' bounds. d = p_b - p_a, r = |d|.
-bool canReceive(const ClusterTree& t, Index a, Index b, const Vec3f& d, float r, float eps)
+bool canReceive(const ClusterTree& t, const ConeTrig& cone, Index a, Index b, const Vec3f& d,
+  float r, float eps)
 {
   const Vec3f& na = t.normal[a];
   // How far b's points rise above the plane through b's centre with a's normal.
@@ -33,17 +40,21 @@ bool canReceive(const ClusterTree& t, Index a, Index b, const Vec3f& d, float r,
     return dot(na, d) + rise + t.planeDeviation[a] > eps;
   }
   const float reach = t.radius[a] + t.radius[b];
-  if (r <= reach)
+  if (r <= reach || cone.cos[a] <= 0.f)
   {
     return true;
   }
-  const float spread = t.coneAngle[a] + std::asin(reach / r);
-  return spread >= 0.5f * kPi || dot(na, d) > -r * std::sin(spread);
+  // Some direction between the two lies within cone + asin(reach / r) of n_a's horizon:
+  // cos(n_a, d) > -sin(cone + asin(reach / r)).
+  const float sinB = reach / r, cosB = std::sqrt(1.f - sinB * sinB);
+  const float cosSpread = cone.cos[a] * cosB - cone.sin[a] * sinB;
+  return cosSpread <= 0.f || dot(na, d) > -r * (cone.sin[a] * cosB + cone.cos[a] * sinB);
 }
 
 struct PairVisitor
 {
   const ClusterTree& t;
+  const ConeTrig& cone;
   float binSolidAngle;
   const LinkCreationOptions& o;
 
@@ -65,8 +76,8 @@ struct PairVisitor
     }
     const Vec3f d = t.position[b] - t.position[a];
     const float r2 = dot(d, d), r = std::sqrt(r2);
-    const bool aReceives = canReceive(t, a, b, d, r, o.planeEpsilon);
-    const bool bReceives = canReceive(t, b, a, -d, r, o.planeEpsilon);
+    const bool aReceives = canReceive(t, cone, a, b, d, r, o.planeEpsilon);
+    const bool bReceives = canReceive(t, cone, b, a, -d, r, o.planeEpsilon);
     if (!aReceives && !bReceives)
     {
       return;
@@ -237,6 +248,60 @@ void rasterizeNearDiscs(const ClusterTree& t, const std::vector<Index>& discs, c
   }
 }
 
+bool progressSays(const ProgressCallback& progress, double fraction);
+
+/// The paper's rule at creation: a node's bin (seen from the node) keeps only its
+/// shortest link. Applied to each receiving node's links once all are created, in parallel.
+void keepShortestPerBin(const ClusterTree& t, const CubeBins& bins, SparseMatrix& m,
+  const ProgressCallback& progress)
+{
+  const std::size_t rows = m.rows();
+  std::vector<Index> counts(rows, 0);
+  parallelFor("ImplicitLinks", rows, 256, [&](std::size_t begin, std::size_t end) {
+    struct Candidate
+    {
+      int bin;
+      float d2;
+      Index src;
+    };
+    std::vector<Candidate> row;
+    for (std::size_t node = begin; node < end; ++node)
+    {
+      row.clear();
+      for (Offset e = m.rowOffsets[node]; e < m.rowOffsets[node + 1]; ++e)
+      {
+        const Index src = m.columns[e];
+        const Vec3f d = t.position[src] - t.position[node];
+        const float d2 = dot(d, d);
+        row.push_back({ d2 > 0.f ? cubeBin(d, bins.n) : -1 - int(row.size()), d2, src });
+      }
+      std::sort(row.begin(), row.end(), [](const Candidate& a, const Candidate& b) {
+        return a.bin < b.bin || (a.bin == b.bin && (a.d2 < b.d2 || (a.d2 == b.d2 && a.src < b.src)));
+      });
+      Offset out = m.rowOffsets[node];
+      for (std::size_t i = 0; i < row.size(); ++i)
+      {
+        if (i == 0 || row[i].bin != row[i - 1].bin)
+        {
+          m.columns[out++] = row[i].src;
+        }
+      }
+      counts[node] = Index(out - m.rowOffsets[node]);
+    }
+  }, [&progress](const char*, double f) { return progressSays(progress, 0.5 + 0.1 * f); });
+  // Compact the rows in place (each row only moves towards the front).
+  Offset next = 0;
+  for (std::size_t node = 0; node < rows; ++node)
+  {
+    const Offset first = m.rowOffsets[node];
+    std::copy(m.columns.begin() + first, m.columns.begin() + first + counts[node], m.columns.begin() + next);
+    m.rowOffsets[node] = next;
+    next += counts[node];
+  }
+  m.rowOffsets[rows] = next;
+  m.columns.resize(next);
+}
+
 bool progressSays(const ProgressCallback& progress, double fraction)
 {
   return !progress || progress("ImplicitLinks", fraction);
@@ -277,7 +342,15 @@ CubeBins CubeBins::make(int n)
 NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
   const LinkCreationOptions& options, const ProgressCallback& progress)
 {
-  const PairVisitor visit{ tree, bins.meanSolidAngle(), options };
+  ConeTrig cone;
+  cone.sin.resize(tree.nodeCount());
+  cone.cos.resize(tree.nodeCount());
+  for (std::size_t i = 0; i < tree.nodeCount(); ++i)
+  {
+    cone.sin[i] = std::sin(tree.coneAngle[i]);
+    cone.cos[i] = std::cos(tree.coneAngle[i]);
+  }
+  const PairVisitor visit{ tree, cone, bins.meanSolidAngle(), options };
   NodeLinks out;
   // Breadth-first from (root, root) until there are enough independent pairs for every
   // core; the links found on the way are the first part.
@@ -317,12 +390,14 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
         }
       }
     }
-  }, [&progress](const char*, double f) { return progressSays(progress, 0.6 * f); });
+  }, [&progress](const char*, double f) { return progressSays(progress, 0.5 * f); });
   for (std::uint64_t v : visited)
   {
     out.pairsVisited += v;
   }
   out.byReceiver = rowsOf(parts, tree.nodeCount());
+  out.created = out.byReceiver.nonZeros();
+  keepShortestPerBin(tree, bins, out.byReceiver, progress);
   return out;
 }
 
@@ -360,7 +435,11 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
               {
                 return; // behind this leaf's plane, though its ancestor could see it
               }
-              const int b = cubeBin(d, bins.n);
+              // A link pushed down keeps the bin it has at its node (as in the paper): a
+              // node's bins hold one link each, and re-binning from the leaf would leave
+              // holes between them.
+              const Vec3f binned = node == leaf ? d : q - tree.position[node];
+              const int b = cubeBin(dot(binned, binned) > 0.f ? binned : d, bins.n);
               if (bestSource[b] == kInvalidIndex || d2 < bestDistance[b] ||
                 (d2 == bestDistance[b] && src < bestSource[b]))
               {

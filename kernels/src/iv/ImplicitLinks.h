@@ -70,11 +70,13 @@ struct LinkCreationOptions
 
 /// Links as created between tree nodes, before refinement: row = receiving node, columns
 /// = source nodes. A pair of nodes is linked once both see the other within a bin's solid
-/// angle (else the larger is subdivided) and each end that can face the other receives.
+/// angle (else the larger is subdivided) and each end that can face the other receives;
+/// then each receiving node's bins (seen from its centre) keep only their shortest link.
 struct NodeLinks
 {
   SparseMatrix byReceiver; ///< weights unused (empty)
   std::uint64_t pairsVisited = 0;
+  std::uint64_t created = 0; ///< links before each node's bins kept only their shortest
 };
 
 NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
