@@ -1,6 +1,7 @@
 // The CUDA entry points of builds without the CUDA backend (LINKGI_ENABLE_CUDA=OFF).
 #include "linkgi/Cuda.h"
 
+#include "ir/IrBackends.h"
 #include "links/LinksBackends.h"
 
 namespace linkgi::cuda
@@ -26,6 +27,14 @@ std::unique_ptr<RayTracer> createRayTracer(int)
 }
 
 namespace linkgi::links
+{
+std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
+{
+  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
+}
+}
+
+namespace linkgi::ir
 {
 std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
 {

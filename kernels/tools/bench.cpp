@@ -79,6 +79,17 @@ Args parse(int argc, char** argv)
     };
     if (arg == "--scenes")
       a.scenes = split(value());
+    else if (arg == "--method")
+      a.options.method = methodByName(value());
+    else if (arg == "--vpls")
+      a.options.instantRadiosity.vplCount = std::stoul(value());
+    else if (arg == "--interleave")
+      a.options.instantRadiosity.interleave = std::stoul(value());
+    else if (arg == "--proxy")
+    {
+      a.options.instantRadiosity.proxyResolution = std::stoul(value());
+      a.options.instantRadiosity.proxyVisibility = a.options.instantRadiosity.proxyResolution > 0;
+    }
     else if (arg == "--rays")
       a.options.raysPerVertex = std::stoul(value());
     else if (arg == "--bounces")
@@ -108,7 +119,8 @@ Args parse(int argc, char** argv)
       a.gather = false;
     else
     {
-      throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--rays 256] [--bounces 3] [--repeat 3] "
+      throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method links|instant-radiosity] "
+                  "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--rays 256] [--bounces 3] [--repeat 3] "
                   "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] [--bvh-build gpu|sah] "
                   "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather]; unknown argument " +
         arg + ".");
@@ -304,7 +316,7 @@ std::string deformationJson(const std::string& name, const Scene& scene, const A
   std::ostringstream out;
   out << ",\"ms_deform_update\":" << d.msTotal << ",\"deform_bvh\":\""
       << (d.builtBvh ? "rebuild" : "refit") << "\",\"deform_ms_bvh\":" << d.ms("Geometry") + d.ms("Topology")
-      << ",\"deform_rays_per_s\":" << d.rays / (d.ms("Links") * 1e-3);
+      << ",\"deform_rays_per_s\":" << d.rays / (std::max(d.ms("Links"), d.ms("Gather")) * 1e-3);
   return out.str();
 }
 
@@ -326,7 +338,7 @@ std::string yardstickJson(const Scene& scene, const SolverStats& full, const Arg
   }
 #endif
 #if LINKGI_HAVE_EMBREE
-  if (full.backend == "cpu" && args.bare)
+  if (full.backend == "cpu" && args.bare && full.ms("Links") > 0.0)
   {
     const double bare = bench::bareEmbreeRaysPerSecond(scene, args.options);
     out << ",\"bare_embree_rays_per_s\":" << bare << ",\"ray_rate_ratio\":"
@@ -374,7 +386,8 @@ void printRecord(const std::string& name, const Scene& scene, const UpdateRuns& 
   {
     perDevice << (i ? "," : "") << full.linkedPerDevice[i];
   }
-  const double msLinks = full.ms("Links"), msCompress = full.ms("Compress");
+  // The stage that traced `rays`: the links, or instant radiosity's VPL gather.
+  const double msLinks = std::max(full.ms("Links"), full.ms("Gather")), msCompress = full.ms("Compress");
   std::printf("{\"scene\":\"%s\",\"method\":\"%s\",\"backend\":\"%s\",\"device\":\"%s\",\"devices\":%d,"
               "\"threads\":%d,\"vertices\":%zu,\"triangles\":%zu,\"rays_per_vertex\":%u,\"bounces\":%u,"
               "\"rays\":%llu,\"rays_per_s\":%.4g,\"links_raw\":%llu,\"links_compressed\":%llu,"
@@ -382,7 +395,7 @@ void printRecord(const std::string& name, const Scene& scene, const UpdateRuns& 
               "\"ms_compress\":%.3f,\"ms_link_generation\":%.3f,\"ms_light_links\":%.3f,"
               "\"ms_bounces\":%.3f,\"ms_smoothing\":%.3f,\"ms_full_update\":%.3f,"
               "\"ms_full_update_cold\":%.3f,\"ms_light_update\":%.3f,\"gpu_bytes_allocated\":%llu,"
-              "\"host_peak_mb\":%.1f,\"linked_per_device\":[%s],\"stages_ms\":{%s}%s,\"note\":\"%s\"}\n",
+              "\"host_peak_mb\":%.1f,\"vpls\":%llu,\"linked_per_device\":[%s],\"stages_ms\":{%s}%s,\"note\":\"%s\"}\n",
     name.c_str(), full.method.c_str(), full.backend.c_str(), full.device.c_str(), full.devices,
     workerCount(), scene.vertexCount(), scene.triangleCount(), args.options.raysPerVertex,
     args.options.bounces, (unsigned long long)full.rays, full.rays / (msLinks * 1e-3),
@@ -391,7 +404,7 @@ void printRecord(const std::string& name, const Scene& scene, const UpdateRuns& 
     full.ms("Geometry") + full.ms("Topology"), msLinks, msCompress, msLinks + msCompress,
     full.ms("LightLinks"), full.ms("Bounces"), full.ms("Smoothing"), full.msTotal,
     runs.cold.msTotal, runs.light.msTotal, (unsigned long long)full.gpuBytesAllocated,
-    peakHostMb(), perDevice.str().c_str(), stagesJson(full).c_str(), extra.c_str(),
+    peakHostMb(), (unsigned long long)full.vpls, perDevice.str().c_str(), stagesJson(full).c_str(), extra.c_str(),
     full.backendNote.c_str());
   for (const std::string& w : full.warnings)
   {

@@ -32,8 +32,10 @@ Args parse(int argc, char** argv)
     const std::string arg = argv[i];
     if (i + 1 >= argc)
     {
-      throw Error("Usage: linkgi-validate [--scenes a,b] [--rays 256] [--bounces 3] "
-                  "[--smoothing 1] [--oversampling 1] [--reference-factor 16]; " + arg +
+      throw Error("Usage: linkgi-validate [--scenes a,b] [--method links|instant-radiosity] "
+                  "[--rays 256] [--bounces 3] [--smoothing 1] [--oversampling 1] "
+                  "[--reference-factor 16] [--vpls 1024] [--clamp 0.02] [--interleave 1] "
+                  "[--proxy 0|N] [--seed 0]; " + arg +
         " needs a value.");
     }
     const std::string value = argv[++i];
@@ -46,6 +48,23 @@ Args parse(int argc, char** argv)
         a.scenes.push_back(s);
       }
     }
+    else if (arg == "--method")
+      a.options.method = methodByName(value);
+    else if (arg == "--vpls")
+      a.options.instantRadiosity.vplCount = std::stoul(value);
+    else if (arg == "--clamp")
+      a.options.instantRadiosity.clampDistance = std::stof(value);
+    else if (arg == "--interleave")
+      a.options.instantRadiosity.interleave = std::stoul(value);
+    else if (arg == "--proxy")
+    {
+      // 0: exact visibility; N: the proxy of N cells along the longest axis
+      a.options.instantRadiosity.proxyVisibility = std::stoul(value) > 0;
+      if (a.options.instantRadiosity.proxyVisibility)
+        a.options.instantRadiosity.proxyResolution = std::stoul(value);
+    }
+    else if (arg == "--seed")
+      a.options.seed = std::stoul(value);
     else if (arg == "--rays")
       a.options.raysPerVertex = std::stoul(value);
     else if (arg == "--bounces")
@@ -87,12 +106,12 @@ void validateScene(const std::string& name, const Args& args)
   const ErrorMetrics e = relativeRmse(
     sum(sol.direct, sol.indirect), sum(ref.direct, ref.indirect), vertexAreas(scene));
   const ErrorMetrics ei = relativeRmse(sol.indirect, ref.indirect, vertexAreas(scene));
-  std::printf("{\"scene\":\"%s\",\"vertices\":%zu,\"rays_per_vertex\":%u,\"bounces\":%u,"
-              "\"smoothing\":%d,\"oversampling\":%d,\"reference_paths_per_vertex\":%u,\"rel_rmse_r\":%.4f,\"rel_rmse_g\":%.4f,"
+  std::printf("{\"scene\":\"%s\",\"method\":\"%s\",\"vertices\":%zu,\"rays_per_vertex\":%u,"
+              "\"vpls\":%llu,\"bounces\":%u,\"smoothing\":%d,\"oversampling\":%d,\"reference_paths_per_vertex\":%u,\"rel_rmse_r\":%.4f,\"rel_rmse_g\":%.4f,"
               "\"rel_rmse_b\":%.4f,\"rel_rmse_luminance\":%.4f,\"indirect_rel_rmse_luminance\":%.4f,"
               "\"ms_solver\":%.1f,\"ms_reference\":%.1f}\n",
-    name.c_str(), scene.vertexCount(), args.options.raysPerVertex, args.options.bounces,
-    int(args.options.smoothing), int(args.options.lightOversampling), ro.pathsPerVertex, e.relRmse.x, e.relRmse.y, e.relRmse.z, e.relRmseLuminance,
+    name.c_str(), solver.stats().method.c_str(), scene.vertexCount(), args.options.raysPerVertex,
+    (unsigned long long)solver.stats().vpls, args.options.bounces, int(args.options.smoothing), int(args.options.lightOversampling), ro.pathsPerVertex, e.relRmse.x, e.relRmse.y, e.relRmse.z, e.relRmseLuminance,
     ei.relRmseLuminance, solver.stats().msTotal, msReference);
   std::fflush(stdout);
 }
@@ -113,9 +132,12 @@ void validateFurnace(const Args& args)
     mean += area[v] * ratio;
     total += area[v];
   }
-  std::printf("{\"scene\":\"furnace\",\"vertices\":%zu,\"rays_per_vertex\":%u,\"bounces\":%u,"
-              "\"max_rel_error\":%.5f,\"mean_rel_error\":%.5f}\n",
-    scene.vertexCount(), o.raysPerVertex, o.bounces, worst, std::abs(mean / total - 1.0));
+  std::printf("{\"scene\":\"furnace\",\"method\":\"%s\",\"vertices\":%zu,\"rays_per_vertex\":%u,"
+              "\"vpls\":%llu,\"bounces\":%u,\"max_rel_error\":%.5f,\"mean_rel_error\":%.5f,"
+              "\"ms_solver\":%.1f}\n",
+    solver.stats().method.c_str(), scene.vertexCount(), o.raysPerVertex,
+    (unsigned long long)solver.stats().vpls, o.bounces, worst, std::abs(mean / total - 1.0),
+    solver.stats().msTotal);
 }
 }
 

@@ -13,8 +13,43 @@ namespace linkgi
 /// How the indirect light is computed. Every method writes the same Solution.
 enum class Method
 {
-  Links ///< the link structure of Schmitz, Tavenrath & Kobbelt 2008 (default)
+  Links, ///< the link structure of Schmitz, Tavenrath & Kobbelt 2008 (default)
+  InstantRadiosity ///< virtual point lights (Marques & Santos 2010): nothing precomputed
 };
+
+/// Options of Method::InstantRadiosity; the other methods ignore them.
+struct InstantRadiosityOptions
+{
+  /// Virtual point lights per update, about: ceil(vplCount / bounces) light paths leave the
+  /// lights, emissive surfaces and environment, each leaving a VPL at up to `bounces`
+  /// diffuse hits. At least 1, at most 1 << 20. Default 1024.
+  std::uint32_t vplCount = 1024;
+  /// d_min of the smoothstep bound of the geometry term, as a fraction of the scene's
+  /// bounding-box diagonal: a VPL's contribution fades from full at 1.2 d_min to none at
+  /// 0.8 d_min, so VPLs next to a vertex do not spike (this loses the light of short
+  /// paths: a bias, see Documentation/Methods.md). In [0, 1]. Default 0.02.
+  float clampDistance = 0.02f;
+  /// Interleaved sampling: the VPLs are split into this many subsets and each vertex gathers
+  /// one of them (times the count); the feature-aware one-ring smoothing recombines them.
+  /// 1 = every vertex gathers every VPL. 1 to 64. Default 1.
+  std::uint32_t interleave = 1;
+  /// Imperfect visibility: VPL shadow rays test a coarse proxy of the mesh (vertex
+  /// clustering on a grid of proxyResolution cells along the longest box axis) instead of
+  /// the mesh itself. Default off.
+  bool proxyVisibility = false;
+  /// Grid cells along the longest axis of the proxy's vertex clustering, 2 to 4096.
+  /// Default 32.
+  std::uint32_t proxyResolution = 32;
+  /// Russian roulette: a light path continues past a hit with probability max(rho) and
+  /// carries rho / max(rho) (unbiased, fewer VPLs); `bounces` still caps its length. Off
+  /// (default): every path runs all its bounces carrying rho.
+  bool russianRoulette = false;
+};
+bool operator==(const InstantRadiosityOptions& a, const InstantRadiosityOptions& b);
+inline bool operator!=(const InstantRadiosityOptions& a, const InstantRadiosityOptions& b)
+{
+  return !(a == b);
+}
 
 /// Where the solver runs.
 enum class Backend
@@ -72,7 +107,13 @@ struct SolverOptions
   CudaBvhUpdate cudaBvhUpdate = CudaBvhUpdate::Auto;
   /// CUDA: where the BVH is built. Default Gpu.
   CudaBvhBuild cudaBvhBuild = CudaBvhBuild::Gpu;
+  /// Method::InstantRadiosity's own options.
+  InstantRadiosityOptions instantRadiosity;
 };
+
+/// The method called `name` ("links", "instant-radiosity": SolverStats::method); throws
+/// linkgi::Error naming the valid names.
+Method methodByName(const std::string& name);
 
 /// Every field equal (a request for the same solve).
 bool operator==(const SolverOptions& a, const SolverOptions& b);
@@ -126,6 +167,8 @@ struct SolverStats
   // Sizes of the current structure (0 where a method has none).
   std::uint64_t elements = 0, rays = 0, linksRaw = 0, linksCompressed = 0, linkBytes = 0,
                 lightRays = 0;
+  /// Virtual point lights of the last VPL set (Method::InstantRadiosity; 0 for the others).
+  std::uint64_t vpls = 0;
   /// The whole last update in milliseconds.
   double msTotal = 0;
   /// Of msTotal: copying and validating the scene and finding what changed (host).

@@ -10,6 +10,10 @@ namespace links
 {
 const engine::MethodSpec& linksMethod();
 }
+namespace ir
+{
+const engine::MethodSpec& instantRadiosityMethod();
+}
 
 namespace engine
 {
@@ -19,8 +23,33 @@ const MethodSpec& methodSpec(Method method)
   {
     case Method::Links:
       return links::linksMethod();
+    case Method::InstantRadiosity:
+      return ir::instantRadiosityMethod();
   }
   throw Error("Unknown solution method " + std::to_string(int(method)) + ".");
 }
+}
+
+Method methodByName(const std::string& name)
+{
+  std::string names;
+  for (int m = 0;; ++m)
+  {
+    const engine::MethodSpec* spec = nullptr;
+    try
+    {
+      spec = &engine::methodSpec(Method(m));
+    }
+    catch (const Error&)
+    {
+      break; // past the last method
+    }
+    if (name == spec->name())
+    {
+      return Method(m);
+    }
+    names += std::string(names.empty() ? "" : ", ") + spec->name();
+  }
+  throw Error("Unknown method '" + name + "'; use " + names + ".");
 }
 }

@@ -15,7 +15,15 @@ bool operator==(const SolverOptions& a, const SolverOptions& b)
     a.twoSided == b.twoSided && a.twist == b.twist && a.seed == b.seed &&
     a.lightOversampling == b.lightOversampling && a.albedoPolicy == b.albedoPolicy &&
     a.backend == b.backend && a.cudaDevices == b.cudaDevices &&
-    a.cudaBvhUpdate == b.cudaBvhUpdate && a.cudaBvhBuild == b.cudaBvhBuild;
+    a.cudaBvhUpdate == b.cudaBvhUpdate && a.cudaBvhBuild == b.cudaBvhBuild &&
+    a.instantRadiosity == b.instantRadiosity;
+}
+
+bool operator==(const InstantRadiosityOptions& a, const InstantRadiosityOptions& b)
+{
+  return a.vplCount == b.vplCount && a.clampDistance == b.clampDistance &&
+    a.interleave == b.interleave && a.proxyVisibility == b.proxyVisibility &&
+    a.proxyResolution == b.proxyResolution && a.russianRoulette == b.russianRoulette;
 }
 
 void validateOptions(const SolverOptions& options)
@@ -37,6 +45,27 @@ void validateOptions(const SolverOptions& options)
   {
     throw Error("The number of CUDA devices must be 0 (all) or more; got " +
       std::to_string(options.cudaDevices) + ".");
+  }
+  const InstantRadiosityOptions& ir = options.instantRadiosity;
+  if (ir.vplCount < 1 || ir.vplCount > (1u << 20))
+  {
+    throw Error("The number of virtual point lights must be between 1 and 1048576; got " +
+      std::to_string(ir.vplCount) + ".");
+  }
+  if (!(ir.clampDistance >= 0.f && ir.clampDistance <= 1.f))
+  {
+    throw Error("The VPL clamp distance must be a fraction of the scene size in [0, 1]; got " +
+      std::to_string(ir.clampDistance) + ".");
+  }
+  if (ir.interleave < 1 || ir.interleave > 64)
+  {
+    throw Error("The VPL interleaving must be between 1 (off) and 64 subsets; got " +
+      std::to_string(ir.interleave) + ".");
+  }
+  if (ir.proxyResolution < 2 || ir.proxyResolution > 4096)
+  {
+    throw Error("The proxy resolution must be between 2 and 4096 cells; got " +
+      std::to_string(ir.proxyResolution) + ".");
   }
 }
 
@@ -105,6 +134,7 @@ Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& be
   differs(kFiltering, o.smoothing != b.smoothing || o.featureAngleDegrees != b.featureAngleDegrees);
   differs(kBackendSetup, o.cudaBvhBuild != b.cudaBvhBuild);
   differs(kPlacement, o.backend != b.backend || o.cudaDevices != b.cudaDevices);
+  differs(kMethodOptions, o.instantRadiosity != b.instantRadiosity);
   if (o.method != b.method)
   {
     c = kEverything;

@@ -36,6 +36,7 @@ enum : Changes
   kFiltering = 1u << 12,        ///< options: smoothing, feature angle
   kBackendSetup = 1u << 13,     ///< options: how the backend builds its structures (BVH build)
   kPlacement = 1u << 14,        ///< options: which backend, how many GPUs (no stage reads it)
+  kMethodOptions = 1u << 15,    ///< options of one method (SolverOptions::instantRadiosity, ...)
   kGeometry = kTopology | kPositions | kNormals,
   kEverything = ~0u
 };

@@ -1,0 +1,261 @@
+// Instant radiosity on the CPU: Embree (or our BVH) through the RayTracer interface, loops
+// on the engine's thread pool; the direct light is the shared light-link stage.
+#include "ir/IrBackends.h"
+
+#include "engine/CpuGeometry.h"
+
+#include "linkgi/Bounce.h"
+#include "linkgi/DirectLight.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+namespace linkgi::ir
+{
+VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32_t subsets,
+  const ProgressCallback& progress)
+{
+  const PathScene& view = setup.view;
+  const std::uint32_t slotsPerPath = view.bounces + 1;
+  std::vector<Vpl> slots(std::size_t(view.paths) * slotsPerPath);
+  std::vector<int> counts(view.paths, 0);
+  const auto trace = [&tracer](const Ray& ray) {
+    Hit h;
+    tracer.trace(&ray, &h, 1);
+    return h;
+  };
+  parallelFor("VPLs", view.paths, 64, [&](std::size_t first, std::size_t last) {
+    for (std::size_t p = first; p < last; ++p)
+    {
+      counts[p] = traceLightPath(view, std::uint32_t(p), slots.data() + p * slotsPerPath, trace);
+    }
+  }, progress);
+  return packVpls(slots, counts, slotsPerPath, subsets);
+}
+
+std::vector<Vec3f> gatherCpu(const Scene& s, const std::vector<Vec3f>& shifts, const VplSet& set,
+  const RayTracer* visibility, const GatherParams& gp, bool twoSided, std::uint64_t* rays,
+  const ProgressCallback& progress)
+{
+  const Elements elements{ s.vertexCount(), twoSided };
+  std::vector<Vec3f> irradiance(elements.count());
+  std::atomic<std::uint64_t> traced{ 0 };
+  const std::uint32_t subsets = std::uint32_t(set.subsetScale.size());
+  parallelFor("Gather", elements.count(), 16, [&](std::size_t first, std::size_t last) {
+    std::vector<Ray> batch;
+    std::vector<Vec3f> contribution;
+    std::vector<std::uint8_t> blocked;
+    std::uint64_t count = 0;
+    for (std::size_t e = first; e < last; ++e)
+    {
+      const Index v = elements.vertexOf(e);
+      const float sign = elements.sideSign(e);
+      const Vec3f n = s.normals[v] * sign;
+      const Vec3f x = s.positions[v] + shifts[v];
+      const Vec3f origin = vertexLightOrigin(s.positions[v], s.normals[v], shifts[v], sign, gp.eps);
+      const std::uint32_t r = vertexSubset(v, subsets, gp.seed);
+      batch.clear();
+      contribution.clear();
+      for (std::uint32_t k = set.subsetOffsets[r]; k < set.subsetOffsets[r + 1]; ++k)
+      {
+        Ray ray;
+        const Vec3f e_k = vplIrradiance(set.vpls[k], x, origin, n, gp.dmin, gp.eps, ray);
+        if (maxComponent(e_k) > 0.f && (gp.proxyMargin <= 0.f || proxyShadowRay(ray, gp.proxyMargin)))
+        {
+          batch.push_back(ray);
+          contribution.push_back(e_k);
+        }
+        else if (maxComponent(e_k) > 0.f)
+        {
+          irradiance[e] += e_k; // too close for the proxy to tell: visible
+        }
+      }
+      blocked.assign(batch.size(), 0);
+      if (visibility && !batch.empty())
+      {
+        visibility->occluded(batch.data(), blocked.data(), batch.size());
+      }
+      count += batch.size();
+      Vec3f sum = irradiance[e];
+      for (std::size_t i = 0; i < batch.size(); ++i)
+      {
+        if (!blocked[i])
+        {
+          sum += contribution[i];
+        }
+      }
+      irradiance[e] = sum * set.subsetScale[r];
+    }
+    traced += count;
+  }, progress);
+  if (rays)
+  {
+    *rays = traced;
+  }
+  return irradiance;
+}
+
+namespace
+{
+using namespace engine;
+
+double msSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+class IrCpu final : public MethodBackend
+{
+public:
+  void run(std::size_t stage, const StageContext& c) override
+  {
+    switch (stage)
+    {
+      case kGeometryStage:
+        geometryTouched = true;
+        return geometry.update(c);
+      case kProxyStage:
+        return buildProxyTracer(c);
+      case kVplStage:
+        return traceVpls(c);
+      case kLightLinkStage:
+        nextDirect = computeDirectLight(c.scene, geometry.topology, geometry.shifts,
+          *geometry.tracer, c.options.twoSided, c.options.lightOversampling, c.progress);
+        directStaged = true;
+        return;
+      case kGatherStage:
+        return gather(c);
+      case kFinishStage:
+        return finish(c);
+    }
+  }
+
+  void commit() override
+  {
+    if (vplsStaged)
+    {
+      std::swap(vpls, nextVpls);
+    }
+    if (directStaged)
+    {
+      std::swap(direct, nextDirect);
+    }
+    if (gatherStaged)
+    {
+      std::swap(gathered, nextGathered);
+      gatherRays = nextGatherRays;
+    }
+    vplsStaged = directStaged = gatherStaged = geometryTouched = false;
+  }
+
+  bool discard() override
+  {
+    vplsStaged = directStaged = gatherStaged = false;
+    // The tracers and host geometry are updated in place (see LinksCpu).
+    const bool whole = !geometryTouched;
+    geometryTouched = false;
+    return whole;
+  }
+
+  void describe(SolverStats& st) const override
+  {
+    st.backend = "cpu";
+    st.device = geometry.tracer ? geometry.tracer->name() : "";
+    st.devices = 0;
+    st.linkedPerDevice.clear();
+    st.batchesPerDevice.clear();
+    st.msTracePerDevice.clear();
+    st.msCompressPerDevice.clear();
+    st.msWallPerDevice.clear();
+    st.gpuBytesAllocated = 0;
+    st.rays = gatherRays;
+    st.linksRaw = st.linksCompressed = st.linkBytes = 0;
+    st.lightRays = direct.shadowRays;
+    st.vpls = vpls.count();
+  }
+
+private:
+  void buildProxyTracer(const StageContext& c)
+  {
+    geometryTouched = true;
+    proxyTracer.reset();
+    proxyMargin = 0.f;
+    const InstantRadiosityOptions& o = c.options.instantRadiosity;
+    if (!o.proxyVisibility)
+    {
+      return;
+    }
+    proxy = buildProxy(c.scene, o.proxyResolution);
+    proxyMargin = proxy.margin;
+    if (!proxy.triangles.empty())
+    {
+      proxyTracer = createCpuRayTracer();
+      proxyTracer->build(proxy.positions, proxy.triangles);
+    }
+  }
+
+  void traceVpls(const StageContext& c)
+  {
+    const PathSetup setup = buildPathSetup(c.scene, geometry.faceNormals, c.options);
+    nextVpls = traceVplsCpu(setup, *geometry.tracer, c.options.instantRadiosity.interleave, c.progress);
+    vplsStaged = true;
+  }
+
+  void gather(const StageContext& c)
+  {
+    const VplSet& set = vplsStaged ? nextVpls : vpls;
+    GatherParams gp;
+    gp.dmin = c.options.instantRadiosity.clampDistance * boundingDiagonal(c.scene.positions);
+    gp.eps = rayEpsilon(c.scene);
+    gp.proxyMargin = c.options.instantRadiosity.proxyVisibility ? proxyMargin : 0.f;
+    gp.seed = c.options.seed;
+    const RayTracer* visibility = gp.proxyMargin > 0.f ? proxyTracer.get() : geometry.tracer.get();
+    nextGathered = gatherCpu(c.scene, geometry.shifts, set, visibility, gp, c.options.twoSided,
+      &nextGatherRays, c.progress);
+    gatherStaged = true;
+  }
+
+  void finish(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    const SolverOptions& o = c.options;
+    const Elements elements{ s.vertexCount(), o.twoSided };
+    std::vector<Vec3f> indirect = gatherStaged ? nextGathered : gathered;
+    if (o.smoothing)
+    {
+      const auto t = std::chrono::steady_clock::now();
+      const float cosFeature = std::cos(o.featureAngleDegrees * (kPi / 180.f));
+      indirect = smoothFeatureAware(indirect, geometry.topology, s.normals, elements, cosFeature);
+      c.part("Smoothing", msSince(t));
+    }
+    Solution& sol = c.solution;
+    sol.direct = directStaged ? nextDirect.irradiance : direct.irradiance;
+    sol.radiance.resize(elements.count());
+    for (std::size_t e = 0; e < elements.count(); ++e)
+    {
+      const Index v = elements.vertexOf(e);
+      const Vec3f le = (e < s.vertexCount() && !s.emission.empty()) ? s.emission[e] : Vec3f(0.f);
+      sol.radiance[e] = outgoingRadiance(s.albedo[v], sol.direct[e], indirect[e], le);
+    }
+    sol.indirect = std::move(indirect);
+  }
+
+  CpuGeometry geometry;
+  Proxy proxy;
+  std::unique_ptr<RayTracer> proxyTracer;
+  float proxyMargin = 0.f;
+  bool geometryTouched = false;
+  VplSet vpls, nextVpls;
+  DirectLightResult direct, nextDirect;
+  std::vector<Vec3f> gathered, nextGathered;
+  std::uint64_t gatherRays = 0, nextGatherRays = 0;
+  bool vplsStaged = false, directStaged = false, gatherStaged = false;
+};
+}
+
+std::unique_ptr<MethodBackend> createCpuBackend(const SolverOptions&)
+{
+  return std::make_unique<IrCpu>();
+}
+}
