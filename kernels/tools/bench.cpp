@@ -90,6 +90,8 @@ Args parse(int argc, char** argv)
       a.options.instantRadiosity.proxyResolution = std::stoul(value());
       a.options.instantRadiosity.proxyVisibility = a.options.instantRadiosity.proxyResolution > 0;
     }
+    else if (arg == "--bins")
+      a.options.implicitVisibility.binsPerSide = std::stoul(value());
     else if (arg == "--rays")
       a.options.raysPerVertex = std::stoul(value());
     else if (arg == "--bounces")
@@ -119,8 +121,8 @@ Args parse(int argc, char** argv)
       a.gather = false;
     else
     {
-      throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method links|instant-radiosity] "
-                  "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--rays 256] [--bounces 3] [--repeat 3] "
+      throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method links|instant-radiosity|implicit-visibility] "
+                  "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--bins 12] [--rays 256] [--bounces 3] [--repeat 3] "
                   "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] [--bvh-build gpu|sah] "
                   "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather]; unknown argument " +
         arg + ".");

@@ -32,10 +32,10 @@ Args parse(int argc, char** argv)
     const std::string arg = argv[i];
     if (i + 1 >= argc)
     {
-      throw Error("Usage: linkgi-validate [--scenes a,b] [--method links|instant-radiosity] "
+      throw Error("Usage: linkgi-validate [--scenes a,b] [--method links|instant-radiosity|implicit-visibility] "
                   "[--rays 256] [--bounces 3] [--smoothing 1] [--oversampling 1] "
                   "[--reference-factor 16] [--vpls 1024] [--clamp 0.02] [--interleave 1] "
-                  "[--proxy 0|N] [--seed 0]; " + arg +
+                  "[--proxy 0|N] [--bins 12] [--seed 0]; " + arg +
         " needs a value.");
     }
     const std::string value = argv[++i];
@@ -63,6 +63,8 @@ Args parse(int argc, char** argv)
       if (a.options.instantRadiosity.proxyVisibility)
         a.options.instantRadiosity.proxyResolution = std::stoul(value);
     }
+    else if (arg == "--bins")
+      a.options.implicitVisibility.binsPerSide = std::stoul(value);
     else if (arg == "--seed")
       a.options.seed = std::stoul(value);
     else if (arg == "--rays")

@@ -14,8 +14,24 @@ namespace linkgi
 enum class Method
 {
   Links, ///< the link structure of Schmitz, Tavenrath & Kobbelt 2008 (default)
-  InstantRadiosity ///< virtual point lights (Marques & Santos 2010): nothing precomputed
+  InstantRadiosity, ///< virtual point lights (Marques & Santos 2010): nothing precomputed
+  ImplicitVisibility ///< hierarchical links, visibility implied by the shortest link per
+                     ///< direction bin (Dong, Kautz, Theobalt & Seidel 2007): no link rays
 };
+
+/// Options of Method::ImplicitVisibility; the other methods ignore them.
+struct ImplicitVisibilityOptions
+{
+  /// N: each of the six faces of every element's cube map of directions has N x N bins
+  /// (6 N^2 in all); a bin keeps the shortest link, and clusters are subdivided until they
+  /// cover at most a bin. The paper uses 8, 12 or 16. 2 to 32. Default 12.
+  std::uint32_t binsPerSide = 12;
+};
+bool operator==(const ImplicitVisibilityOptions& a, const ImplicitVisibilityOptions& b);
+inline bool operator!=(const ImplicitVisibilityOptions& a, const ImplicitVisibilityOptions& b)
+{
+  return !(a == b);
+}
 
 /// Options of Method::InstantRadiosity; the other methods ignore them.
 struct InstantRadiosityOptions
@@ -109,6 +125,8 @@ struct SolverOptions
   CudaBvhBuild cudaBvhBuild = CudaBvhBuild::Gpu;
   /// Method::InstantRadiosity's own options.
   InstantRadiosityOptions instantRadiosity;
+  /// Method::ImplicitVisibility's own options.
+  ImplicitVisibilityOptions implicitVisibility;
 };
 
 /// The method called `name` ("links", "instant-radiosity": SolverStats::method); throws

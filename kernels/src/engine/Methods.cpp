@@ -14,6 +14,10 @@ namespace ir
 {
 const engine::MethodSpec& instantRadiosityMethod();
 }
+namespace iv
+{
+const engine::MethodSpec& implicitVisibilityMethod();
+}
 
 namespace engine
 {
@@ -25,6 +29,8 @@ const MethodSpec& methodSpec(Method method)
       return links::linksMethod();
     case Method::InstantRadiosity:
       return ir::instantRadiosityMethod();
+    case Method::ImplicitVisibility:
+      return iv::implicitVisibilityMethod();
   }
   throw Error("Unknown solution method " + std::to_string(int(method)) + ".");
 }

@@ -16,7 +16,12 @@ bool operator==(const SolverOptions& a, const SolverOptions& b)
     a.lightOversampling == b.lightOversampling && a.albedoPolicy == b.albedoPolicy &&
     a.backend == b.backend && a.cudaDevices == b.cudaDevices &&
     a.cudaBvhUpdate == b.cudaBvhUpdate && a.cudaBvhBuild == b.cudaBvhBuild &&
-    a.instantRadiosity == b.instantRadiosity;
+    a.instantRadiosity == b.instantRadiosity && a.implicitVisibility == b.implicitVisibility;
+}
+
+bool operator==(const ImplicitVisibilityOptions& a, const ImplicitVisibilityOptions& b)
+{
+  return a.binsPerSide == b.binsPerSide;
 }
 
 bool operator==(const InstantRadiosityOptions& a, const InstantRadiosityOptions& b)
@@ -66,6 +71,17 @@ void validateOptions(const SolverOptions& options)
   {
     throw Error("The proxy resolution must be between 2 and 4096 cells; got " +
       std::to_string(ir.proxyResolution) + ".");
+  }
+  if (options.implicitVisibility.binsPerSide < 2 || options.implicitVisibility.binsPerSide > 32)
+  {
+    throw Error("Implicit visibility: the bins per side of a cube-map face must be between 2 "
+                "and 32 (the paper uses 8, 12, 16); got " +
+      std::to_string(options.implicitVisibility.binsPerSide) + ".");
+  }
+  if (options.method == Method::ImplicitVisibility && options.twoSided)
+  {
+    throw Error("The implicit-visibility method has one-sided elements only; turn two-sided "
+                "elements off or choose another method.");
   }
 }
 
@@ -134,7 +150,8 @@ Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& be
   differs(kFiltering, o.smoothing != b.smoothing || o.featureAngleDegrees != b.featureAngleDegrees);
   differs(kBackendSetup, o.cudaBvhBuild != b.cudaBvhBuild);
   differs(kPlacement, o.backend != b.backend || o.cudaDevices != b.cudaDevices);
-  differs(kMethodOptions, o.instantRadiosity != b.instantRadiosity);
+  differs(kMethodOptions, o.instantRadiosity != b.instantRadiosity ||
+    o.implicitVisibility != b.implicitVisibility);
   if (o.method != b.method)
   {
     c = kEverything;
