@@ -258,34 +258,41 @@ void keepShortestPerBin(const ClusterTree& t, const CubeBins& bins, SparseMatrix
   const std::size_t rows = m.rows();
   std::vector<Index> counts(rows, 0);
   parallelFor("ImplicitLinks", rows, 256, [&](std::size_t begin, std::size_t end) {
-    struct Candidate
-    {
-      int bin;
-      float d2;
-      Index src;
-    };
-    std::vector<Candidate> row;
+    std::vector<float> bestDistance(bins.count());
+    std::vector<Index> bestSource(bins.count(), kInvalidIndex);
+    std::vector<int> touched;
     for (std::size_t node = begin; node < end; ++node)
     {
-      row.clear();
+      Offset out = m.rowOffsets[node];
       for (Offset e = m.rowOffsets[node]; e < m.rowOffsets[node + 1]; ++e)
       {
         const Index src = m.columns[e];
         const Vec3f d = t.position[src] - t.position[node];
         const float d2 = dot(d, d);
-        row.push_back({ d2 > 0.f ? cubeBin(d, bins.n) : -1 - int(row.size()), d2, src });
-      }
-      std::sort(row.begin(), row.end(), [](const Candidate& a, const Candidate& b) {
-        return a.bin < b.bin || (a.bin == b.bin && (a.d2 < b.d2 || (a.d2 == b.d2 && a.src < b.src)));
-      });
-      Offset out = m.rowOffsets[node];
-      for (std::size_t i = 0; i < row.size(); ++i)
-      {
-        if (i == 0 || row[i].bin != row[i - 1].bin)
+        if (!(d2 > 0.f))
         {
-          m.columns[out++] = row[i].src;
+          m.columns[out++] = src; // no direction: kept
+          continue;
         }
+        const int b = cubeBin(d, bins.n);
+        if (bestSource[b] == kInvalidIndex)
+        {
+          touched.push_back(b);
+        }
+        else if (d2 > bestDistance[b] || (d2 == bestDistance[b] && src > bestSource[b]))
+        {
+          continue;
+        }
+        bestDistance[b] = d2;
+        bestSource[b] = src;
       }
+      std::sort(touched.begin(), touched.end()); // a deterministic order
+      for (int b : touched)
+      {
+        m.columns[out++] = bestSource[b];
+        bestSource[b] = kInvalidIndex;
+      }
+      touched.clear();
       counts[node] = Index(out - m.rowOffsets[node]);
     }
   }, [&progress](const char*, double f) { return progressSays(progress, 0.5 + 0.1 * f); });
@@ -467,11 +474,6 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
         float hemisphere = 0.f;
         for (std::size_t b = 0; b < nb; ++b)
         {
-          hemisphere += bins.solidAngle[b] * std::max(0.f, dot(n, bins.center[b]));
-        }
-        const float scale = hemisphere > 0.f ? kPi / hemisphere : 0.f;
-        for (std::size_t b = 0; b < nb; ++b)
-        {
           const float c = dot(n, bins.center[b]);
           const Index src = bestSource[b];
           bestSource[b] = kInvalidIndex;
@@ -479,7 +481,8 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
           {
             continue;
           }
-          const float w = bins.solidAngle[b] * c * scale;
+          const float w = bins.solidAngle[b] * c;
+          hemisphere += w;
           if (src == kInvalidIndex)
           {
             envRow.emplace_back(environment.texelIndex(bins.center[b]), w);
@@ -490,6 +493,14 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
           if (dot(tree.normal[src], p - tree.position[src]) > 0.f)
           {
             row.emplace_back(src, w);
+          }
+        }
+        const float scale = hemisphere > 0.f ? kPi / hemisphere : 0.f;
+        for (auto* r : { &row, &envRow })
+        {
+          for (auto& entry : *r)
+          {
+            entry.second *= scale;
           }
         }
         mergeRow(row, out.columns, out.weights, out.counts);
