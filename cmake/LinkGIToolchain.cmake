@@ -39,3 +39,6 @@ macro(linkgi_enable_cuda default)
     endif()
   endif()
 endmacro()
+
+# LINKGI_SANITIZE and LINKGI_FUZZ: sanitizer and libFuzzer builds (CI's build/sanitize-*).
+include("${CMAKE_CURRENT_LIST_DIR}/LinkGISanitizers.cmake")

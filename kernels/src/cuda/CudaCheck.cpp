@@ -2,6 +2,7 @@
 
 #include <cuda_runtime_api.h>
 
+#include <atomic>
 #include <string>
 
 namespace linkgi::cuda
@@ -25,5 +26,29 @@ void check(cudaError_t status, const char* what, const char* file, int line)
 void checkLaunch(const char* kernel, const char* file, int line)
 {
   check(cudaGetLastError(), kernel, file, line);
+}
+
+namespace
+{
+std::atomic<std::size_t> allocationsLeft{ 0 };
+}
+
+cudaError_t allocate(void** pointer, std::size_t bytes)
+{
+  std::size_t left = allocationsLeft.load();
+  while (left > 0 && !allocationsLeft.compare_exchange_weak(left, left - 1))
+  {
+  }
+  return left == 1 ? cudaErrorMemoryAllocation : cudaMalloc(pointer, bytes);
+}
+
+void failAllocation(std::size_t n)
+{
+  allocationsLeft = n;
+}
+
+std::size_t allocationsBeforeFailure()
+{
+  return allocationsLeft.load();
 }
 }

@@ -6,6 +6,7 @@
 
 #include <cuda_runtime_api.h>
 
+#include <cstddef>
 #include <string>
 
 namespace linkgi::cuda
@@ -15,6 +16,14 @@ void check(cudaError_t status, const char* what, const char* file, int line);
 
 /// Checks a kernel launch (configuration errors) without waiting for the kernel.
 void checkLaunch(const char* kernel, const char* file, int line);
+
+/// cudaMalloc for GPUBuffer, the engine's one allocation of device memory, with the tests'
+/// fault injection: after failAllocation(n) the n-th allocation from then on (1: the next)
+/// fails as cudaMalloc does on a GPU out of memory. Test-only; 0 disarms it.
+cudaError_t allocate(void** pointer, std::size_t bytes);
+void failAllocation(std::size_t n);
+/// The allocations left before the injected failure (0: it happened, or none was armed).
+std::size_t allocationsBeforeFailure();
 }
 
 #define LINKGI_CUDA_CHECK(expr) ::linkgi::cuda::check((expr), #expr, __FILE__, __LINE__)

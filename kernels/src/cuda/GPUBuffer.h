@@ -87,7 +87,7 @@ public:
       release();
       void* p = nullptr;
       LINKGI_CUDA_CHECK(cudaGetDevice(&device_));
-      LINKGI_CUDA_CHECK(cudaMalloc(&p, capacity * sizeof(T)));
+      LINKGI_CUDA_CHECK(allocate(&p, capacity * sizeof(T)));
       data_ = static_cast<T*>(p);
       capacity_ = capacity;
       MemoryLedger::add(device_, capacity * sizeof(T));
