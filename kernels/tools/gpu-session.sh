@@ -8,7 +8,10 @@
 # OUT: folder for the logs. GTEST_SRC: GoogleTest sources (e.g. a copy of /usr/src/googletest)
 # where no package exists. REFERENCE_DIR: CPU (Embree) solutions written by
 # `linkgi-bench --backend cpu --scenes cornell,tearoom --dump DIR`, to compare against.
-# STEPS: any of "build test sanitize bench partitions scale multi" (default: all but multi).
+# STEPS: any of "build test sanitize bench partitions scale multi ab profile" (default: build
+# test sanitize bench partitions scale). ab: conference with the shipped defaults against the
+# testing knobs' variants (the linear BVH, PLOC radii), interleaved, in one run. profile:
+# Nsight Compute's summary of the link, compression and bounce kernels (where ncu exists).
 set -uo pipefail
 out=${1:?output folder}
 gtest=${2:-}
@@ -91,5 +94,42 @@ if has multi; then
   done > "$out/multi.jsonl" 2>> "$out/steps.log"
   cat "$out/multi.jsonl"
   "$tests" --gtest_filter='Cuda.AllGpus*' 2>&1 | tail -3
+fi
+if has ab; then
+  stamp ab
+  # Variants side by side, twice and interleaved (a drift of the machine shows as a
+  # difference between the rounds): words with '=' are environment knobs, the rest bench
+  # options; "default" is the shipped configuration. AB_VARIANTS overrides the list.
+  variants=${AB_VARIANTS:-"default LINKGI_CUDA_BVH=linear LINKGI_CUDA_BVH_ORDER=build --bvh-build,sah"}
+  for round in 1 2; do
+    for v in $variants; do
+      vars=() args=()
+      for w in ${v//,/ }; do
+        if [[ $w == *=* ]]; then vars+=("$w"); elif [[ $w != default ]]; then args+=("$w"); fi
+      done
+      echo "== variant $v round $round" >> "$out/steps.log"
+      env LINKGI_CUDA_BVH_COST=1 "${vars[@]}" "$build/bin/linkgi-bench" --backend cuda --scenes conference \
+        --repeat 7 --no-gather "${args[@]}" 2>> "$out/steps.log" | sed "s/^{/{\"variant\":\"$v\",\"round\":$round,/"
+    done
+  done > "$out/ab.jsonl"
+  grep -E "^== variant|linkgi bvh" "$out/steps.log" | uniq -c | head -40
+  python3 - "$out/ab.jsonl" <<'PY' || true
+import json, sys
+for line in open(sys.argv[1]):
+    if line.startswith("{"):
+        d = json.loads(line)
+        m = d["median_ms"]
+        print(f'{d["variant"]:40s} r{d["round"]} rays {d["rays_per_s"]/1e9:.2f} G/s  bvh {d["ms_bvh"]:.2f}  links {d["ms_links"]:.2f}'
+              f'  compress {d["ms_compress"]:.2f}  full {d["ms_full_update"]:.2f} (med {m["full_update"]:.2f})'
+              f'  light {d["ms_light_update"]:.2f} (med {m["light_update"]:.2f})')
+PY
+fi
+if has profile && command -v ncu > /dev/null; then
+  stamp profile
+  ncu --kernel-name regex:'traceLinksKernel|compressKernel|shadowSamplesKernel|bounceKernel' \
+    --launch-skip 0 --launch-count 6 --section SpeedOfLight --section Occupancy --section LaunchStats \
+    "$build/bin/linkgi-bench" --backend cuda --scenes conference --repeat 1 --no-gather \
+    > "$out/ncu.log" 2>&1
+  grep -E "^  [a-zA-Z].*\(|Duration|Throughput|Achieved Occupancy|Registers Per|Block Limit" "$out/ncu.log" | head -120
 fi
 stamp done

@@ -43,7 +43,7 @@ struct BvhView
   Index triangleCount = 0;
 };
 
-/// Traversal stack depth. LBVH depth is bounded by the 63 Morton bits plus log2 of the
+/// Traversal stack depth. LBVH depth is bounded by the 64 Morton key bits plus log2 of the
 /// triangles sharing one code; deeper subtrees than this would be skipped, never crash.
 constexpr int kBvhStackSize = 96;
 

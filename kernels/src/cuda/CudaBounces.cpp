@@ -86,6 +86,7 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
     if (&d != &d0)
     {
       d.direct.resize(ne);
+      LINKGI_CUDA_CHECK(cudaStreamWaitEvent(d.stream, d0.ready, 0)); // E_d of the light links
       LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(d.direct.data(), d.id, d0.direct.data(), d0.id,
         std::size_t(ne) * sizeof(Vec3f), d.stream));
     }

@@ -131,8 +131,10 @@ EngineDevice::EngineDevice(int device) : id(device)
   }
   LINKGI_CUDA_CHECK(cudaEventCreateWithFlags(&ready, cudaEventDisableTiming));
   void* pinned = nullptr;
-  LINKGI_CUDA_CHECK(cudaMallocHost(&pinned, 4 * sizeof(Offset)));
+  LINKGI_CUDA_CHECK(cudaMallocHost(&pinned, 5 * sizeof(Offset)));
   totals = static_cast<Offset*>(pinned);
+  tracedLightRays = reinterpret_cast<unsigned long long*>(totals + 4);
+  *tracedLightRays = 0;
 }
 
 EngineDevice::~EngineDevice()
@@ -285,7 +287,7 @@ void Engine::describe(SolverStats& stats) const
       stats.linkBytes += b.transport.usedBytes() + b.environment.usedBytes();
     }
   }
-  stats.lightRays = lightRays;
+  stats.lightRays = *devices[0]->tracedLightRays; // the bounce stage has synchronized
 }
 
 void Engine::updateGeometry(const engine::StageContext& c)
@@ -431,9 +433,10 @@ void Engine::computeDirectLight(const engine::StageContext& c)
     addDirectLights(p, d.lights.data(), int(lit.size()), side == 0 ? 1.f : -1.f, side == 0 ? 0 : nv,
       d.vertexVisible.data(), d.edgeVisible.data(), d.direct.data(), d.counter.data(), d.stream);
   }
-  unsigned long long traced = 0;
-  LINKGI_CUDA_CHECK(cudaMemcpyAsync(&traced, d.counter.data(), sizeof(traced), cudaMemcpyDeviceToHost, d.stream));
-  d.sync();
-  lightRays = traced;
+  // No wait here: the bounces queue behind the light links, the ray count arrives with
+  // their outputs, and the other partitions copy E_d after this event.
+  LINKGI_CUDA_CHECK(cudaMemcpyAsync(d.tracedLightRays, d.counter.data(), sizeof(unsigned long long),
+    cudaMemcpyDeviceToHost, d.stream));
+  LINKGI_CUDA_CHECK(cudaEventRecord(d.ready, d.stream));
 }
 }

@@ -79,6 +79,6 @@ private:
   Index edgeCount = 0; ///< of the topology on the first partition
   std::string name;
   int physicalDevices = 0;
-  std::uint64_t rawLinks = 0, rays = 0, lightRays = 0;
+  std::uint64_t rawLinks = 0, rays = 0;
 };
 }

@@ -1,5 +1,6 @@
-// The BVH on one GPU: built there as a linear BVH (Morton order, Karras' hierarchy,
-// bottom-up bounds) into the node layout of linkgi/Bvh.h; refit reuses the hierarchy.
+// The BVH on one GPU, built there into the node layout of linkgi/Bvh.h: triangles in Morton
+// order, then PLOC's agglomerative clustering (default) or Karras' linear hierarchy with
+// bottom-up bounds (LINKGI_CUDA_BVH=linear); refit reuses the hierarchy.
 #pragma once
 
 #include "GPUBuffer.h"
@@ -29,6 +30,10 @@ public:
 
 private:
   void gatherAndBound(const Vec3f* positions, const Triangle* triangles, cudaStream_t stream);
+  /// PLOC on the Morton-sorted triangles of `order`: hierarchy and boxes.
+  void cluster(const Vec3f* positions, const Triangle* triangles, cudaStream_t stream);
+  /// Renumbers nodes and leaves depth-first (subtrees contiguous in memory).
+  void reorderDepthFirst(cudaStream_t stream);
 
   Index count = 0;
   GPUBuffer<BvhNode> nodes;
@@ -41,5 +46,13 @@ private:
   GPUBuffer<unsigned char> temp;
   GPUBuffer<std::uint64_t> keys, sortedKeys; ///< build scratch, kept for the next build
   GPUBuffer<Index> ids;
+  GPUBuffer<int> clusters[2], nearest; ///< PLOC scratch: clusters of this and the next round
+  GPUBuffer<bvh::Box> clusterBoxes[2];
+  GPUBuffer<std::uint64_t> flags, scanned;
+  GPUBuffer<int> roundCounts; ///< PLOC: clusters left after each round of a batch
+  GPUBuffer<BvhNode> reordered; ///< depth-first reordering's targets, swapped in
+  GPUBuffer<int> reorderedLeafParents;
+  GPUBuffer<Index> reorderedOrder;
+  GPUBuffer<BvhTriangle> reorderedTriangles;
 };
 }

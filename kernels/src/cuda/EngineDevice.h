@@ -28,12 +28,12 @@ public:
 
 private:
   void loop();
-  std::thread thread;
   std::mutex mutex;
   std::condition_variable changed;
   std::function<void()> job;
   std::exception_ptr error;
   bool pending = false, stop = false;
+  std::thread thread; ///< last: it starts in the constructor and uses every member above
 };
 
 /// Scratch of one link batch on its device: hits, fixed-capacity rows and their counts.
@@ -70,6 +70,9 @@ struct EngineDevice
   cudaEvent_t events[3] = {};
   cudaEvent_t ready = nullptr; ///< recorded before other partitions copy from this one
   Offset* totals = nullptr; ///< pinned host memory: a batch's entry counts, read back at once
+  /// Pinned, beside `totals`: the last light-link stage's shadow rays, read back with the
+  /// bounces' outputs (the light links queue their work without waiting for it).
+  unsigned long long* tracedLightRays = nullptr;
 
   // Geometry (every partition).
   GPUBuffer<Vec3f> positions, normals, shifts, faceNormals, directions;

@@ -37,4 +37,13 @@ void exclusiveSum(const Index* in, Offset* out, std::size_t count, GPUBuffer<uns
   temp.resize(bytes);
   LINKGI_CUDA_CHECK(cub::DeviceScan::ExclusiveScan(temp.data(), bytes, in, out, sum, Offset(0), count, stream));
 }
+
+void exclusiveSum(const std::uint64_t* in, std::uint64_t* out, std::size_t count,
+  GPUBuffer<unsigned char>& temp, cudaStream_t stream)
+{
+  std::size_t bytes = 0;
+  LINKGI_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, count, stream));
+  temp.resize(bytes);
+  LINKGI_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp.data(), bytes, in, out, count, stream));
+}
 }

@@ -20,4 +20,8 @@ void sortKeys(const std::uint64_t* keysIn, std::uint64_t* keysOut, std::size_t c
 /// out[i] = in[0] + ... + in[i-1], summed in 64 bits (entry counts pass 2^32).
 void exclusiveSum(const Index* in, Offset* out, std::size_t count, GPUBuffer<unsigned char>& temp,
   cudaStream_t stream);
+
+/// out[i] = in[0] + ... + in[i-1] of 64-bit values (e.g. two 32-bit counts packed in one).
+void exclusiveSum(const std::uint64_t* in, std::uint64_t* out, std::size_t count,
+  GPUBuffer<unsigned char>& temp, cudaStream_t stream);
 }
