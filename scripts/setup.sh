@@ -15,6 +15,7 @@ packages=(
   libgtest-dev libgmock-dev
   xvfb xauth libgl1-mesa-dri
   dpkg-dev file
+  clang libclang-rt-14-dev libfuzzer-14-dev
 )
 
 missing=()

@@ -102,12 +102,29 @@ vtkSmartPointer<vtkPolyData> SurfaceWithIds(vtkPolyData* input)
   auto surface = vtkSmartPointer<vtkPolyData>::New();
   surface->SetPoints(input->GetPoints());
   surface->SetPolys(input->GetPolys());
-  surface->SetStrips(input->GetStrips());
   surface->GetPointData()->AddArray(IdRange(PointIdsName, 0, input->GetNumberOfPoints()));
   // Cell ids of vtkPolyData run over verts, then lines, then polys, then strips.
   const vtkIdType firstSurfaceCell = input->GetNumberOfVerts() + input->GetNumberOfLines();
-  surface->GetCellData()->AddArray(IdRange(
-    CellIdsName, firstSurfaceCell, input->GetNumberOfPolys() + input->GetNumberOfStrips()));
+  vtkSmartPointer<vtkIdTypeArray> cellIds =
+    IdRange(CellIdsName, firstSurfaceCell, input->GetNumberOfPolys());
+  // Strips of fewer than 3 points hold no triangle, and crash vtkTriangleFilter (VTK 9.1
+  // reads the first points of every strip): left out, the others keep their cell ids.
+  vtkNew<vtkCellArray> strips;
+  vtkIdType stripId = firstSurfaceCell + input->GetNumberOfPolys();
+  auto iter = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
+  for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++stripId)
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    iter->GetCurrentCell(n, ids);
+    if (n >= 3)
+    {
+      strips->InsertNextCell(n, ids);
+      cellIds->InsertNextValue(stripId);
+    }
+  }
+  surface->SetStrips(strips);
+  surface->GetCellData()->AddArray(cellIds);
   return surface;
 }
 

@@ -1,0 +1,93 @@
+// libFuzzer target: validateScene and validateShading on arbitrary arrays of arbitrary
+// sizes (floats of any bit pattern: NaN, infinities, denormals, 1e38). Either validation
+// throws linkgi::Error, or the scene it leaves is one the solver may trust: sizes that
+// agree, indices in range, finite data, albedo in [0, 1], unit normals.
+#include "FuzzInput.h"
+
+#include "linkgi/Error.h"
+#include "linkgi/Scene.h"
+
+#include <cmath>
+#include <cstdlib>
+
+using namespace linkgi;
+
+namespace
+{
+void require(bool condition)
+{
+  if (!condition)
+  {
+    std::abort(); // a validated scene the solver may not trust: report it as a crash
+  }
+}
+
+bool finite(const Vec3f& v)
+{
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+void checkValidated(const Scene& s)
+{
+  const std::size_t n = s.vertexCount();
+  require(n > 0 && s.triangleCount() > 0);
+  require(s.normals.size() == n && s.albedo.size() == n);
+  require(s.emission.empty() || s.emission.size() == n);
+  for (const Triangle& t : s.triangles)
+  {
+    require(t.v[0] < n && t.v[1] < n && t.v[2] < n);
+    require(t.v[0] != t.v[1] && t.v[1] != t.v[2] && t.v[0] != t.v[2]);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    require(finite(s.positions[i]) && finite(s.normals[i]) && finite(s.albedo[i]));
+    const float len = std::sqrt(dot(s.normals[i], s.normals[i]));
+    require(std::fabs(len - 1.f) < 1e-3f);
+    for (float c : { s.albedo[i].x, s.albedo[i].y, s.albedo[i].z })
+    {
+      require(c >= 0.f && c <= 1.f);
+    }
+  }
+  for (const Vec3f& e : s.emission)
+  {
+    require(finite(e) && e.x >= 0.f && e.y >= 0.f && e.z >= 0.f);
+  }
+  for (const Light& l : s.lights)
+  {
+    require(finite(l.position) && finite(l.direction) && finite(l.intensity));
+  }
+}
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  linkgi_fuzz::Input in(data, size);
+  Scene scene = linkgi_fuzz::scene(in);
+  const AlbedoPolicy policy = in.boolean() ? AlbedoPolicy::Clamp : AlbedoPolicy::Reject;
+  try
+  {
+    validateScene(scene, policy);
+  }
+  catch (const Error&)
+  {
+    return 0;
+  }
+  checkValidated(scene);
+  // The shading half again on the validated scene with new lights and colours, as a
+  // light or material update would: the same guarantees.
+  scene.lights = linkgi_fuzz::lights(in);
+  if (in.boolean())
+  {
+    scene.albedo = linkgi_fuzz::vectors(in, scene.vertexCount());
+  }
+  try
+  {
+    validateShading(scene, policy);
+  }
+  catch (const Error&)
+  {
+    return 0;
+  }
+  checkValidated(scene);
+  return 0;
+}

@@ -1,0 +1,126 @@
+// libFuzzer target: the solver's options, every field any value, on a small box or on any
+// scene that validation accepts. validateOptions either throws linkgi::Error or the update
+// succeeds, with one finite, non-negative value per element; and a second update with other
+// options, reusing the first one's caches, gives bitwise what a fresh solver gives.
+#include "FuzzInput.h"
+
+#include "linkgi/Error.h"
+#include "linkgi/Solver.h"
+
+#include <cmath>
+#include <cstdlib>
+
+using namespace linkgi;
+
+namespace
+{
+void require(bool condition)
+{
+  if (!condition)
+  {
+    std::abort();
+  }
+}
+
+SolverOptions options(linkgi_fuzz::Input& in)
+{
+  SolverOptions o;
+  o.method = Method(in.count(3)); // past the last method: an error naming it
+  // Perfect squares mostly (others are errors); at most 32 x 32 rays and 64 bounces are
+  // solved: the cost grows with both, larger counts are slow, not different.
+  const std::uint32_t k = std::uint32_t(in.count(32));
+  o.raysPerVertex = in.count(7) ? k * k : in.integer<std::uint32_t>();
+  o.bounces = in.count(7) ? std::uint32_t(in.count(64)) : in.integer<std::uint32_t>();
+  o.smoothing = in.boolean();
+  o.featureAngleDegrees = in.number();
+  o.twoSided = in.boolean();
+  o.twist = in.boolean();
+  o.seed = in.integer<std::uint32_t>();
+  o.lightOversampling = in.boolean();
+  o.albedoPolicy = in.boolean() ? AlbedoPolicy::Clamp : AlbedoPolicy::Reject;
+  o.backend = Backend(in.count(2));
+  o.cudaDevices = in.integer<std::int8_t>();
+  o.cudaBvhUpdate = CudaBvhUpdate(in.count(2));
+  o.cudaBvhBuild = CudaBvhBuild(in.count(1));
+  return o;
+}
+
+/// An open box (floor and three walls) lit from inside: 12 vertices, 8 triangles.
+Scene box()
+{
+  Scene s;
+  const Vec3f corner[4] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 0, 1 }, { 0, 0, 1 } };
+  const Vec3f up(0, 1, 0);
+  for (int wall = 0; wall < 3; ++wall)
+  {
+    const Vec3f a = corner[wall], b = corner[wall + 1];
+    const Index base = Index(s.positions.size());
+    for (const Vec3f& p : { a, b, b + up, a + up })
+    {
+      s.positions.push_back(p);
+      s.normals.push_back(normalize(Vec3f(0.5f, 0.f, 0.5f) - (a + b) * 0.5f));
+      s.albedo.push_back(Vec3f(0.8f, 0.6f, 0.4f));
+    }
+    s.triangles.push_back({ { base, Index(base + 1), Index(base + 2) } });
+    s.triangles.push_back({ { base, Index(base + 2), Index(base + 3) } });
+  }
+  s.lights.push_back(Light());
+  s.lights[0].position = Vec3f(0.5f, 0.8f, 0.5f);
+  return s;
+}
+
+bool cheap(const SolverOptions& o)
+{
+  return o.raysPerVertex <= 1024 && o.bounces <= 64;
+}
+
+/// Solves; false when the update throws linkgi::Error (options or scene rejected).
+bool solve(Solver& solver, const Scene& scene, const SolverOptions& o)
+{
+  try
+  {
+    validateOptions(o);
+    if (!cheap(o))
+    {
+      return false;
+    }
+    solver.update(scene, o);
+  }
+  catch (const Error&)
+  {
+    return false;
+  }
+  const Solution& s = solver.solution();
+  require(s.elementCount() == scene.vertexCount() * (o.twoSided ? 2 : 1));
+  require(s.indirect.size() == s.elementCount() && s.radiance.size() == s.elementCount());
+  for (std::size_t i = 0; i < s.elementCount(); ++i)
+  {
+    for (const Vec3f& v : { s.direct[i], s.indirect[i], s.radiance[i] })
+    {
+      require(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
+      require(v.x >= 0.f && v.y >= 0.f && v.z >= 0.f);
+    }
+  }
+  return true;
+}
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  linkgi_fuzz::Input in(data, size);
+  const SolverOptions first = options(in), second = options(in);
+  const Scene scene = in.boolean() ? box() : linkgi_fuzz::scene(in);
+  Solver solver;
+  solve(solver, scene, first);
+  Solver fresh;
+  if (!solve(solver, scene, second) || !solve(fresh, scene, second))
+  {
+    return 0;
+  }
+  const Solution &a = solver.solution(), &b = fresh.solution();
+  for (std::size_t i = 0; i < a.elementCount(); ++i)
+  {
+    require(std::memcmp(&a.radiance[i], &b.radiance[i], sizeof(Vec3f)) == 0);
+  }
+  return 0;
+}
