@@ -52,6 +52,12 @@ vtkStandardNewMacro(vtkGlobalIlluminationFilter);
 vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
   : RaysPerVertex(256)
   , NumberOfBounces(3)
+  , Method(LINKS)
+  , NumberOfVPLs(1024)
+  , VPLClampDistance(0.02)
+  , VPLInterleaving(1)
+  , ProxyVisibility(0)
+  , ProxyResolution(32)
   , FeatureAngle(30.0)
   , Smoothing(1)
   , ComputeNormals(0)
@@ -236,6 +242,18 @@ void vtkGlobalIlluminationFilter::SetRaysPerVertex(int rays)
 }
 
 //------------------------------------------------------------------------------
+const char* vtkGlobalIlluminationFilter::GetMethodAsString()
+{
+  switch (this->Method)
+  {
+    case INSTANT_RADIOSITY:
+      return "InstantRadiosity";
+    default:
+      return "Links";
+  }
+}
+
+//------------------------------------------------------------------------------
 const char* vtkGlobalIlluminationFilter::GetBackendAsString()
 {
   switch (this->Backend)
@@ -343,6 +361,12 @@ void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Rays Per Vertex: " << this->RaysPerVertex << "\n";
   os << indent << "Number Of Bounces: " << this->NumberOfBounces << "\n";
+  os << indent << "Method: " << this->GetMethodAsString() << "\n";
+  os << indent << "Number Of VPLs: " << this->NumberOfVPLs << "\n";
+  os << indent << "VPL Clamp Distance: " << this->VPLClampDistance << "\n";
+  os << indent << "VPL Interleaving: " << this->VPLInterleaving << "\n";
+  os << indent << "Proxy Visibility: " << (this->ProxyVisibility ? "On" : "Off") << "\n";
+  os << indent << "Proxy Resolution: " << this->ProxyResolution << "\n";
   os << indent << "Feature Angle: " << this->FeatureAngle << "\n";
   os << indent << "Smoothing: " << (this->Smoothing ? "On" : "Off") << "\n";
   os << indent << "Compute Normals: " << (this->ComputeNormals ? "On" : "Off") << "\n";

@@ -92,6 +92,74 @@ public:
     CUDA = 2  ///< the GPU(s); without a device (or out of GPU memory) the CPU, with a warning
   };
 
+  /// How the indirect light is computed.
+  enum MethodType
+  {
+    LINKS = 0,            ///< the link structure (Schmitz, Tavenrath & Kobbelt 2008)
+    INSTANT_RADIOSITY = 1 ///< virtual point lights (Marques & Santos 2010)
+  };
+
+  ///@{
+  /**
+   * Method: LINKS traces rays between vertices once and bounces light over those links
+   * (a light move costs milliseconds, a deformation relinks); INSTANT_RADIOSITY shoots light
+   * paths from the lights, emissive surfaces and environment, leaves a virtual point light
+   * at each diffuse hit and gathers them at every vertex with shadow rays (nothing is
+   * precomputed: a deformation costs what a light move costs). Both give the same output
+   * arrays; the stages that ran are in the field data (LinkGI.Method, LinkGI.Ms<Stage>).
+   * RaysPerVertex applies to LINKS, the VPL properties below to INSTANT_RADIOSITY.
+   * The default value is LINKS.
+   */
+  vtkSetClampMacro(Method, int, LINKS, INSTANT_RADIOSITY);
+  vtkGetMacro(Method, int);
+  void SetMethodToLinks() { this->SetMethod(LINKS); }
+  void SetMethodToInstantRadiosity() { this->SetMethod(INSTANT_RADIOSITY); }
+  const char* GetMethodAsString();
+  ///@}
+
+  ///@{
+  /**
+   * INSTANT_RADIOSITY: about how many virtual point lights each update makes
+   * (NumberOfVPLs / NumberOfBounces light paths). The default value is 1024.
+   */
+  vtkSetClampMacro(NumberOfVPLs, int, 1, 1048576);
+  vtkGetMacro(NumberOfVPLs, int);
+  ///@}
+
+  ///@{
+  /**
+   * INSTANT_RADIOSITY: the minimum distance of the paper's smoothstep bound on the geometry
+   * term, as a fraction of the bounding-box diagonal: VPLs nearer than 0.8 times it give a
+   * vertex nothing, so they cannot spike (at the price of a little light in corners).
+   * The default value is 0.02.
+   */
+  vtkSetClampMacro(VPLClampDistance, double, 0.0, 1.0);
+  vtkGetMacro(VPLClampDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * INSTANT_RADIOSITY: interleaved sampling. The VPLs are split into this many subsets and
+   * each vertex gathers one (scaled up); Smoothing recombines neighbours. 1 turns it off.
+   * The default value is 1.
+   */
+  vtkSetClampMacro(VPLInterleaving, int, 1, 64);
+  vtkGetMacro(VPLInterleaving, int);
+  ///@}
+
+  ///@{
+  /**
+   * INSTANT_RADIOSITY: imperfect visibility. VPL shadow rays test a coarse proxy of the mesh
+   * (vertices clustered on a grid of ProxyResolution cells along the longest axis) instead
+   * of the mesh. The default value is off, with a resolution of 32.
+   */
+  vtkSetMacro(ProxyVisibility, vtkTypeBool);
+  vtkGetMacro(ProxyVisibility, vtkTypeBool);
+  vtkBooleanMacro(ProxyVisibility, vtkTypeBool);
+  vtkSetClampMacro(ProxyResolution, int, 2, 4096);
+  vtkGetMacro(ProxyResolution, int);
+  ///@}
+
   ///@{
   /**
    * Number of rays traced from each vertex (n_C), a perfect square k*k because the
@@ -357,6 +425,12 @@ protected:
 
   int RaysPerVertex;
   int NumberOfBounces;
+  int Method;
+  int NumberOfVPLs;
+  double VPLClampDistance;
+  int VPLInterleaving;
+  vtkTypeBool ProxyVisibility;
+  int ProxyResolution;
   double FeatureAngle;
   vtkTypeBool Smoothing;
   vtkTypeBool ComputeNormals;

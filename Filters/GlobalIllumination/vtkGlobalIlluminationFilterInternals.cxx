@@ -135,6 +135,14 @@ linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
   options.backend = ToEngineBackend(self->Backend);
   options.raysPerVertex = static_cast<std::uint32_t>(self->RaysPerVertex);
   options.bounces = static_cast<std::uint32_t>(self->NumberOfBounces);
+  options.method = self->Method == vtkGlobalIlluminationFilter::INSTANT_RADIOSITY
+    ? linkgi::Method::InstantRadiosity
+    : linkgi::Method::Links;
+  options.instantRadiosity.vplCount = static_cast<std::uint32_t>(self->NumberOfVPLs);
+  options.instantRadiosity.clampDistance = static_cast<float>(self->VPLClampDistance);
+  options.instantRadiosity.interleave = static_cast<std::uint32_t>(self->VPLInterleaving);
+  options.instantRadiosity.proxyVisibility = self->ProxyVisibility != 0;
+  options.instantRadiosity.proxyResolution = static_cast<std::uint32_t>(self->ProxyResolution);
   options.smoothing = self->Smoothing != 0;
   options.featureAngleDegrees = static_cast<float>(self->FeatureAngle);
   options.twoSided = self->TwoSided != 0;

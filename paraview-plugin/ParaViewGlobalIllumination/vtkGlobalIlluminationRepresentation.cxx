@@ -274,6 +274,11 @@ void vtkGlobalIlluminationRepresentation::SetNumberOfBounces(int bounces)
   this->Internals->Filter->SetNumberOfBounces(bounces);
 }
 
+void vtkGlobalIlluminationRepresentation::SetMethod(int method)
+{
+  this->Internals->Filter->SetMethod(method);
+}
+
 void vtkGlobalIlluminationRepresentation::SetSmoothing(int smoothing)
 {
   this->Internals->Filter->SetSmoothing(smoothing);

@@ -58,6 +58,8 @@ public:
    */
   void SetRaysPerVertex(int rays);
   void SetNumberOfBounces(int bounces);
+  /// vtkGlobalIlluminationFilter::SetMethod (LINKS, INSTANT_RADIOSITY).
+  void SetMethod(int method);
   void SetSmoothing(int smoothing);
   void SetEnvironmentColor(double r, double g, double b);
   void SetLightIntensityScale(double scale);

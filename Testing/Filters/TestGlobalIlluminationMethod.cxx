@@ -1,0 +1,105 @@
+// vtkGlobalIlluminationFilter's Method: the switch between the link structure and instant
+// radiosity, what each reports in the field data, and that both light the same scene alike.
+#include "FilterTestUtilities.h"
+
+#include "vtkAppendPolyData.h"
+#include "vtkFieldData.h"
+#include "vtkGlobalIlluminationFilter.h"
+#include "vtkSphereSource.h"
+#include "vtkStringArray.h"
+
+#include <gtest/gtest.h>
+
+using namespace linkgi_test;
+
+namespace
+{
+std::string Method(vtkPolyData* pd)
+{
+  auto* names = vtkStringArray::SafeDownCast(pd->GetFieldData()->GetAbstractArray("LinkGI.Method"));
+  return names && names->GetNumberOfValues() > 0 ? names->GetValue(0) : "";
+}
+
+// Area-free mean of component 0 of a point array.
+double Mean(vtkPolyData* pd, const char* name)
+{
+  vtkDataArray* a = PointArray(pd, name);
+  double sum = 0.0;
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    sum += a->GetComponent(i, 0);
+  }
+  return sum / double(a->GetNumberOfTuples());
+}
+
+// Sphere (radius 0.4) above a 4 x 4 floor, lit by a point light.
+vtkSmartPointer<vtkGlobalIlluminationFilter> SphereOnFloorFilter()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0, 0, 0.5);
+  sphere->SetRadius(0.4);
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(12);
+  vtkNew<vtkAppendPolyData> append;
+  append->AddInputData(MakeFloor(2, 20));
+  append->AddInputConnection(sphere->GetOutputPort());
+  append->Update();
+  auto filter = vtkSmartPointer<vtkGlobalIlluminationFilter>::New();
+  filter->SetInputData(append->GetOutput());
+  const double light[3] = { 0.5, 0.3, 2.0 }, origin[3] = { 0, 0, 0 };
+  filter->AddLight(MakeLight(light, origin, 4.0));
+  filter->SetBackendToCPU();
+  return filter;
+}
+}
+
+TEST(TestGlobalIlluminationMethod, DefaultIsLinks)
+{
+  vtkNew<vtkGlobalIlluminationFilter> filter;
+  EXPECT_EQ(filter->GetMethod(), vtkGlobalIlluminationFilter::LINKS);
+  EXPECT_STREQ(filter->GetMethodAsString(), "Links");
+  filter->SetMethodToInstantRadiosity();
+  EXPECT_STREQ(filter->GetMethodAsString(), "InstantRadiosity");
+  filter->SetMethod(7); // clamped to the last method
+  EXPECT_LE(filter->GetMethod(), 7);
+  EXPECT_GE(filter->GetMethod(), vtkGlobalIlluminationFilter::INSTANT_RADIOSITY);
+  EXPECT_EQ(filter->GetNumberOfVPLs(), 1024);
+  EXPECT_DOUBLE_EQ(filter->GetVPLClampDistance(), 0.02);
+}
+
+TEST(TestGlobalIlluminationMethod, SwitchingMethodsGivesTheSameArraysAndSimilarLight)
+{
+  auto filter = SphereOnFloorFilter();
+  filter->Update();
+  vtkNew<vtkPolyData> links;
+  links->DeepCopy(filter->GetOutput());
+  EXPECT_EQ(Method(links), "links");
+  EXPECT_FALSE(std::isnan(Stat(links, "MsLinks")));
+
+  filter->SetMethodToInstantRadiosity();
+  filter->SetNumberOfVPLs(2048);
+  filter->Update();
+  vtkPolyData* ir = filter->GetOutput();
+  EXPECT_EQ(Method(ir), "instant-radiosity");
+  EXPECT_EQ(Stat(ir, "VplBuilds"), 1.0);
+  EXPECT_FALSE(std::isnan(Stat(ir, "MsGather")));
+  EXPECT_TRUE(std::isnan(Stat(ir, "MsLinks"))) << "the link method's stages are gone";
+  for (const char* name : { "DirectIrradiance", "IndirectIrradiance", "Radiance" })
+  {
+    ASSERT_NE(PointArray(ir, name), nullptr) << name;
+    EXPECT_EQ(PointArray(ir, name)->GetNumberOfTuples(), PointArray(links, name)->GetNumberOfTuples());
+  }
+  // The same direct light (the shared stage); indirect light within 10% on average.
+  EXPECT_NEAR(Mean(ir, "DirectIrradiance"), Mean(links, "DirectIrradiance"), 1e-6 * Mean(links, "DirectIrradiance"));
+  EXPECT_NEAR(Mean(ir, "IndirectIrradiance") / Mean(links, "IndirectIrradiance"), 1.0, 0.10);
+
+  // A VPL option re-traces the VPLs and gathers again, and leaves the direct light alone.
+  filter->SetVPLInterleaving(4);
+  filter->Update();
+  EXPECT_EQ(Stat(filter->GetOutput(), "VplBuilds"), 2.0);
+  EXPECT_EQ(Stat(filter->GetOutput(), "LightLinkBuilds"), 1.0);
+
+  filter->SetMethodToLinks();
+  filter->Update();
+  EXPECT_EQ(Method(filter->GetOutput()), "links");
+}
