@@ -301,6 +301,10 @@ void Engine::updateGeometry(const engine::StageContext& c)
   } const mask{ (c.changes & engine::kTopology) != 0, (c.changes & (engine::kTopology | engine::kPositions)) != 0,
     (c.changes & engine::kGeometry) != 0 };
   const Index nv = Index(s.vertexCount()), nt = Index(s.triangleCount());
+  if (mask.positions)
+  {
+    eps = rayEpsilon(s); // a pass over the positions: once per geometry, not per light change
+  }
   // Uploads through pinned memory, all queued before the GPU work that reads them.
   const auto t = std::chrono::steady_clock::now();
   for (const auto& dp : devices)
@@ -426,7 +430,7 @@ void Engine::computeDirectLight(const engine::StageContext& c)
   p.vertexEdges = d.topology.vertexEdges.data();
   p.vertexCount = nv;
   p.edgeCount = Index(edges);
-  p.eps = rayEpsilon(s);
+  p.eps = eps;
   p.oversampling = options.lightOversampling;
   for (int side = 0; side < (options.twoSided ? 2 : 1); ++side)
   {

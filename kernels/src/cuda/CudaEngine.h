@@ -77,6 +77,7 @@ private:
 
   std::vector<std::unique_ptr<EngineDevice>> devices;
   Index edgeCount = 0; ///< of the topology on the first partition
+  float eps = 0.f; ///< rayEpsilon of the positions, set by the geometry stage (not per stage)
   std::string name;
   int physicalDevices = 0;
   std::uint64_t rawLinks = 0, rays = 0;

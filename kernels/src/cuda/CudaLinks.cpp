@@ -199,7 +199,7 @@ void linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
 
 namespace
 {
-LinkJob makeJob(const Scene& s, const SolverOptions& options)
+LinkJob makeJob(const Scene& s, const SolverOptions& options, float eps)
 {
   const std::size_t elements = Elements{ s.vertexCount(), options.twoSided }.count();
   if (elements >= kInvalidIndex)
@@ -214,7 +214,7 @@ LinkJob makeJob(const Scene& s, const SolverOptions& options)
   t.vertexCount = Index(s.vertexCount());
   t.twist = options.twist;
   t.seed = options.seed;
-  t.eps = rayEpsilon(s);
+  t.eps = eps;
   job.params.twoSided = options.twoSided;
   job.params.envWidth = s.environment.hasTexture() ? s.environment.width : 0;
   job.params.envHeight = s.environment.hasTexture() ? s.environment.height : 0;
@@ -308,7 +308,7 @@ void Engine::buildLinks(const engine::StageContext& c)
 {
   const SolverOptions& options = c.options;
   const auto start = std::chrono::steady_clock::now();
-  const LinkJob job = makeJob(c.scene, options);
+  const LinkJob job = makeJob(c.scene, options, eps);
   const Index ne = job.elements, n = options.raysPerVertex;
   const std::vector<Vec3f> dirs = makeDirectionSet(n);
   std::vector<EngineDevice*> all;
