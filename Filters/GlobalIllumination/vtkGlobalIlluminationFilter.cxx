@@ -46,6 +46,39 @@ bool vtkGlobalIlluminationFilter::PollAsynchronousResult()
 }
 
 //------------------------------------------------------------------------------
+bool vtkGlobalIlluminationFilter::WaitForAsynchronousResult(double timeoutSeconds)
+{
+  const auto& async = this->Internals->Async;
+  if (!async || this->Internals->LastRequest == 0)
+  {
+    return false;
+  }
+  async->wait(this->Internals->LastRequest, timeoutSeconds);
+  return this->PollAsynchronousResult();
+}
+
+//------------------------------------------------------------------------------
+vtkTypeUInt64 vtkGlobalIlluminationFilter::GetAsynchronousRequest()
+{
+  return this->Internals->Async ? this->Internals->LastRequest : 0;
+}
+
+bool vtkGlobalIlluminationFilter::GetAsynchronousBusy()
+{
+  return this->Internals->Async && this->Internals->Async->busy();
+}
+
+vtkTypeUInt64 vtkGlobalIlluminationFilter::GetAsynchronousSolving()
+{
+  return this->Internals->Async ? this->Internals->Async->solving() : 0;
+}
+
+double vtkGlobalIlluminationFilter::GetAsynchronousProgress()
+{
+  return this->Internals->Async ? this->Internals->Async->progress() : 0.0;
+}
+
+//------------------------------------------------------------------------------
 vtkStandardNewMacro(vtkGlobalIlluminationFilter);
 
 //------------------------------------------------------------------------------

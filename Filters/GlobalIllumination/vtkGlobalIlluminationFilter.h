@@ -405,6 +405,27 @@ public:
   bool PollAsynchronousResult();
 
   /**
+   * In asynchronous mode: blocks until the worker has published the result of the newest
+   * request, or went idle without it (the update failed), for at most `timeoutSeconds`;
+   * then returns what PollAsynchronousResult returns. For scripts that want the finished
+   * picture. Returns false at once when nothing was requested.
+   */
+  bool WaitForAsynchronousResult(double timeoutSeconds = 1e9);
+
+  ///@{
+  /**
+   * In asynchronous mode: the id of the newest request (0 before the first), whether the
+   * worker is busy (a request waiting or being solved), the id of the request being solved
+   * (0 while the worker is idle) and the fraction of that update done. The output's
+   * LinkGI.ShownRequest says which request it shows.
+   */
+  vtkTypeUInt64 GetAsynchronousRequest();
+  bool GetAsynchronousBusy();
+  vtkTypeUInt64 GetAsynchronousSolving();
+  double GetAsynchronousProgress();
+  ///@}
+
+  /**
    * Includes the modification times of the lights and the environment texture.
    */
   vtkMTimeType GetMTime() override;

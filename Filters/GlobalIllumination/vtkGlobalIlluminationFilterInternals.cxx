@@ -214,7 +214,7 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   }
   this->Async->setBlend(static_cast<float>(self->TemporalBlend));
   // Returns at once; repeating the request of the scene already solved starts nothing.
-  this->Async->request(this->UpdateScene(self, input), this->Options(self));
+  this->LastRequest = this->Async->request(this->UpdateScene(self, input), this->Options(self));
   output->ShallowCopy(input);
   const std::string error = this->Async->lastError();
   if (!error.empty())

@@ -53,6 +53,7 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   // Asynchronous mode: the worker, and the request whose result the output shows.
   std::unique_ptr<linkgi::AsyncSolver> Async;
   std::uint64_t ShownRequest = 0;
+  std::uint64_t LastRequest = 0; // the newest request's id
   bool SolveAsynchronously(vtkGlobalIlluminationFilter* self, vtkPolyData* input, vtkPolyData* output);
 
   /// The filter's warnings of this update, then the engine's.

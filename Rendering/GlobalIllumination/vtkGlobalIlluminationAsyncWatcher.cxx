@@ -6,6 +6,8 @@
 #include "vtkObjectFactory.h"
 #include "vtkRenderWindowInteractor.h"
 
+#include <utility>
+
 vtkStandardNewMacro(vtkGlobalIlluminationAsyncWatcher);
 
 //------------------------------------------------------------------------------
@@ -36,6 +38,13 @@ void vtkGlobalIlluminationAsyncWatcher::SetFilter(vtkGlobalIlluminationFilter* f
 vtkGlobalIlluminationFilter* vtkGlobalIlluminationAsyncWatcher::GetFilter()
 {
   return this->Filter;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationAsyncWatcher::SetPollFunction(std::function<int()> function)
+{
+  this->PollFunction = std::move(function);
+  this->Modified();
 }
 
 //------------------------------------------------------------------------------
@@ -77,7 +86,24 @@ void vtkGlobalIlluminationAsyncWatcher::Stop()
 bool vtkGlobalIlluminationAsyncWatcher::Poll()
 {
   vtkRenderWindowInteractor* interactor = this->Interactor;
-  if (!this->Filter || !interactor || !this->Filter->PollAsynchronousResult())
+  if (!interactor)
+  {
+    return false;
+  }
+  int what = WAIT;
+  if (this->PollFunction)
+  {
+    what = this->PollFunction();
+  }
+  else if (this->Filter && this->Filter->PollAsynchronousResult())
+  {
+    what = RENDER;
+  }
+  if (what == STOP)
+  {
+    this->Stop();
+  }
+  if (what != RENDER)
   {
     return false;
   }

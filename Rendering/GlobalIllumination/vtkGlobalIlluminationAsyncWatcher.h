@@ -20,6 +20,10 @@
  * The watcher holds the filter and a weak reference to the interactor; Stop() and the
  * destructor remove the timer and the observer. Other timers of the interactor are left
  * alone (their ticks are not polls).
+ *
+ * Where the filter is out of reach (ParaView, whose filter may run on a server), a poll
+ * function says what to do on each tick instead: RENDER, WAIT (poll again) or STOP (stop
+ * watching until the next Watch()).
  */
 #ifndef vtkGlobalIlluminationAsyncWatcher_h
 #define vtkGlobalIlluminationAsyncWatcher_h
@@ -28,6 +32,8 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // for vtkSmartPointer
 #include "vtkWeakPointer.h"  // for vtkWeakPointer
+
+#include <functional> // for std::function
 
 class vtkCallbackCommand;
 class vtkGlobalIlluminationFilter;
@@ -47,6 +53,22 @@ public:
   void SetFilter(vtkGlobalIlluminationFilter* filter);
   vtkGlobalIlluminationFilter* GetFilter();
   ///@}
+
+  /// What a poll function asks for.
+  enum PollResult
+  {
+    STOP = 0,  ///< nothing more to wait for: stop watching
+    WAIT = 1,  ///< no new result yet: poll again
+    RENDER = 2 ///< a new result is ready: render
+  };
+
+  /**
+   * Polls with `function` (returning a PollResult) instead of the filter's
+   * PollAsynchronousResult; an empty function goes back to the filter. Not wrapped.
+   */
+#ifndef __VTK_WRAP__
+  void SetPollFunction(std::function<int()> function);
+#endif
 
   ///@{
   /**
@@ -73,8 +95,9 @@ public:
   vtkGetMacro(TimerId, int);
 
   /**
-   * One poll: if the filter has a result newer than its output, renders the interactor's
-   * window and returns true. The timer calls it; tests may too.
+   * One poll: if the filter (or the poll function) has a result newer than the one drawn,
+   * renders the interactor's window and returns true; stops watching when the poll function
+   * says STOP. The timer calls it; tests may too.
    */
   bool Poll();
 
@@ -95,6 +118,9 @@ private:
   static void OnTimer(vtkObject* caller, unsigned long event, void* self, void* callData);
 
   vtkSmartPointer<vtkGlobalIlluminationFilter> Filter;
+#ifndef __VTK_WRAP__
+  std::function<int()> PollFunction;
+#endif
   vtkWeakPointer<vtkRenderWindowInteractor> Interactor;
   vtkSmartPointer<vtkCallbackCommand> Command;
   unsigned long ObserverTag = 0;

@@ -3,7 +3,15 @@
 Checks that the plugin loaded in the GUI (its proxies are defined), and that the Cornell
 box shows with the Global Illumination representation in the GUI's own render view with a
 Light Inspector light. The GUI cannot fail a script, so a failure ends the process with
-exit code 1 (os._exit); on success --exit closes the GUI normally.
+exit code 1 (os._exit).
+
+The GUI never waits for global illumination: the script's Render returns before the first
+solution (a sphere over a floor at 1024 rays per vertex, whose links take seconds), and the
+script ends with the solution still pending. The GUI's event loop then runs, and the
+representation's watcher, on a timer of the view's interactor, must render the view by
+itself once the solution is ready: an observer of the interactor's timer ticks ends the
+process with 0 when the drawn solution is the newest request's, with 1 after 3000 ticks.
+So the test runs without --exit.
 """
 import os
 
@@ -42,6 +50,7 @@ try:
     view.AdditionalLights = [light]
     display = Show(box, view)
     display.Representation = "Global Illumination"
+    display.GlobalIlluminationWait = "Always"
     Render(view)
     display.SMProxy.UpdatePropertyInformation()
     updates = display.SMProxy.GetProperty("GlobalIlluminationUpdates").GetElement(0)
@@ -49,6 +58,47 @@ try:
 except Exception as error:  # anything: the GUI would only log it
     fail("showing the Cornell box failed: %s" % error)
 if updates != 1 or lights != 1:
-    fail("the GUI's view ran the filter %d times with %d lights (expected 1 and 1)"
+    fail("the GUI's view drew %d solutions with %d lights (expected 1 and 1)"
          % (updates, lights))
 say("ok: the GUI loaded the plugin and drew the Global Illumination representation")
+
+
+def information(display, name):
+    return display.SMProxy.GetProperty("GlobalIllumination" + name).GetElement(0)
+
+
+try:
+    Hide(box, view)
+    sphere = Sphere(Center=[0, 0.8, 0], Radius=0.5, ThetaResolution=160, PhiResolution=160)
+    floor = Plane(Origin=[-2, 0, -2], Point1=[-2, 0, 2], Point2=[2, 0, -2], XResolution=60,
+                  YResolution=60)
+    scene = AppendGeometry(Input=[sphere, floor])
+    gi = Show(scene, view)
+    gi.Representation = "Global Illumination"
+    gi.GlobalIlluminationRays = 1024
+    Render(view)
+    gi.SMProxy.UpdatePropertyInformation()
+    pending = (information(gi, "Updates"), information(gi, "NewestRequest"))
+    interactor = view.GetRenderWindow().GetInteractor()
+except Exception as error:
+    fail("showing the sphere failed: %s" % error)
+if gi.GlobalIlluminationWait != "In Scripts" or pending != (0, 1):
+    fail("the GUI's render waited (Wait %s; solutions drawn, newest request: %s)"
+         % (gi.GlobalIlluminationWait, pending))
+say("ok: the GUI's render returned before the first solution")
+
+ticks = [0]
+
+
+def on_tick(caller, event):
+    ticks[0] += 1
+    gi.SMProxy.UpdatePropertyInformation()
+    if information(gi, "Updates") == 1 and information(gi, "ShownRequest") == 1:
+        say("ok: the watcher rendered the solution when it was ready (after %d ticks)"
+            % ticks[0])
+        os._exit(0)
+    if ticks[0] >= 3000:
+        fail("no render showed the solution after %d timer ticks" % ticks[0])
+
+
+interactor.AddObserver("TimerEvent", on_tick)

@@ -35,6 +35,7 @@ struct AsyncSolver::Impl
   std::optional<Request> pending;
   std::uint64_t nextId = 1;
   std::uint64_t running = 0; // id being solved, 0 when idle
+  double progress = 0.0;     // fraction of the running update done
   bool stopping = false;
   std::shared_ptr<const AsyncResult> published;
   std::string error;
@@ -117,6 +118,12 @@ std::uint64_t AsyncSolver::solving() const
   return impl->running == ~std::uint64_t(0) ? 0 : impl->running;
 }
 
+double AsyncSolver::progress() const
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  return impl->running == 0 || impl->running == ~std::uint64_t(0) ? 0.0 : impl->progress;
+}
+
 bool AsyncSolver::wait(std::uint64_t request, double timeoutSeconds) const
 {
   std::unique_lock<std::mutex> lock(impl->mutex);
@@ -187,8 +194,13 @@ void AsyncSolver::Impl::solve(Request& request)
 {
   // The update stops at its next progress check after cancel() or the destructor, and, with
   // setAbortRunning(true), once a newer request is waiting.
-  const ProgressCallback stillWanted = [this, id = request.id](const char*, double) {
+  {
     std::lock_guard<std::mutex> lock(mutex);
+    progress = 0.0;
+  }
+  const ProgressCallback stillWanted = [this, id = request.id](const char*, double fraction) {
+    std::lock_guard<std::mutex> lock(mutex);
+    progress = std::max(progress, fraction);
     return !stopping && running == id && !(abortRunning && pending.has_value());
   };
   try

@@ -3,9 +3,11 @@
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkCompositeDataSet.h"
+#include "vtkCompositeRepresentation.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkGlobalIlluminationAsyncWatcher.h"
 #include "vtkGlobalIlluminationCompositeMapper.h"
 #include "vtkGlobalIlluminationDrawnAlbedo.h"
 #include "vtkGlobalIlluminationFilter.h"
@@ -19,9 +21,17 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
+#include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMProxy.h"
+#include "vtkSMProxyIterator.h"
+#include "vtkSMProxyManager.h"
+#include "vtkSMSession.h"
+#include "vtkSMSessionProxyManager.h"
 #include "vtkSmartPointer.h"
 #include "vtkVariant.h"
+#include "vtkWeakPointer.h"
 
 #include <set>
 #include <string>
@@ -50,6 +60,33 @@ int FieldInt(vtkDataObject* data, const char* name)
   vtkAbstractArray* array = data ? data->GetFieldData()->GetAbstractArray(name) : nullptr;
   return array && array->GetNumberOfTuples() > 0 ? array->GetVariantValue(0).ToInt() : 0;
 }
+
+/// The registered representation proxy whose active representation in this process is
+/// `object` (its Global Illumination subproxy's), or nullptr.
+vtkSMProxy* FindProxy(vtkObject* object)
+{
+  vtkSMProxyManager* manager = vtkSMProxyManager::IsInitialized() ? vtkSMProxyManager::GetProxyManager() : nullptr;
+  vtkSMSessionProxyManager* session = manager ? manager->GetActiveSessionProxyManager() : nullptr;
+  if (!session)
+  {
+    return nullptr;
+  }
+  vtkNew<vtkSMProxyIterator> it;
+  it->SetSessionProxyManager(session);
+  it->SetModeToOneGroup();
+  for (it->Begin("representations"); !it->IsAtEnd(); it->Next())
+  {
+    vtkSMProxy* proxy = it->GetProxy();
+    auto* composite = vtkCompositeRepresentation::SafeDownCast(proxy->GetClientSideObject());
+    if (composite && composite->GetActiveRepresentation() == object)
+    {
+      return proxy;
+    }
+  }
+  return nullptr;
+}
+
+const char* const BackgroundText = "Global illumination (background)";
 }
 
 //------------------------------------------------------------------------------
@@ -64,6 +101,14 @@ struct vtkGlobalIlluminationRepresentation::vtkInternals
   // What the mapper drew last (its block attributes are per block object).
   vtkDataObject* Drawn = nullptr;
   vtkMTimeType DrawnTime = 0;
+
+  int ShownRequest = 0; // the worker's request whose solution is drawn
+
+  // Where renders do not wait, on the process with the view's interactor (the GUI's
+  // client): polls the representation proxy, this object or its copy on the server.
+  vtkNew<vtkGlobalIlluminationAsyncWatcher> Watcher;
+  vtkWeakPointer<vtkSMProxy> Proxy;
+  bool ToldServers = false;
 };
 
 vtkStandardNewMacro(vtkGlobalIlluminationRepresentation);
@@ -83,26 +128,18 @@ vtkGlobalIlluminationRepresentation::vtkGlobalIlluminationRepresentation()
   this->SetupDefaults();
 
   vtkGlobalIlluminationFilter* filter = this->Internals->Filter;
-  filter->AddObserver(vtkCommand::ProgressEvent, this, &vtkGlobalIlluminationRepresentation::OnFilterEvent);
-  filter->AddObserver(vtkCommand::EndEvent, this, &vtkGlobalIlluminationRepresentation::OnFilterEvent);
+  // A render never waits for the solver unless WaitForSolution says so.
+  filter->SetAsynchronous(true);
   filter->AddObserver(vtkCommand::WarningEvent, this, &vtkGlobalIlluminationRepresentation::OnFilterEvent);
+  this->Internals->Watcher->SetInterval(100);
+  this->Internals->Watcher->SetPollFunction([this] { return this->PollForSolution(); });
 }
 
 //------------------------------------------------------------------------------
 void vtkGlobalIlluminationRepresentation::OnFilterEvent(vtkObject*, unsigned long event, void* data)
 {
   vtkInternals& internals = *this->Internals;
-  if (event == vtkCommand::ProgressEvent)
-  {
-    // Through this representation, ParaView's progress bar shows the filter's progress.
-    this->SetProgressText(internals.Filter->GetProgressText());
-    this->UpdateProgress(internals.Filter->GetProgress());
-  }
-  else if (event == vtkCommand::EndEvent)
-  {
-    ++this->NumberOfUpdates;
-  }
-  else if (event == vtkCommand::WarningEvent && data)
+  if (event == vtkCommand::WarningEvent && data)
   {
     // The filter runs on every light change: show each of its warnings once, not per frame.
     const std::string message = static_cast<const char*>(data);
@@ -114,7 +151,11 @@ void vtkGlobalIlluminationRepresentation::OnFilterEvent(vtkObject*, unsigned lon
 }
 
 //------------------------------------------------------------------------------
-vtkGlobalIlluminationRepresentation::~vtkGlobalIlluminationRepresentation() = default;
+vtkGlobalIlluminationRepresentation::~vtkGlobalIlluminationRepresentation()
+{
+  this->Internals->Watcher->Stop();
+  this->Internals->Watcher->SetPollFunction(nullptr);
+}
 
 //------------------------------------------------------------------------------
 void vtkGlobalIlluminationRepresentation::SetSuppressLOD(bool)
@@ -155,7 +196,117 @@ int vtkGlobalIlluminationRepresentation::ProcessViewRequest(
   }
   internals.Drawn = lit;
   internals.DrawnTime = lit ? lit->GetMTime() : 0;
+
+  if (!this->GetWaits())
+  {
+    this->WatchForSolutions(view);
+  }
   return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationRepresentation::GetWaits()
+{
+  switch (this->WaitForSolution)
+  {
+    case WAIT_NEVER:
+      return false;
+    case WAIT_ALWAYS:
+      return true;
+    default:
+      // Only the Qt GUI asks for vtkGenericOpenGLRenderWindow; its servers are told.
+      return !(this->InteractiveClient || vtkPVView::GetUseGenericOpenGLRenderWindow());
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationRepresentation::WaitForSolutionNow()
+{
+  vtkGlobalIlluminationFilter* filter = this->Internals->Filter;
+  for (;;)
+  {
+    if (filter->WaitForAsynchronousResult(0.05))
+    {
+      filter->Update(); // draws the new solution
+    }
+    const int shown = FieldInt(filter->GetOutputDataObject(0), "LinkGI.ShownRequest");
+    if (static_cast<vtkTypeUInt64>(shown) >= filter->GetAsynchronousRequest() ||
+      !filter->GetAsynchronousBusy())
+    {
+      return;
+    }
+    this->SetProgressText(BackgroundText);
+    this->UpdateProgress(filter->GetAsynchronousProgress());
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationRepresentation::GetAsynchronousState()
+{
+  vtkGlobalIlluminationFilter* filter = this->Internals->Filter;
+  const int shown = FieldInt(filter->GetOutputDataObject(0), "LinkGI.ShownRequest");
+  if (filter->PollAsynchronousResult())
+  {
+    return READY;
+  }
+  if (filter->GetAsynchronousBusy() || static_cast<vtkTypeUInt64>(shown) < filter->GetAsynchronousRequest())
+  {
+    this->SetProgressText(BackgroundText);
+    this->UpdateProgress(filter->GetAsynchronousProgress());
+    return SOLVING;
+  }
+  return IDLE;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationRepresentation::WatchForSolutions(vtkPVRenderView* view)
+{
+  vtkGlobalIlluminationAsyncWatcher* watcher = this->Internals->Watcher;
+  vtkRenderWindowInteractor* interactor = view->GetInteractor();
+  if (interactor && (watcher->GetInteractor() != interactor || watcher->GetTimerId() < 0))
+  {
+    watcher->Watch(interactor);
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationRepresentation::PollForSolution()
+{
+  // Through the proxy, so that a filter on a server is asked too; in a builtin session this
+  // calls GetAsynchronousState here. The poll is a progress request of its own, so that the
+  // progress the worker reports reaches ParaView's progress bar between renders.
+  vtkInternals& internals = *this->Internals;
+  if (!internals.Proxy)
+  {
+    internals.Proxy = FindProxy(this);
+  }
+  vtkSMProxy* proxy = internals.Proxy;
+  if (!proxy)
+  {
+    return vtkGlobalIlluminationAsyncWatcher::STOP;
+  }
+  if (!internals.ToldServers && vtkPVView::GetUseGenericOpenGLRenderWindow())
+  {
+    // A remote server cannot see that its client is the GUI: tell it (not a state change).
+    internals.ToldServers = true;
+    vtkSMPropertyHelper(proxy, "GlobalIlluminationInteractiveClient").Set(1);
+    proxy->UpdateVTKObjects();
+  }
+  // (The state is an exposed property of the subproxy: updating all information properties
+  // reaches it.)
+  vtkSMSession* session = proxy->GetSession();
+  session->PrepareProgress();
+  proxy->UpdatePropertyInformation();
+  session->CleanupPendingProgress();
+  switch (vtkSMPropertyHelper(proxy, "GlobalIlluminationState").GetAsInt())
+  {
+    case READY:
+      return vtkGlobalIlluminationAsyncWatcher::RENDER;
+    case SOLVING:
+      return vtkGlobalIlluminationAsyncWatcher::WAIT;
+    default:
+      return vtkGlobalIlluminationAsyncWatcher::STOP;
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -189,8 +340,25 @@ vtkDataObject* vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
   {
     filter->SetInputDataObject(input);
   }
-  filter->Update();
-  return filter->GetOutputDataObject(0);
+  filter->Update(); // returns at once, with the newest finished solution
+  if (this->GetWaits())
+  {
+    this->WaitForSolutionNow();
+  }
+  else if (filter->GetAsynchronousBusy())
+  {
+    // What ParaView's progress bar shows during this render.
+    this->SetProgressText(BackgroundText);
+    this->UpdateProgress(filter->GetAsynchronousProgress());
+  }
+  vtkDataObject* output = filter->GetOutputDataObject(0);
+  const int shown = FieldInt(output, "LinkGI.ShownRequest");
+  if (shown != 0 && shown != internals.ShownRequest)
+  {
+    internals.ShownRequest = shown;
+    ++this->NumberOfUpdates;
+  }
+  return output;
 }
 
 //------------------------------------------------------------------------------
@@ -320,6 +488,16 @@ void vtkGlobalIlluminationRepresentation::SetUseKeyLight(bool use)
   this->UseKeyLight = use;
 }
 
+void vtkGlobalIlluminationRepresentation::SetTemporalBlend(double factor)
+{
+  this->Internals->Filter->SetTemporalBlend(factor);
+}
+
+double vtkGlobalIlluminationRepresentation::GetTemporalBlend()
+{
+  return this->Internals->Filter->GetTemporalBlend();
+}
+
 //------------------------------------------------------------------------------
 int vtkGlobalIlluminationRepresentation::GetLinkBuilds()
 {
@@ -334,6 +512,21 @@ int vtkGlobalIlluminationRepresentation::GetLightLinkBuilds()
 int vtkGlobalIlluminationRepresentation::GetBounceRuns()
 {
   return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.BounceRuns");
+}
+
+int vtkGlobalIlluminationRepresentation::GetNewestRequest()
+{
+  return static_cast<int>(this->Internals->Filter->GetAsynchronousRequest());
+}
+
+int vtkGlobalIlluminationRepresentation::GetShownRequest()
+{
+  return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.ShownRequest");
+}
+
+int vtkGlobalIlluminationRepresentation::GetSolvingRequest()
+{
+  return static_cast<int>(this->Internals->Filter->GetAsynchronousSolving());
 }
 
 int vtkGlobalIlluminationRepresentation::GetNumberOfLights()
@@ -372,6 +565,8 @@ void vtkGlobalIlluminationRepresentation::PrintSelf(ostream& os, vtkIndent inden
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Use Key Light: " << (this->UseKeyLight ? "On" : "Off") << "\n";
   os << indent << "Number Of Updates: " << this->NumberOfUpdates << "\n";
+  os << indent << "Wait For Solution: " << this->WaitForSolution << "\n";
+  os << indent << "Interactive Client: " << (this->InteractiveClient ? "On" : "Off") << "\n";
   os << indent << "Filter:\n";
   this->Internals->Filter->PrintSelf(os, indent.GetNextIndent());
 }

@@ -16,8 +16,21 @@
  *   light that the filter computes. (The mapper draws the direct light of all lights.)
  * When a light moves or changes, or the camera moves a camera light, the next render
  * recomputes only the direct light and the bounces; the links are rebuilt only when the
- * data or the ray settings change. Progress is reported through this representation,
- * which ParaView's progress bar shows.
+ * data or the ray settings change.
+ *
+ * The filter solves asynchronously (vtkGlobalIlluminationFilter's Asynchronous mode): a
+ * render hands the scene to a background worker and draws at once with the newest finished
+ * solution. Before the first one the view shows the direct light with shadows and no
+ * indirect light; after a change it keeps the last indirect light until the new one
+ * arrives. A change while the worker is busy replaces the request waiting, never queues
+ * behind it. WaitForSolution says whether a render waits for the pending solution instead:
+ * by default (WAIT_AUTOMATIC) scripts (pvbatch, pvpython) wait, so Render() and
+ * SaveScreenshot() give the finished picture, and the GUI never does. Where the view has an
+ * interactor and renders do not wait (the GUI), a vtkGlobalIlluminationAsyncWatcher on that
+ * interactor polls for the new solution and renders through it, which ParaView turns into a
+ * render of the view proxy (on the server too, in client-server mode); its polls also show
+ * the worker's progress in ParaView's progress bar. Renders report the worker's progress
+ * through this representation as well.
  *
  * The albedo is the colour the surface is drawn with: an `Albedo` point array if the data
  * has one, else the colours mapped from the coloring array, else the solid colour, times
@@ -35,6 +48,7 @@
 
 class vtkGlobalIlluminationFilter;
 class vtkGlobalIlluminationShading;
+class vtkPVRenderView;
 class vtkRenderer;
 
 class LINKGIPARAVIEWGLOBALILLUMINATION_EXPORT vtkGlobalIlluminationRepresentation
@@ -87,10 +101,66 @@ public:
 
   ///@{
   /**
+   * Indirect light of each new solution blended with the previous one, as
+   * factor * new + (1 - factor) * previous (the filter's TemporalBlend): damps flicker of
+   * the indirect light while lights or the camera move. 1 shows each solution as it is. The
+   * default value is 1.
+   */
+  void SetTemporalBlend(double factor);
+  double GetTemporalBlend();
+  ///@}
+
+  /// When renders wait for the pending solution.
+  enum WaitModes
+  {
+    WAIT_NEVER = 0,    ///< never: draw the newest finished solution (animations)
+    WAIT_ALWAYS = 1,   ///< always: every render shows the solution of its own scene
+    WAIT_AUTOMATIC = 2 ///< in scripts (pvbatch, pvpython), never in the GUI
+  };
+
+  ///@{
+  /**
+   * When a render waits for the pending solution, a WaitModes value. The default value is
+   * WAIT_AUTOMATIC.
+   */
+  vtkSetClampMacro(WaitForSolution, int, WAIT_NEVER, WAIT_AUTOMATIC);
+  vtkGetMacro(WaitForSolution, int);
+  ///@}
+
+  ///@{
+  /**
+   * Set by the GUI's client on the servers in client-server mode (the servers cannot tell
+   * who their client is): renders there are interactive, WAIT_AUTOMATIC does not wait. Not
+   * saved in state files. The default value is off.
+   */
+  vtkSetMacro(InteractiveClient, bool);
+  vtkGetMacro(InteractiveClient, bool);
+  ///@}
+
+  /// Whether renders wait now (WaitForSolution resolved for this process).
+  bool GetWaits();
+
+  /// What the background worker is doing, as GetAsynchronousState reports it.
+  enum AsynchronousStates
+  {
+    IDLE = 0,    ///< nothing requested, or the newest solution is drawn
+    SOLVING = 1, ///< a request is waiting or being solved
+    READY = 2    ///< a solution newer than the drawn one is ready: render to show it
+  };
+
+  /**
+   * An AsynchronousStates value; while SOLVING, also reports the worker's progress through
+   * this representation (what ParaView's progress bar shows). Polled by the GUI's client.
+   */
+  int GetAsynchronousState();
+
+  ///@{
+  /**
    * What the last update did, for tests and the curious: the filter's counters (its
    * lifetime numbers of link builds, light-link builds and bounce runs), the number of
-   * times the filter ran, the lights it used, and the mean of the indirect irradiance
-   * over the points and channels.
+   * solutions drawn, the lights it used, and the mean of the indirect irradiance over the
+   * points and channels. The requests to the worker: the newest one's id, the drawn
+   * solution's and the id being solved (0 while idle).
    */
   int GetLinkBuilds();
   int GetLightLinkBuilds();
@@ -98,6 +168,9 @@ public:
   int GetNumberOfUpdates() { return this->NumberOfUpdates; }
   int GetNumberOfLights();
   double GetMeanIndirectIrradiance();
+  int GetNewestRequest();
+  int GetShownRequest();
+  int GetSolvingRequest();
   ///@}
 
   /// The internal filter, for C++ callers.
@@ -117,11 +190,22 @@ protected:
   /// Copies the renderer's lights that are bounced into the filter's own world-space lights.
   void GatherLights(vtkRenderer* renderer);
 
-  /// The filter's progress, end and warning events.
+  /// Blocks until the pending solution is drawn, reporting the worker's progress.
+  void WaitForSolutionNow();
+
+  /// Where this process renders interactively without waiting: polls for new solutions.
+  void WatchForSolutions(vtkPVRenderView* view);
+
+  /// One poll of the watcher: a vtkGlobalIlluminationAsyncWatcher::PollResult.
+  int PollForSolution();
+
+  /// The filter's warning events.
   void OnFilterEvent(vtkObject* caller, unsigned long event, void* data);
 
   bool UseKeyLight = true;
   int NumberOfUpdates = 0;
+  int WaitForSolution = WAIT_AUTOMATIC;
+  bool InteractiveClient = false;
 
 private:
   vtkGlobalIlluminationRepresentation(const vtkGlobalIlluminationRepresentation&) = delete;

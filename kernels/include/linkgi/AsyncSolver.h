@@ -56,6 +56,9 @@ public:
   bool busy() const;
   /// The id of the request being solved, 0 when the worker is idle or waiting.
   std::uint64_t solving() const;
+  /// The fraction of the update being solved that is done, in [0, 1] (0 while idle): the
+  /// solver's own progress, for progress bars.
+  double progress() const;
   /// Blocks until `request` (or a newer request) has been published, the worker went idle
   /// without publishing it (superseded, cancelled or failed), or `timeoutSeconds` passed.
   /// Returns true if a result for `request` or newer is available.

@@ -1,0 +1,159 @@
+"""pvbatch: the Global Illumination representation solves in the background.
+
+Whether an update is still running when something is checked is read from the
+representation's request ids (the worker's newest request, the one whose solution is drawn,
+the one being solved), never assumed from how long anything takes. A check whose
+precondition did not hold (the worker was quicker than a render) fails naming it.
+
+1. Render and SaveScreenshot with the default Wait For Global Illumination (In Scripts)
+   wait for the solution: after the lamp moves, SaveScreenshot (no Render before it) gives
+   the picture of the baseline made when the representation solved synchronously.
+2. A render during a pending update does not wait and shows the previous indirect light:
+   after Rays Per Vertex changes (a link rebuild) the Indirect display's pixels equal the
+   previous frame's, while the new request is still unsolved; Wait = Always then shows the
+   new solution, which differs.
+3. Changes while a solve runs replace the request waiting instead of queueing: two light
+   moves during a link rebuild give exactly one newer solution (the second move's): the
+   solver ran the bounces twice (the rebuild's and that one) and built light links once.
+"""
+import os
+
+from paraview.simple import *  # noqa: F401,F403 (the pvbatch idiom)
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+import linkgi_paraview_testing as t
+
+arguments = t.parse_arguments()
+t.load_plugin(arguments.plugin, globals())
+
+
+def statistics(display):
+    proxy = display.SMProxy
+    proxy.UpdatePropertyInformation()
+    names = ("LinkBuilds", "LightLinkBuilds", "BounceRuns", "Updates", "NewestRequest",
+             "ShownRequest", "SolvingRequest")
+    return {n: proxy.GetProperty("GlobalIllumination" + n).GetElement(0) for n in names}
+
+
+def pixels(view, name):
+    """The view's picture as saved by SaveScreenshot, as an array."""
+    path = os.path.join(arguments.output_dir, name + ".png")
+    SaveScreenshot(path, view, ImageResolution=list(view.ViewSize), TransparentBackground=0)
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars()).copy()
+
+
+os.makedirs(arguments.output_dir, exist_ok=True)
+
+# 1. The scene of TestGlobalIlluminationRepresentation's baseline, shown and saved at once.
+view = CreateView("RenderView")
+view.ViewSize = [400, 400]
+view.OrientationAxesVisibility = 0
+view.UseLight = 0
+view.Background = [0.32, 0.34, 0.43]
+light = CreateLight()
+light.Coords = "Scene"
+light.Type = "Positional"
+light.Position = [0.278, 0.4488, 0.2795]
+light.ConeAngle = 180
+light.Intensity = 0.85
+light.DiffuseColor = [1.0, 0.706, 0.235]
+view.AdditionalLights = [light]
+box = GlobalIlluminationScene(Scene="cornell")
+display = Show(box, view)
+display.Representation = "Global Illumination"
+display.GlobalIlluminationRays = 256
+display.GlobalIlluminationToneMapping = "Exponential"
+view.CameraPosition = [0.278, 0.274, -0.8]
+view.CameraFocalPoint = [0.278, 0.274, 0.28]
+view.CameraViewUp = [0, 1, 0]
+view.CameraViewAngle = 40
+t.check(display.GlobalIlluminationWait == "In Scripts",
+        "scripts wait for the solution by default")
+# The first Render (which places the camera as in the baseline) with the lamp elsewhere;
+# then SaveScreenshot, with no Render, of the baseline's lamp.
+light.Position = [0.15, 0.4488, 0.15]
+Render(view)
+first = statistics(display)
+t.check(first["Updates"] == 1 and first["ShownRequest"] == first["NewestRequest"] and
+        first["BounceRuns"] == 1,
+        "Render drew the solution of its own request, solved once: %s" % first)
+light.Position = [0.278, 0.4488, 0.2795]
+t.compare_with_baseline(view, "ParaViewGlobalIlluminationRepresentation", arguments)
+saved = statistics(display)
+t.check(saved["Updates"] == 2 and saved["ShownRequest"] == saved["NewestRequest"] and
+        saved["BounceRuns"] == 2,
+        "SaveScreenshot waited for the moved lamp's solution: %s" % saved)
+
+# A larger scene, so that a link rebuild outlasts a few renders.
+Hide(box, view)
+sphere = Sphere(Center=[0, 0.8, 0], Radius=0.5, ThetaResolution=160, PhiResolution=160)
+floor = Plane(Origin=[-2, 0, -2], Point1=[-2, 0, 2], Point2=[2, 0, -2], XResolution=60,
+              YResolution=60)
+scene = AppendGeometry(Input=[sphere, floor])
+gi = Show(scene, view)
+gi.Representation = "Global Illumination"
+gi.GlobalIlluminationRays = 64
+light.Position = [1.0, 2.5, 1.0]
+light.Intensity = 3.0
+view.CameraPosition = [0, 3, 6]
+view.CameraFocalPoint = [0, 0.5, 0]
+view.CameraViewUp = [0, 1, 0]
+Render(view)
+gi.GlobalIlluminationDisplayMode = "Indirect"
+before = pixels(view, "AsyncIndirectBefore")
+solved = statistics(gi)
+t.check(solved["ShownRequest"] == solved["NewestRequest"] and before.max() > 0,
+        "the first solution is drawn, with indirect light")
+
+# 2. A link rebuild in the background: renders do not wait and keep the old indirect light.
+gi.GlobalIlluminationWait = "Never"
+gi.GlobalIlluminationRays = 1024
+Render(view)
+during = pixels(view, "AsyncIndirectDuring")
+pending = statistics(gi)
+if pending["ShownRequest"] != solved["ShownRequest"]:
+    t.fail("precondition: the link rebuild finished before the screenshot (%s); the scene "
+           "is too small for this machine" % pending)
+t.check(pending["NewestRequest"] == solved["NewestRequest"] + 1,
+        "the render handed the new rays to the worker (request %d)" % pending["NewestRequest"])
+t.check((during == before).all(),
+        "while it is solved, the picture keeps the previous indirect light, pixel for pixel")
+gi.GlobalIlluminationWait = "Always"
+after = pixels(view, "AsyncIndirectAfter")
+done = statistics(gi)
+t.check(done["ShownRequest"] == pending["NewestRequest"] and done["LinkBuilds"] == 2,
+        "Wait = Always drew the rebuilt links' solution: %s" % done)
+t.check(not (after == before).all(), "the new solution changed the picture")
+gi.GlobalIlluminationDisplayMode = "Combined"
+
+# 3. Two light moves while the links are rebuilt: the first move's request is replaced.
+gi.GlobalIlluminationWait = "Never"
+gi.GlobalIlluminationRays = 576
+Render(view)
+rebuild = statistics(gi)
+light.Position = [-1.0, 2.5, 1.0]
+Render(view)
+light.Position = [-1.0, 2.5, -1.0]
+Render(view)
+moved = statistics(gi)
+if moved["SolvingRequest"] != rebuild["NewestRequest"]:
+    t.fail("precondition: the link rebuild (request %d) ended before both moves were "
+           "requested (%s)" % (rebuild["NewestRequest"], moved))
+t.check(moved["NewestRequest"] == rebuild["NewestRequest"] + 2,
+        "each move made a request (%d, %d)" % (rebuild["NewestRequest"] + 1,
+                                               moved["NewestRequest"]))
+gi.GlobalIlluminationWait = "Always"
+Render(view)
+final = statistics(gi)
+t.check(final["ShownRequest"] == moved["NewestRequest"],
+        "the second move's solution is drawn (request %d)" % final["ShownRequest"])
+t.check(final["BounceRuns"] == done["BounceRuns"] + 2 and
+        final["LightLinkBuilds"] == done["LightLinkBuilds"] + 1,
+        "the solver ran twice, the rebuild and the second move (one light-link build); the "
+        "first move never ran: bounce runs %d -> %d, light-link builds %d -> %d"
+        % (done["BounceRuns"], final["BounceRuns"], done["LightLinkBuilds"],
+           final["LightLinkBuilds"]))
