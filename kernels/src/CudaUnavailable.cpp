@@ -40,4 +40,9 @@ std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
 {
   throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
 }
+
+std::vector<Vec3f> gatherCuda(const Scene&, const VplSet&, const GatherParams&, bool)
+{
+  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
+}
 }

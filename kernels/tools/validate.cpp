@@ -22,6 +22,8 @@ struct Args
   std::vector<std::string> scenes = { "cornell", "colorlamp", "torso", "tearoom" };
   SolverOptions options;
   std::uint32_t referenceFactor = 16; ///< reference paths per vertex = factor * n_C
+  /// Instant radiosity: each VPL count of --vpls a,b,c against the same reference.
+  std::vector<std::uint32_t> vplCounts;
 };
 
 Args parse(int argc, char** argv)
@@ -51,7 +53,14 @@ Args parse(int argc, char** argv)
     else if (arg == "--method")
       a.options.method = methodByName(value);
     else if (arg == "--vpls")
-      a.options.instantRadiosity.vplCount = std::stoul(value);
+    {
+      std::stringstream ss(value);
+      for (std::string n; std::getline(ss, n, ',');)
+      {
+        a.vplCounts.push_back(std::stoul(n));
+      }
+      a.options.instantRadiosity.vplCount = a.vplCounts.front();
+    }
     else if (arg == "--clamp")
       a.options.instantRadiosity.clampDistance = std::stof(value);
     else if (arg == "--interleave")
@@ -93,11 +102,38 @@ std::vector<Vec3f> sum(const std::vector<Vec3f>& a, const std::vector<Vec3f>& b)
   return t;
 }
 
+/// The options of each run: one, or one per VPL count of --vpls.
+std::vector<SolverOptions> runs(const Args& args)
+{
+  std::vector<SolverOptions> list;
+  for (std::uint32_t n : args.vplCounts)
+  {
+    list.push_back(args.options);
+    list.back().instantRadiosity.vplCount = n;
+  }
+  if (list.empty())
+  {
+    list.push_back(args.options);
+  }
+  return list;
+}
+
+/// Instant radiosity's options as JSON fields (empty for the other methods).
+std::string methodJson(const SolverOptions& o)
+{
+  if (o.method != Method::InstantRadiosity)
+  {
+    return "";
+  }
+  const InstantRadiosityOptions& ir = o.instantRadiosity;
+  return ",\"clamp\":" + std::to_string(ir.clampDistance) + ",\"interleave\":" +
+    std::to_string(ir.interleave) + ",\"proxy\":" +
+    std::to_string(ir.proxyVisibility ? ir.proxyResolution : 0);
+}
+
 void validateScene(const std::string& name, const Args& args)
 {
   const Scene scene = makeStandardScene(name);
-  Solver solver;
-  const Solution& sol = solver.update(scene, args.options);
   ReferenceOptions ro;
   ro.pathsPerVertex = args.referenceFactor * args.options.raysPerVertex;
   ro.bounces = args.options.bounces;
@@ -105,41 +141,48 @@ void validateScene(const std::string& name, const Args& args)
   const ReferenceSolution ref = solveReference(scene, ro);
   const double msReference =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  const ErrorMetrics e = relativeRmse(
-    sum(sol.direct, sol.indirect), sum(ref.direct, ref.indirect), vertexAreas(scene));
-  const ErrorMetrics ei = relativeRmse(sol.indirect, ref.indirect, vertexAreas(scene));
-  std::printf("{\"scene\":\"%s\",\"method\":\"%s\",\"vertices\":%zu,\"rays_per_vertex\":%u,"
-              "\"vpls\":%llu,\"bounces\":%u,\"smoothing\":%d,\"oversampling\":%d,\"reference_paths_per_vertex\":%u,\"rel_rmse_r\":%.4f,\"rel_rmse_g\":%.4f,"
-              "\"rel_rmse_b\":%.4f,\"rel_rmse_luminance\":%.4f,\"indirect_rel_rmse_luminance\":%.4f,"
-              "\"ms_solver\":%.1f,\"ms_reference\":%.1f}\n",
-    name.c_str(), solver.stats().method.c_str(), scene.vertexCount(), args.options.raysPerVertex,
-    (unsigned long long)solver.stats().vpls, args.options.bounces, int(args.options.smoothing), int(args.options.lightOversampling), ro.pathsPerVertex, e.relRmse.x, e.relRmse.y, e.relRmse.z, e.relRmseLuminance,
-    ei.relRmseLuminance, solver.stats().msTotal, msReference);
-  std::fflush(stdout);
+  for (const SolverOptions& options : runs(args))
+  {
+    Solver solver;
+    const Solution& sol = solver.update(scene, options);
+    const ErrorMetrics e = relativeRmse(
+      sum(sol.direct, sol.indirect), sum(ref.direct, ref.indirect), vertexAreas(scene));
+    const ErrorMetrics ei = relativeRmse(sol.indirect, ref.indirect, vertexAreas(scene));
+    std::printf("{\"scene\":\"%s\",\"method\":\"%s\",\"vertices\":%zu,\"rays_per_vertex\":%u,"
+                "\"vpls\":%llu,\"bounces\":%u,\"smoothing\":%d,\"oversampling\":%d,\"reference_paths_per_vertex\":%u,\"rel_rmse_r\":%.4f,\"rel_rmse_g\":%.4f,"
+                "\"rel_rmse_b\":%.4f,\"rel_rmse_luminance\":%.4f,\"indirect_rel_rmse_luminance\":%.4f,"
+                "\"ms_solver\":%.1f,\"ms_reference\":%.1f%s}\n",
+      name.c_str(), solver.stats().method.c_str(), scene.vertexCount(), options.raysPerVertex,
+      (unsigned long long)solver.stats().vpls, options.bounces, int(options.smoothing), int(options.lightOversampling), ro.pathsPerVertex, e.relRmse.x, e.relRmse.y, e.relRmse.z, e.relRmseLuminance,
+      ei.relRmseLuminance, solver.stats().msTotal, msReference, methodJson(options).c_str());
+    std::fflush(stdout);
+  }
 }
 
 void validateFurnace(const Args& args)
 {
   const Scene scene = makeStandardScene("furnace");
-  SolverOptions o = args.options;
-  o.bounces = 12; // residual rho^13 = 1e-4
-  Solver solver;
-  const Solution& sol = solver.update(scene, o);
-  const std::vector<float> area = vertexAreas(scene);
-  double worst = 0, mean = 0, total = 0;
-  for (std::size_t v = 0; v < scene.vertexCount(); ++v)
+  for (SolverOptions o : runs(args))
   {
-    const double ratio = sol.radiance[v].x * (1.0 - scene.albedo[v].x) / scene.emission[v].x;
-    worst = std::max(worst, std::abs(ratio - 1.0));
-    mean += area[v] * ratio;
-    total += area[v];
+    o.bounces = 12; // residual rho^13 = 1e-4
+    Solver solver;
+    const Solution& sol = solver.update(scene, o);
+    const std::vector<float> area = vertexAreas(scene);
+    double worst = 0, mean = 0, total = 0;
+    for (std::size_t v = 0; v < scene.vertexCount(); ++v)
+    {
+      const double ratio = sol.radiance[v].x * (1.0 - scene.albedo[v].x) / scene.emission[v].x;
+      worst = std::max(worst, std::abs(ratio - 1.0));
+      mean += area[v] * ratio;
+      total += area[v];
+    }
+    std::printf("{\"scene\":\"furnace\",\"method\":\"%s\",\"vertices\":%zu,\"rays_per_vertex\":%u,"
+                "\"vpls\":%llu,\"bounces\":%u,\"max_rel_error\":%.5f,\"mean_rel_error\":%.5f,"
+                "\"ms_solver\":%.1f}\n",
+      solver.stats().method.c_str(), scene.vertexCount(), o.raysPerVertex,
+      (unsigned long long)solver.stats().vpls, o.bounces, worst, std::abs(mean / total - 1.0),
+      solver.stats().msTotal);
   }
-  std::printf("{\"scene\":\"furnace\",\"method\":\"%s\",\"vertices\":%zu,\"rays_per_vertex\":%u,"
-              "\"vpls\":%llu,\"bounces\":%u,\"max_rel_error\":%.5f,\"mean_rel_error\":%.5f,"
-              "\"ms_solver\":%.1f}\n",
-    solver.stats().method.c_str(), scene.vertexCount(), o.raysPerVertex,
-    (unsigned long long)solver.stats().vpls, o.bounces, worst, std::abs(mean / total - 1.0),
-    solver.stats().msTotal);
 }
 }
 

@@ -37,4 +37,9 @@ VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32
 std::vector<Vec3f> gatherCpu(const Scene& scene, const std::vector<Vec3f>& shifts,
   const VplSet& vpls, const RayTracer* visibility, const GatherParams& params, bool twoSided,
   std::uint64_t* rays = nullptr, const ProgressCallback& progress = {});
+
+/// The same gather on the first GPU (mesh, BVH and shifts built there; exact visibility):
+/// for comparing the backends on one VPL set. Throws CudaError without a device or CUDA.
+std::vector<Vec3f> gatherCuda(const Scene& scene, const VplSet& vpls, const GatherParams& params,
+  bool twoSided);
 }

@@ -16,21 +16,38 @@ namespace linkgi::ir
 VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32_t subsets,
   const ProgressCallback& progress)
 {
-  const PathScene& view = setup.view;
+  PathScene view = setup.view;
   const std::uint32_t slotsPerPath = view.bounces + 1;
-  std::vector<Vpl> slots(std::size_t(view.paths) * slotsPerPath);
-  std::vector<int> counts(view.paths, 0);
+  std::vector<Vpl> slots;
+  std::vector<int> counts;
   const auto trace = [&tracer](const Ray& ray) {
     Hit h;
     tracer.trace(&ray, &h, 1);
     return h;
   };
-  parallelFor("VPLs", view.paths, 64, [&](std::size_t first, std::size_t last) {
-    for (std::size_t p = first; p < last; ++p)
+  const std::uint32_t target = setup.targetVpls;
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    slots.resize(std::size_t(view.paths) * slotsPerPath);
+    counts.assign(view.paths, 0);
+    parallelFor("VPLs", view.paths, 64, [&](std::size_t first, std::size_t last) {
+      for (std::size_t p = first; p < last; ++p)
+      {
+        counts[p] = traceLightPath(view, std::uint32_t(p), slots.data() + p * slotsPerPath, trace);
+      }
+    }, progress);
+    std::size_t found = 0;
+    for (int n : counts)
     {
-      counts[p] = traceLightPath(view, std::uint32_t(p), slots.data() + p * slotsPerPath, trace);
+      found += std::size_t(n);
     }
-  }, progress);
+    const std::uint32_t more = pass == 0 ? secondPassPaths(view.paths, found, target, slotsPerPath) : 0;
+    if (!more)
+    {
+      break;
+    }
+    view.paths = more;
+  }
   return packVpls(slots, counts, slotsPerPath, subsets);
 }
 

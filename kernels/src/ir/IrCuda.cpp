@@ -1,13 +1,404 @@
-// Instant radiosity on the GPU: not written yet. The orchestrator turns this CudaError into
-// a warning and runs the update on the CPU backend.
+// Instant radiosity on one GPU: the mesh, its BVH (cuda/DeviceBvh), the VPLs and the gather
+// stay on the device; the direct light and the finish (smoothing, radiance) are the link
+// method's CUDA launchers (cuda/Kernels.h). The host builds the source table and packs the
+// VPL set (the same packVpls as the CPU, so both backends gather the same layout).
 #include "ir/IrBackends.h"
+#include "ir/IrKernels.h"
+
+#include "cuda/DeviceBvh.h"
+#include "cuda/DeviceTopology.h"
+#include "cuda/GPUBuffer.h"
 
 #include "linkgi/Cuda.h"
 
+#include <cmath>
+
 namespace linkgi::ir
 {
-std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
+namespace
 {
-  throw CudaError("The instant-radiosity method has no CUDA backend yet; it runs on the CPU.", false);
+using namespace engine;
+using cuda::GPUBuffer;
+using cuda::Rgba;
+
+/// The mesh on the GPU: arrays, topology, shifts, face normals and BVH.
+struct DeviceMesh
+{
+  GPUBuffer<Vec3f> positions, normals, shifts, faceNormals;
+  GPUBuffer<Triangle> triangles;
+  cuda::DeviceTopology topology;
+  cuda::DeviceBvh bvh;
+  Index vertexCount = 0, triangleCount = 0;
+
+  /// Uploads what `changes` touched and brings the rest up to date; synchronizes.
+  void update(const Scene& s, Changes changes, cudaStream_t stream, SolverStats* stats)
+  {
+    vertexCount = Index(s.vertexCount());
+    triangleCount = Index(s.triangleCount());
+    if (changes & kTopology)
+    {
+      triangles.upload(s.triangles, stream);
+    }
+    if (changes & (kTopology | kPositions))
+    {
+      positions.upload(s.positions, stream);
+    }
+    normals.upload(s.normals, stream);
+    if (changes & kTopology)
+    {
+      topology.build(triangles.data(), triangleCount, vertexCount, stream);
+    }
+    shifts.resize(vertexCount);
+    faceNormals.resize(triangleCount);
+    cuda::originShifts(positions.data(), normals.data(), topology.neighbourOffsets.data(),
+      topology.neighbours.data(), vertexCount, shifts.data(), stream);
+    cuda::frontFaceNormals(positions.data(), normals.data(), triangles.data(), triangleCount,
+      faceNormals.data(), stream);
+    if (changes & kTopology)
+    {
+      bvh.build(positions.data(), vertexCount, triangles.data(), triangleCount, stream);
+      if (stats)
+      {
+        stats->builtBvh = true;
+        ++stats->bvhBuilds;
+      }
+    }
+    else if (changes & kPositions)
+    {
+      bvh.refit(positions.data(), triangles.data(), stream);
+      if (stats)
+      {
+        stats->refitBvh = true;
+        ++stats->bvhRefits;
+      }
+    }
+    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+  }
+};
+
+/// A VPL set on the GPU.
+struct DeviceVpls
+{
+  GPUBuffer<Vpl> vpls;
+  GPUBuffer<std::uint32_t> subsetOffsets;
+  GPUBuffer<float> subsetScale;
+  std::size_t count = 0, subsets = 0;
+
+  void upload(const VplSet& set, cudaStream_t stream)
+  {
+    vpls.upload(set.vpls, stream);
+    subsetOffsets.upload(set.subsetOffsets, stream);
+    subsetScale.upload(set.subsetScale, stream);
+    count = set.count();
+    subsets = set.subsetScale.size();
+  }
+};
+
+gpu::GatherLaunch gatherLaunch(const DeviceMesh& mesh, const DeviceVpls& vpls, BvhView visibility,
+  const GatherParams& params, bool twoSided)
+{
+  gpu::GatherLaunch g;
+  g.visibility = visibility;
+  g.positions = mesh.positions.data();
+  g.normals = mesh.normals.data();
+  g.shifts = mesh.shifts.data();
+  g.vertexCount = mesh.vertexCount;
+  g.twoSided = twoSided;
+  g.vpls = vpls.vpls.data();
+  g.subsetOffsets = vpls.subsetOffsets.data();
+  g.subsetScale = vpls.subsetScale.data();
+  g.params = params;
+  g.params.subsets = std::uint32_t(vpls.subsets);
+  return g;
+}
+
+int useFirstDevice()
+{
+  std::string why;
+  const std::vector<cuda::DeviceInfo> found = cuda::devices(&why);
+  if (found.empty())
+  {
+    throw CudaError("No CUDA device: " + why + ".", false);
+  }
+  LINKGI_CUDA_CHECK(cudaSetDevice(found[0].index));
+  return found[0].index;
+}
+
+class IrCuda final : public MethodBackend
+{
+public:
+  IrCuda()
+  {
+    const int device = useFirstDevice();
+    cudaDeviceProp prop{};
+    LINKGI_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
+    name = prop.name;
+    LINKGI_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
+  }
+  ~IrCuda() override
+  {
+    if (stream)
+    {
+      cudaStreamDestroy(stream);
+    }
+  }
+  IrCuda(const IrCuda&) = delete;
+  IrCuda& operator=(const IrCuda&) = delete;
+
+  void run(std::size_t stage, const StageContext& c) override
+  {
+    // Device state is updated in place: a failed update leaves it unusable (discard()).
+    switch (stage)
+    {
+      case kGeometryStage:
+        return mesh.update(c.scene, c.changes, stream, &c.stats);
+      case kProxyStage:
+        return buildProxyBvh(c);
+      case kVplStage:
+        return traceVpls(c);
+      case kLightLinkStage:
+        return directLight(c);
+      case kGatherStage:
+        return gather(c);
+      case kFinishStage:
+        return finish(c);
+    }
+  }
+  void commit() override {}
+  bool discard() override { return false; }
+
+  void describe(SolverStats& st) const override
+  {
+    st.backend = "cuda";
+    st.device = name;
+    st.devices = 1;
+    st.linkedPerDevice.clear();
+    st.batchesPerDevice.clear();
+    st.msTracePerDevice.clear();
+    st.msCompressPerDevice.clear();
+    st.msWallPerDevice.clear();
+    st.gpuBytesAllocated = cuda::MemoryLedger::takePeak();
+    st.rays = gatherRays;
+    st.linksRaw = st.linksCompressed = st.linkBytes = 0;
+    st.lightRays = lightRays;
+    st.vpls = vpls.count;
+  }
+
+private:
+  void buildProxyBvh(const StageContext& c)
+  {
+    proxyMargin = 0.f;
+    proxyTriangles = 0;
+    if (!c.options.instantRadiosity.proxyVisibility)
+    {
+      return;
+    }
+    const Proxy proxy = buildProxy(c.scene, c.options.instantRadiosity.proxyResolution);
+    proxyMargin = proxy.margin;
+    proxyTriangles = Index(proxy.triangles.size());
+    if (proxyTriangles)
+    {
+      proxyPositions.upload(proxy.positions, stream);
+      proxyTriangleBuffer.upload(proxy.triangles, stream);
+      proxyBvh.build(proxyPositions.data(), Index(proxy.positions.size()), proxyTriangleBuffer.data(),
+        proxyTriangles, stream);
+      LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+    }
+  }
+
+  void traceVpls(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    PathSetup setup = buildPathSetup(s, {}, c.options);
+    sources.upload(setup.sources, stream);
+    cdf.upload(setup.cdf, stream);
+    lights.upload(s.lights, stream);
+    albedo.upload(s.albedo, stream);
+    emission.upload(s.emission, stream);
+    envTexels.upload(s.environment.texels, stream);
+    PathScene view = setup.view;
+    view.positions = mesh.positions.data();
+    view.normals = mesh.normals.data();
+    view.albedo = albedo.data();
+    view.emission = s.emission.empty() ? nullptr : emission.data();
+    view.triangles = mesh.triangles.data();
+    view.faceNormals = mesh.faceNormals.data();
+    view.lights = lights.data();
+    view.sources = sources.data();
+    view.cdf = cdf.data();
+    view.envTexels = s.environment.texels.empty() ? nullptr : envTexels.data();
+    const std::uint32_t slotsPerPath = view.bounces + 1;
+    std::vector<int> hostCounts;
+    for (int pass = 0; pass < 2; ++pass)
+    {
+      slots.resize(std::size_t(view.paths) * slotsPerPath);
+      counts.resize(view.paths);
+      gpu::traceLightPaths(view, mesh.bvh.view(), slots.data(), counts.data(), stream);
+      LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+      hostCounts = counts.download();
+      std::size_t found = 0;
+      for (int n : hostCounts)
+      {
+        found += std::size_t(n);
+      }
+      // The same rule as the CPU's (traceVplsCpu), so both trace the same paths.
+      const std::uint32_t more = pass == 0 ? secondPassPaths(view.paths, found, setup.targetVpls, slotsPerPath) : 0;
+      if (!more)
+      {
+        break;
+      }
+      view.paths = more;
+    }
+    // Packed on the host as the CPU packs them: the same layout, subsets and scales.
+    const VplSet set = packVpls(slots.download(), hostCounts, slotsPerPath,
+      c.options.instantRadiosity.interleave);
+    vpls.upload(set, stream);
+  }
+
+  void directLight(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    const Index nv = mesh.vertexCount;
+    const Elements elements{ s.vertexCount(), c.options.twoSided };
+    std::vector<Light> lit;
+    for (const Light& light : s.lights)
+    {
+      if (maxComponent(light.intensity) > 0.f) // dark lights trace nothing, as on the CPU
+      {
+        lit.push_back(light);
+      }
+    }
+    const std::size_t edges = mesh.topology.edgeCount();
+    direct.resize(elements.count());
+    direct.fillZero(stream);
+    litLights.upload(lit, stream);
+    vertexVisible.resize(std::max<std::size_t>(1, lit.size() * nv));
+    edgeVisible.resize(std::max<std::size_t>(1, lit.size() * edges));
+    counter.resize(1);
+    counter.fillZero(stream);
+    cuda::DirectLightParams p;
+    p.bvh = mesh.bvh.view();
+    p.positions = mesh.positions.data();
+    p.normals = mesh.normals.data();
+    p.shifts = mesh.shifts.data();
+    p.edges = mesh.topology.edges.data();
+    p.neighbourOffsets = mesh.topology.neighbourOffsets.data();
+    p.vertexEdges = mesh.topology.vertexEdges.data();
+    p.vertexCount = nv;
+    p.edgeCount = Index(edges);
+    p.eps = rayEpsilon(s);
+    p.oversampling = c.options.lightOversampling;
+    for (int side = 0; side < (c.options.twoSided ? 2 : 1); ++side)
+    {
+      cuda::addDirectLights(p, litLights.data(), int(lit.size()), side == 0 ? 1.f : -1.f,
+        side == 0 ? 0 : nv, vertexVisible.data(), edgeVisible.data(), direct.data(), counter.data(), stream);
+    }
+    unsigned long long traced = 0;
+    LINKGI_CUDA_CHECK(cudaMemcpyAsync(&traced, counter.data(), sizeof(traced), cudaMemcpyDeviceToHost, stream));
+    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+    lightRays = traced;
+  }
+
+  void gather(const StageContext& c)
+  {
+    const Elements elements{ c.scene.vertexCount(), c.options.twoSided };
+    GatherParams gp;
+    gp.dmin = c.options.instantRadiosity.clampDistance * boundingDiagonal(c.scene.positions);
+    gp.eps = rayEpsilon(c.scene);
+    gp.proxyMargin = c.options.instantRadiosity.proxyVisibility ? proxyMargin : 0.f;
+    gp.seed = c.options.seed;
+    const BvhView visibility = gp.proxyMargin > 0.f
+      ? (proxyTriangles ? proxyBvh.view() : BvhView{})
+      : mesh.bvh.view();
+    gathered.resize(elements.count());
+    counter.resize(1);
+    counter.fillZero(stream);
+    gpu::gatherVpls(gatherLaunch(mesh, vpls, visibility, gp, c.options.twoSided), gathered.data(),
+      counter.data(), stream);
+    unsigned long long traced = 0;
+    LINKGI_CUDA_CHECK(cudaMemcpyAsync(&traced, counter.data(), sizeof(traced), cudaMemcpyDeviceToHost, stream));
+    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+    gatherRays = traced;
+  }
+
+  void finish(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    const Elements elements{ s.vertexCount(), c.options.twoSided };
+    const std::size_t ne = elements.count();
+    // albedo and emission: uploaded by the VPL stage, which every change of them re-runs
+    cuda::FinishParams f;
+    f.bounce.elements = Index(ne);
+    f.bounce.vertexCount = mesh.vertexCount;
+    f.bounce.direct = direct.data();
+    f.bounce.environment = gathered.data(); // finish adds it to the bounced light: here all of E_ind
+    f.bounce.albedo = albedo.data();
+    f.bounce.emission = s.emission.empty() ? nullptr : emission.data();
+    f.indirect = nullptr;
+    f.smoothing = c.options.smoothing;
+    f.cosFeatureAngle = std::cos(c.options.featureAngleDegrees * (kPi / 180.f));
+    f.neighbourOffsets = mesh.topology.neighbourOffsets.data();
+    f.neighbours = mesh.topology.neighbours.data();
+    f.normals = mesh.normals.data();
+    output.resize(3 * ne);
+    cuda::finish(f, output.data(), stream);
+    Solution& sol = c.solution;
+    sol.direct.resize(ne);
+    sol.indirect.resize(ne);
+    sol.radiance.resize(ne);
+    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+    output.download(sol.direct.data(), ne);
+    LINKGI_CUDA_CHECK(cudaMemcpy(sol.indirect.data(), output.data() + ne, ne * sizeof(Vec3f), cudaMemcpyDeviceToHost));
+    LINKGI_CUDA_CHECK(cudaMemcpy(sol.radiance.data(), output.data() + 2 * ne, ne * sizeof(Vec3f), cudaMemcpyDeviceToHost));
+  }
+
+  cudaStream_t stream = nullptr;
+  std::string name;
+  DeviceMesh mesh;
+  GPUBuffer<Vec3f> proxyPositions;
+  GPUBuffer<Triangle> proxyTriangleBuffer;
+  cuda::DeviceBvh proxyBvh;
+  Index proxyTriangles = 0;
+  float proxyMargin = 0.f;
+  GPUBuffer<Source> sources;
+  GPUBuffer<float> cdf, vertexVisible, edgeVisible;
+  GPUBuffer<Light> lights, litLights;
+  GPUBuffer<Vec3f> albedo, emission, envTexels, direct, output;
+  GPUBuffer<Vpl> slots;
+  GPUBuffer<int> counts;
+  DeviceVpls vpls;
+  GPUBuffer<Rgba> gathered;
+  GPUBuffer<unsigned long long> counter;
+  std::uint64_t gatherRays = 0, lightRays = 0;
+};
+}
+
+std::unique_ptr<MethodBackend> createCudaBackend(const SolverOptions&)
+{
+  return std::make_unique<IrCuda>();
+}
+
+std::vector<Vec3f> gatherCuda(const Scene& scene, const VplSet& set, const GatherParams& params,
+  bool twoSided)
+{
+  useFirstDevice();
+  cudaStream_t stream = nullptr;
+  DeviceMesh mesh;
+  mesh.update(scene, kEverything, stream, nullptr);
+  DeviceVpls vpls;
+  vpls.upload(set, stream);
+  const Elements elements{ scene.vertexCount(), twoSided };
+  GPUBuffer<Rgba> out(elements.count());
+  GPUBuffer<unsigned long long> rays(1);
+  rays.fillZero(stream);
+  gpu::gatherVpls(gatherLaunch(mesh, vpls, mesh.bvh.view(), params, twoSided), out.data(), rays.data(), stream);
+  LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+  const std::vector<Rgba> rgba = out.download();
+  std::vector<Vec3f> result(rgba.size());
+  for (std::size_t i = 0; i < rgba.size(); ++i)
+  {
+    result[i] = { rgba[i].r, rgba[i].g, rgba[i].b };
+  }
+  return result;
 }
 }

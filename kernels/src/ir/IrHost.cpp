@@ -3,6 +3,7 @@
 #include "linkgi/Error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 #include <unordered_map>
 
@@ -30,6 +31,19 @@ std::uint32_t pathCount(const SolverOptions& o)
 {
   const std::uint32_t b = std::max(1u, o.bounces);
   return std::max(1u, (o.instantRadiosity.vplCount + b - 1) / b);
+}
+
+std::uint32_t secondPassPaths(std::uint32_t paths, std::size_t found, std::uint32_t target,
+  std::uint32_t slotsPerPath)
+{
+  if (2 * found >= target)
+  {
+    return 0;
+  }
+  const double wanted = std::ceil(double(paths) * target / double(std::max<std::size_t>(found, 1)));
+  const double cap = std::min(64.0 * paths, double(1u << 22) / slotsPerPath);
+  const std::uint32_t more = std::uint32_t(std::min(wanted, cap));
+  return more > paths ? more : 0;
 }
 
 PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals, const SolverOptions& o)
@@ -119,6 +133,7 @@ PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals, 
   v.seed = o.seed;
   v.eps = rayEpsilon(s);
   setup.dmin = o.instantRadiosity.clampDistance * boundingDiagonal(s.positions);
+  setup.targetVpls = o.instantRadiosity.vplCount;
   return setup;
 }
 

@@ -19,10 +19,20 @@ struct PathSetup
   PathScene view;
   /// Surface VPLs closer than 0.8 * dmin to a vertex give it nothing (distanceBound).
   float dmin = 0.f;
+  /// The VPLs asked for (InstantRadiosityOptions::vplCount).
+  std::uint32_t targetVpls = 1;
 };
 
-/// ceil(vplCount / bounces) paths (vplCount with no bounces): about vplCount VPLs.
+/// ceil(vplCount / bounces) paths (vplCount with no bounces): about vplCount VPLs where
+/// every path stays in the scene.
 std::uint32_t pathCount(const SolverOptions& options);
+
+/// Paths for a second pass when the first pass of `paths` left `found` VPLs, fewer than half
+/// the `target` (in an open scene most paths leave it): enough for about `target` at the
+/// rate seen, at most 64 times the first pass and 2^22 VPL slots; 0 to keep the first pass.
+/// Both backends ask it, so they trace the same paths.
+std::uint32_t secondPassPaths(std::uint32_t paths, std::size_t found, std::uint32_t target,
+  std::uint32_t slotsPerPath);
 
 /// Sources of `scene` (validated) and the view over its arrays and `faceNormals`
 /// (frontFaceNormals). Lights start paths only when bounces > 0 (their direct light is the
