@@ -213,9 +213,19 @@ private:
     sources.upload(setup.sources, stream);
     cdf.upload(setup.cdf, stream);
     lights.upload(s.lights, stream);
-    albedo.upload(s.albedo, stream);
-    emission.upload(s.emission, stream);
-    envTexels.upload(s.environment.texels, stream);
+    // Materials and the sky only when they changed (a light move uploads neither).
+    if (c.changes & (kTopology | kAlbedo))
+    {
+      albedo.upload(s.albedo, stream);
+    }
+    if (c.changes & (kTopology | kEmission))
+    {
+      emission.upload(s.emission, stream);
+    }
+    if (c.changes & (kEnvironmentLayout | kEnvironmentRadiance))
+    {
+      envTexels.upload(s.environment.texels, stream);
+    }
     PathScene view = setup.view;
     view.positions = mesh.positions.data();
     view.normals = mesh.normals.data();
