@@ -91,6 +91,7 @@ vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
   , VPLInterleaving(1)
   , ProxyVisibility(0)
   , ProxyResolution(32)
+  , ImplicitVisibilityBins(12)
   , FeatureAngle(30.0)
   , Smoothing(1)
   , ComputeNormals(0)
@@ -281,6 +282,8 @@ const char* vtkGlobalIlluminationFilter::GetMethodAsString()
   {
     case INSTANT_RADIOSITY:
       return "InstantRadiosity";
+    case IMPLICIT_VISIBILITY:
+      return "ImplicitVisibility";
     default:
       return "Links";
   }
@@ -400,6 +403,7 @@ void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VPL Interleaving: " << this->VPLInterleaving << "\n";
   os << indent << "Proxy Visibility: " << (this->ProxyVisibility ? "On" : "Off") << "\n";
   os << indent << "Proxy Resolution: " << this->ProxyResolution << "\n";
+  os << indent << "Implicit Visibility Bins: " << this->ImplicitVisibilityBins << "\n";
   os << indent << "Feature Angle: " << this->FeatureAngle << "\n";
   os << indent << "Smoothing: " << (this->Smoothing ? "On" : "Off") << "\n";
   os << indent << "Compute Normals: " << (this->ComputeNormals ? "On" : "Off") << "\n";

@@ -95,8 +95,9 @@ public:
   /// How the indirect light is computed.
   enum MethodType
   {
-    LINKS = 0,            ///< the link structure (Schmitz, Tavenrath & Kobbelt 2008)
-    INSTANT_RADIOSITY = 1 ///< virtual point lights (Marques & Santos 2010)
+    LINKS = 0,             ///< the link structure (Schmitz, Tavenrath & Kobbelt 2008)
+    INSTANT_RADIOSITY = 1, ///< virtual point lights (Marques & Santos 2010)
+    IMPLICIT_VISIBILITY = 2 ///< hierarchical links, visibility implied (Dong et al. 2007)
   };
 
   ///@{
@@ -107,13 +108,17 @@ public:
    * at each diffuse hit and gathers them at every vertex with shadow rays (nothing is
    * precomputed: a deformation costs what a light move costs). Both give the same output
    * arrays; the stages that ran are in the field data (LinkGI.Method, LinkGI.Ms<Stage>).
-   * RaysPerVertex applies to LINKS, the VPL properties below to INSTANT_RADIOSITY.
-   * The default value is LINKS.
+   * IMPLICIT_VISIBILITY links clusters of vertices whose direction bins keep only their
+   * shortest link (visibility implied, no rays for the bounced light), rebuilt on every
+   * deformation; one-sided elements only (TwoSided is an error with it).
+   * RaysPerVertex applies to LINKS, the VPL properties below to INSTANT_RADIOSITY,
+   * ImplicitVisibilityBins to IMPLICIT_VISIBILITY. The default value is LINKS.
    */
-  vtkSetClampMacro(Method, int, LINKS, INSTANT_RADIOSITY);
+  vtkSetClampMacro(Method, int, LINKS, IMPLICIT_VISIBILITY);
   vtkGetMacro(Method, int);
   void SetMethodToLinks() { this->SetMethod(LINKS); }
   void SetMethodToInstantRadiosity() { this->SetMethod(INSTANT_RADIOSITY); }
+  void SetMethodToImplicitVisibility() { this->SetMethod(IMPLICIT_VISIBILITY); }
   const char* GetMethodAsString();
   ///@}
 
@@ -158,6 +163,17 @@ public:
   vtkBooleanMacro(ProxyVisibility, vtkTypeBool);
   vtkSetClampMacro(ProxyResolution, int, 2, 4096);
   vtkGetMacro(ProxyResolution, int);
+  ///@}
+
+  ///@{
+  /**
+   * IMPLICIT_VISIBILITY: N, the bins per side of each face of every element's cube map of
+   * directions (6 N^2 bins; the paper uses 8, 12, 16). More bins: finer shadows of the
+   * bounced light and less light through silhouettes, at about N^2 the cost.
+   * The default value is 12.
+   */
+  vtkSetClampMacro(ImplicitVisibilityBins, int, 2, 32);
+  vtkGetMacro(ImplicitVisibilityBins, int);
   ///@}
 
   ///@{
@@ -452,6 +468,7 @@ protected:
   int VPLInterleaving;
   vtkTypeBool ProxyVisibility;
   int ProxyResolution;
+  int ImplicitVisibilityBins;
   double FeatureAngle;
   vtkTypeBool Smoothing;
   vtkTypeBool ComputeNormals;

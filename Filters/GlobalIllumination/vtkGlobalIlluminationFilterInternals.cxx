@@ -137,7 +137,10 @@ linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
   options.bounces = static_cast<std::uint32_t>(self->NumberOfBounces);
   options.method = self->Method == vtkGlobalIlluminationFilter::INSTANT_RADIOSITY
     ? linkgi::Method::InstantRadiosity
+    : self->Method == vtkGlobalIlluminationFilter::IMPLICIT_VISIBILITY
+    ? linkgi::Method::ImplicitVisibility
     : linkgi::Method::Links;
+  options.implicitVisibility.binsPerSide = static_cast<std::uint32_t>(self->ImplicitVisibilityBins);
   options.instantRadiosity.vplCount = static_cast<std::uint32_t>(self->NumberOfVPLs);
   options.instantRadiosity.clampDistance = static_cast<float>(self->VPLClampDistance);
   options.instantRadiosity.interleave = static_cast<std::uint32_t>(self->VPLInterleaving);
