@@ -297,6 +297,13 @@ std::string timingJson(const UpdateRuns& runs)
   return out.str();
 }
 
+/// Rays per second of a stage that traced `rays` in `ms`; 0 for a method that traces none
+/// (implicit visibility), where rays / 0 ms would print nan, which is not JSON.
+double raysPerSecond(std::uint64_t rays, double ms)
+{
+  return ms > 0.0 ? double(rays) / (ms * 1e-3) : 0.0;
+}
+
 /// A deformation: same triangles, moved vertices (BVH refit or rebuild, links, all after):
 /// the torso bends; other scenes stretch by 3% vertically.
 std::string deformationJson(const std::string& name, const Scene& scene, const Args& args)
@@ -318,7 +325,7 @@ std::string deformationJson(const std::string& name, const Scene& scene, const A
   std::ostringstream out;
   out << ",\"ms_deform_update\":" << d.msTotal << ",\"deform_bvh\":\""
       << (d.builtBvh ? "rebuild" : "refit") << "\",\"deform_ms_bvh\":" << d.ms("Geometry") + d.ms("Topology")
-      << ",\"deform_rays_per_s\":" << d.rays / (std::max(d.ms("Links"), d.ms("Gather")) * 1e-3);
+      << ",\"deform_rays_per_s\":" << raysPerSecond(d.rays, std::max(d.ms("Links"), d.ms("Gather")));
   return out.str();
 }
 
@@ -400,7 +407,7 @@ void printRecord(const std::string& name, const Scene& scene, const UpdateRuns& 
               "\"host_peak_mb\":%.1f,\"vpls\":%llu,\"linked_per_device\":[%s],\"stages_ms\":{%s}%s,\"note\":\"%s\"}\n",
     name.c_str(), full.method.c_str(), full.backend.c_str(), full.device.c_str(), full.devices,
     workerCount(), scene.vertexCount(), scene.triangleCount(), args.options.raysPerVertex,
-    args.options.bounces, (unsigned long long)full.rays, full.rays / (msLinks * 1e-3),
+    args.options.bounces, (unsigned long long)full.rays, raysPerSecond(full.rays, msLinks),
     (unsigned long long)full.linksRaw, (unsigned long long)full.linksCompressed,
     (unsigned long long)full.linkBytes, (unsigned long long)full.lightRays,
     full.ms("Geometry") + full.ms("Topology"), msLinks, msCompress, msLinks + msCompress,
