@@ -3,6 +3,7 @@
 // It never knows a method's formulas (engine/Pipeline.h, Documentation/Engine.md).
 #include "linkgi/Solver.h"
 
+#include "engine/MemoryBudget.h"
 #include "engine/Pipeline.h"
 
 #include "linkgi/Cuda.h"
@@ -213,6 +214,11 @@ void Solver::Impl::runStages(BackendSlot& slot, bool onCuda, const engine::Metho
   engine::Changes changes, const Scene& s, const SolverOptions& opt, Solution& sol,
   SolverStats& st, const ProgressCallback& progress)
 {
+  // A backend that is made anew, or whose caches do not follow the committed scene, runs
+  // every stage; the budget is checked before the old backend's memory is given up.
+  const engine::Changes seen = slot.fits(opt, onCuda) && slot.synced ? changes : engine::kEverything;
+  const std::uint32_t stale = engine::staleStages(spec.stages(), seen);
+  engine::checkMemoryBudget(spec, s, opt, stale, onCuda, st);
   if (!slot.fits(opt, onCuda))
   {
     slot.impl.reset(); // frees the old one's memory before the new one allocates
@@ -221,8 +227,6 @@ void Solver::Impl::runStages(BackendSlot& slot, bool onCuda, const engine::Metho
     slot.method = opt.method;
     slot.cudaDevices = opt.cudaDevices;
   }
-  const engine::Changes seen = slot.synced ? changes : engine::kEverything;
-  const std::uint32_t stale = engine::staleStages(spec.stages(), seen);
   const std::vector<engine::StageSpec>& stages = spec.stages();
   double shareSum = 0.0, shareDone = 0.0;
   for (std::size_t i = 0; i < stages.size(); ++i)

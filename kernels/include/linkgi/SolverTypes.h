@@ -127,6 +127,10 @@ struct SolverOptions
   InstantRadiosityOptions instantRadiosity;
   /// Method::ImplicitVisibility's own options.
   ImplicitVisibilityOptions implicitVisibility;
+  /// Host memory an update may use, in bytes; an update estimated to need more is refused
+  /// with an error that says what would fit, before anything is allocated. 0 (default):
+  /// what the machine has available, less a margin (linkgi/Memory.h).
+  std::uint64_t memoryBudget = 0;
 };
 
 /// The method called `name` ("links", "instant-radiosity": SolverStats::method); throws
@@ -204,5 +208,8 @@ struct SolverStats
   /// GPU memory the engine itself had allocated at its peak during the update, all GPUs
   /// together (not the device's total - free, which counts the CUDA context and others).
   std::uint64_t gpuBytesAllocated = 0;
+  /// The method's estimate of the last update's peak memory (host, GPUs), and the host
+  /// budget it was checked against (linkgi/Memory.h).
+  std::uint64_t hostBytesEstimated = 0, deviceBytesEstimated = 0, memoryBudget = 0;
 };
 }

@@ -16,7 +16,8 @@ bool operator==(const SolverOptions& a, const SolverOptions& b)
     a.lightOversampling == b.lightOversampling && a.albedoPolicy == b.albedoPolicy &&
     a.backend == b.backend && a.cudaDevices == b.cudaDevices &&
     a.cudaBvhUpdate == b.cudaBvhUpdate && a.cudaBvhBuild == b.cudaBvhBuild &&
-    a.instantRadiosity == b.instantRadiosity && a.implicitVisibility == b.implicitVisibility;
+    a.instantRadiosity == b.instantRadiosity && a.implicitVisibility == b.implicitVisibility &&
+    a.memoryBudget == b.memoryBudget;
 }
 
 bool operator==(const ImplicitVisibilityOptions& a, const ImplicitVisibilityOptions& b)

@@ -5,6 +5,7 @@
 // to the CPU. See Documentation/Engine.md. Host-only: no device code, no CUDA headers.
 #pragma once
 
+#include "linkgi/Memory.h"
 #include "linkgi/Parallel.h"
 #include "linkgi/SolverTypes.h"
 
@@ -121,6 +122,15 @@ public:
   /// The CUDA implementation on up to options.cudaDevices GPUs. Throws CudaError when the
   /// build has none or no device can be used.
   virtual std::unique_ptr<MethodBackend> createCuda(const SolverOptions& options) const = 0;
+  /// Peak bytes that running the stages `stale` (bit i: stages()[i]) allocate on a mesh of
+  /// `shape`, on the host and on the GPU(s), from the sizes alone: nothing has been traced
+  /// yet. An upper bound rather than a guess: the orchestrator refuses an update whose host
+  /// estimate is over the memory budget (engine/MemoryBudget.h). 0 = nothing to declare.
+  virtual MemoryEstimate estimateMemory(const MemoryShape& /*shape*/,
+    const SolverOptions& /*options*/, std::uint32_t /*stale*/, bool /*cuda*/) const
+  {
+    return {};
+  }
 };
 
 /// The registry: the one place that names every method (Methods.cpp).

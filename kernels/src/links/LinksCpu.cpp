@@ -5,6 +5,7 @@
 #include "linkgi/DirectLight.h"
 #include "linkgi/Links.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -190,6 +191,49 @@ private:
   DirectLightResult direct, nextDirect;
   bool linksStaged = false, directStaged = false;
 };
+}
+
+LinksPerElement LinksPerElement::bound(const MemoryShape& shape, const SolverOptions& o)
+{
+  const std::uint64_t elements = shape.vertices * (o.twoSided ? 2 : 1), n = o.raysPerVertex;
+  LinksPerElement b;
+  b.transport = std::min(3 * n, elements);
+  b.environment = std::min(n, shape.texels);
+  return b;
+}
+
+MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale)
+{
+  const std::uint64_t v = shape.vertices, t = shape.triangles, e = v * (o.twoSided ? 2 : 1);
+  const std::uint64_t n = o.raysPerVertex;
+  constexpr std::uint64_t vec3 = sizeof(Vec3f), csrEntry = sizeof(Index) + sizeof(float);
+  std::uint64_t bytes = 0;
+  if (stale & (1u << kGeometryStage))
+  {
+    // Topology (neighbours, edges and vertex edges: ~3 entries of each per triangle, and
+    // their build's sort), origin shifts, face normals, and the BVH with its build (Embree's
+    // or ours: under 200 B per triangle).
+    bytes += t * (3 * (sizeof(Index) + sizeof(std::pair<Index, Index>) + sizeof(Index)) + 2 * 3 * sizeof(Index)) +
+      v * (2 * sizeof(Index) + vec3) + t * vec3 + t * 200;
+  }
+  if (stale & (1u << kLinkStage))
+  {
+    // compressLinks: every hit of every ray at once (traceLinkRays), the compressed rows of
+    // each chunk (vectors grown by doubling: up to twice their size) and the CSR they are
+    // copied into, the row counts and offsets, and a dense scratch row per worker.
+    const LinksPerElement links = LinksPerElement::bound(shape, o);
+    const std::uint64_t perElement = n * sizeof(Hit) +
+      (links.transport + links.environment) * csrEntry * (2 + 1) + 2 * (sizeof(Index) + sizeof(Offset));
+    bytes += e * perElement + std::uint64_t(workerCount()) * (e + shape.texels) * sizeof(float);
+  }
+  if (stale & (1u << kLightLinkStage))
+  {
+    bytes += e * vec3 * 2; // E_d, staged beside the cached one
+  }
+  // Bounces: the environment's irradiance, the fixed irradiance, albedo, emission, two
+  // Jacobi vectors, the smoothed copy and the solution's three arrays.
+  bytes += e * vec3 * 10;
+  return { bytes, 0 };
 }
 
 std::unique_ptr<MethodBackend> createCpuBackend(const SolverOptions&)

@@ -26,6 +26,29 @@ public:
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
+    bool cuda) const override
+  {
+    if (!cuda)
+    {
+      return estimateCpuMemory(shape, o, stale);
+    }
+    // The CUDA engine keeps the matrix on the GPUs and sizes its link batches to their free
+    // memory (cuda/CudaLinks.cpp), so the host holds per-element arrays only: the staged
+    // uploads and downloads and the solution (~16 3-vectors). The device figure is the
+    // matrix at its bound plus the BVH and per-element vectors; the CUDA backend itself
+    // falls back to the CPU when a GPU runs out.
+    const std::uint64_t e = shape.vertices * (o.twoSided ? 2 : 1);
+    MemoryEstimate m;
+    m.hostBytes = e * sizeof(Vec3f) * 16;
+    if (stale & (1u << kLinkStage))
+    {
+      const LinksPerElement links = LinksPerElement::bound(shape, o);
+      m.deviceBytes += e * (links.transport + links.environment) * (sizeof(Index) + sizeof(float));
+    }
+    m.deviceBytes += shape.triangles * 128 + e * 16 * 12;
+    return m;
+  }
 };
 }
 

@@ -1,0 +1,84 @@
+#include "engine/MemoryBudget.h"
+
+#include "linkgi/Error.h"
+
+#include <cmath>
+
+namespace linkgi::engine
+{
+MemoryVerdict judgeMemory(const MethodSpec& spec, const MemoryShape& shape,
+  const SolverOptions& options, std::uint32_t stale, bool cuda, std::uint64_t budget)
+{
+  MemoryVerdict v;
+  v.budget = budget;
+  v.estimate = spec.estimateMemory(shape, options, stale, cuda);
+  v.fits = v.estimate.hostBytes <= budget;
+  if (v.fits)
+  {
+    return v;
+  }
+  // Fewer rays: the largest perfect square below the request whose estimate fits.
+  SolverOptions fewer = options;
+  for (auto k = std::uint32_t(std::lround(std::sqrt(double(options.raysPerVertex)))); k-- > 1;)
+  {
+    fewer.raysPerVertex = k * k;
+    const std::uint64_t bytes = spec.estimateMemory(shape, fewer, stale, cuda).hostBytes;
+    if (bytes == v.estimate.hostBytes)
+    {
+      break; // the method's memory does not depend on the rays
+    }
+    if (bytes <= budget)
+    {
+      v.raysThatFit = k * k;
+      break;
+    }
+  }
+  // A smaller mesh: the estimate grows with the vertex count, so bisect on the fraction of
+  // this mesh's vertices and triangles that fits.
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 40; ++i)
+  {
+    const double mid = 0.5 * (lo + hi);
+    MemoryShape smaller = shape;
+    smaller.vertices = std::uint64_t(double(shape.vertices) * mid);
+    smaller.triangles = std::uint64_t(double(shape.triangles) * mid);
+    (spec.estimateMemory(smaller, options, stale, cuda).hostBytes <= budget ? lo : hi) = mid;
+  }
+  v.verticesThatFit = std::uint64_t(double(shape.vertices) * lo);
+  return v;
+}
+
+void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverOptions& options,
+  std::uint32_t stale, bool cuda, SolverStats& stats)
+{
+  const MemoryShape shape = MemoryShape::of(scene);
+  const std::uint64_t budget = hostMemoryBudget(options.memoryBudget);
+  const MemoryVerdict v = judgeMemory(spec, shape, options, stale, cuda, budget);
+  stats.hostBytesEstimated = v.estimate.hostBytes;
+  stats.deviceBytesEstimated = v.estimate.deviceBytes;
+  stats.memoryBudget = v.budget;
+  if (v.fits)
+  {
+    return;
+  }
+  const std::string rays = std::to_string(options.raysPerVertex);
+  std::string message = "Not enough memory: this update of the " + std::string(spec.name()) +
+    " method would need about " + formatBytes(v.estimate.hostBytes) + " of host memory (" +
+    std::to_string(shape.vertices) + " vertices, " + rays + " rays per vertex), over the memory budget of " +
+    formatBytes(budget) +
+    (options.memoryBudget ? " (MemoryBudget)" :
+                            " (what the machine has available, " + formatBytes(availableHostBytes()) +
+        ", less a margin)") +
+    ". What would fit:";
+  if (v.raysThatFit > 0)
+  {
+    message += " " + std::to_string(v.raysThatFit) + " rays per vertex on this mesh;";
+  }
+  message += v.verticesThatFit > 0 ?
+    " a mesh of at most " + std::to_string(v.verticesThatFit) + " vertices at " + rays +
+      " rays per vertex (decimate the input);" :
+    " no mesh at " + rays + " rays per vertex;";
+  message += " or a larger MemoryBudget, if the machine has the memory. The previous result is kept.";
+  throw Error(message);
+}
+}
