@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 using namespace linkgi;
 
@@ -348,4 +349,33 @@ TEST(TestImplicitVisibility, CudaRequestRunsOnTheCpu)
   EXPECT_FALSE(cuda.stats().warnings.empty());
   EXPECT_EQ(a.indirect, b.indirect);
   EXPECT_EQ(a.direct, b.direct);
+}
+
+TEST(TestImplicitVisibility, ProgressRisesAndAnAbortKeepsThePreviousSolution)
+{
+  const Scene s = test::roomWithBlock(0.5f);
+  Solver solver;
+  std::vector<double> seen;
+  const Solution first = solver.update(s, ivOptions(8), [&seen](const char*, double f) {
+    seen.push_back(f);
+    return true;
+  });
+  ASSERT_FALSE(seen.empty());
+  for (std::size_t i = 1; i < seen.size(); ++i)
+  {
+    EXPECT_GE(seen[i], seen[i - 1] - 1e-9) << "step " << i;
+  }
+  EXPECT_GE(seen.front(), 0.0);
+  EXPECT_LE(seen.back(), 1.0 + 1e-9);
+  // Abort while the links are being built for more bins: the result stays the first one.
+  bool aborted = false;
+  EXPECT_THROW(solver.update(s, ivOptions(16), [&aborted](const char* stage, double f) {
+    aborted = aborted || (std::string(stage) == "ImplicitLinks" && f > 0.3);
+    return !aborted;
+  }), Aborted);
+  EXPECT_TRUE(aborted);
+  EXPECT_EQ(solver.solution().indirect, first.indirect);
+  // The next update with the first options needs no stage: nothing changed since the commit.
+  solver.update(s, ivOptions(8));
+  EXPECT_FALSE(solver.stats().ran("ImplicitLinks"));
 }

@@ -295,7 +295,7 @@ void keepShortestPerBin(const ClusterTree& t, const CubeBins& bins, SparseMatrix
       touched.clear();
       counts[node] = Index(out - m.rowOffsets[node]);
     }
-  }, [&progress](const char*, double f) { return progressSays(progress, 0.5 + 0.1 * f); });
+  }, [&progress](const char*, double f) { return progressSays(progress, 0.8 + 0.2 * f); });
   // Compact the rows in place (each row only moves towards the front).
   Offset next = 0;
   for (std::size_t node = 0; node < rows; ++node)
@@ -397,7 +397,7 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
         }
       }
     }
-  }, [&progress](const char*, double f) { return progressSays(progress, 0.5 * f); });
+  }, [&progress](const char*, double f) { return progressSays(progress, 0.8 * f); });
   for (std::uint64_t v : visited)
   {
     out.pairsVisited += v;
@@ -507,7 +507,7 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
         mergeRow(envRow, out.envColumns, out.envWeights, out.envCounts);
       }
     }
-  }, [&progress](const char*, double f) { return progressSays(progress, 0.6 + 0.4 * f); });
+  }, [&progress](const char*, double f) { return progressSays(progress, f); });
   LeafLinks result;
   concatenate(slices, false, result.transport);
   concatenate(slices, true, result.environment);

@@ -109,6 +109,7 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
   const Environment& environment, const std::vector<Vec3f>& receiverOffsets,
   const ProgressCallback& progress = {});
 
+/// (Each function reports its own fraction in [0, 1] through `progress`.)
 /// n_B gather iterations: L at the leaves, pulled up the tree (area-weighted), gathered at
 /// the leaves through `transport`; as iterateBounces, from E_ind = 0, returns E_ind.
 std::vector<Vec3f> iterateHierarchicalBounces(const ClusterTree& tree,
