@@ -6,6 +6,7 @@
 
 #include "linkgi/Cuda.h"
 #include "linkgi/Error.h"
+#include "linkgi/Memory.h"
 #include "linkgi/Metrics.h"
 #include "linkgi/Parallel.h"
 #include "linkgi/Scenes.h"
@@ -217,6 +218,9 @@ struct UpdateRuns
   std::vector<double> fullTimes, linkTimes, lightTimes;
   std::string profile; ///< per run and GPU: [gpu, elements, batches, ms wall, trace, compress]
   Solution solution;
+  /// Peak resident set of the solver's updates above what the process held before them
+  /// (0 where /proc/self cannot say).
+  std::uint64_t hostPeakBytes = 0;
 };
 
 std::string linkProfile(const SolverStats& s)
@@ -235,6 +239,8 @@ UpdateRuns runUpdates(const Scene& scene, const Args& args)
 {
   const Scene moved = movedLights(scene);
   UpdateRuns runs;
+  const bool peakReset = resetPeakResident();
+  const std::uint64_t residentBefore = residentBytes();
   Solver solver;
   solver.update(scene, args.options);
   runs.cold = runs.full = solver.stats();
@@ -268,6 +274,7 @@ UpdateRuns runUpdates(const Scene& scene, const Args& args)
     }
   }
   runs.solution = solver.solution();
+  runs.hostPeakBytes = peakReset ? peakResidentBytes() - residentBefore : 0;
   return runs;
 }
 
@@ -422,12 +429,26 @@ void printRecord(const std::string& name, const Scene& scene, const UpdateRuns& 
   std::fflush(stdout);
 }
 
+/// Peak memory per vertex (host: resident set; GPU: what the engine allocated) and the
+/// budget's estimate of it (issue 15).
+std::string memoryJson(const Scene& scene, const UpdateRuns& runs)
+{
+  const double v = double(std::max<std::size_t>(1, scene.vertexCount()));
+  const SolverStats& s = runs.cold;
+  std::ostringstream out;
+  out << ",\"memory\":{\"host_peak_bytes\":" << runs.hostPeakBytes << ",\"host_peak_bytes_per_vertex\":"
+      << double(runs.hostPeakBytes) / v << ",\"gpu_peak_bytes_per_vertex\":" << double(s.gpuBytesAllocated) / v
+      << ",\"host_estimated_bytes\":" << s.hostBytesEstimated << ",\"device_estimated_bytes\":"
+      << s.deviceBytesEstimated << ",\"budget_bytes\":" << s.memoryBudget << "}";
+  return out.str();
+}
+
 void benchScene(const std::string& name, const Args& args)
 {
   const Scene scene = bench::makeScene(name);
   const UpdateRuns runs = runUpdates(scene, args);
   std::string extra = timingJson(runs) + deformationJson(name, scene, args) +
-    meanIndirectJson(scene, runs.solution);
+    meanIndirectJson(scene, runs.solution) + memoryJson(scene, runs);
   if (!args.dump.empty())
   {
     writeSolution(args.dump + "/" + name + ".bin", runs.solution);
