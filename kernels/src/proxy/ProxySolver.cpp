@@ -1,0 +1,170 @@
+// Lighting through a decimated proxy: decimate once per geometry, solve the proxy with the
+// ordinary Solver, direct light on the input with the shared light-link code, and carry the
+// proxy's indirect light to the input.
+#include "linkgi/Proxy.h"
+
+#include "linkgi/Bounce.h"
+#include "linkgi/DirectLight.h"
+#include "linkgi/Error.h"
+#include "linkgi/Links.h"
+#include "linkgi/Topology.h"
+
+#include <chrono>
+
+namespace linkgi
+{
+namespace
+{
+double msSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void addPart(SolverStats& stats, const char* name, double ms)
+{
+  StageStats part;
+  part.name = name;
+  part.ran = true;
+  part.ms = ms;
+  stats.stages.push_back(std::move(part));
+}
+}
+
+struct ProxySolver::Impl
+{
+  Solver inner;
+  // Per input geometry and target: the validated input's geometry, the proxy, the transfer
+  // and what shadow rays on the input need.
+  bool haveGeometry = false;
+  std::vector<Vec3f> positions, normals;
+  std::vector<Triangle> triangles;
+  std::size_t target = 0;
+  ProxyMesh proxy;
+  ProxyTransfer transfer;
+  Topology topology;
+  std::vector<Vec3f> shifts;
+  std::unique_ptr<RayTracer> tracer;
+  std::uint64_t decimations = 0;
+
+  Solution solution;
+  SolverStats stats;
+};
+
+ProxySolver::ProxySolver() : impl(std::make_unique<Impl>()) {}
+ProxySolver::~ProxySolver() = default;
+
+const Solution& ProxySolver::solution() const
+{
+  return impl->solution;
+}
+
+const SolverStats& ProxySolver::stats() const
+{
+  return impl->stats;
+}
+
+const ProxyMesh& ProxySolver::proxy() const
+{
+  return impl->proxy;
+}
+
+std::uint64_t ProxySolver::decimations() const
+{
+  return impl->decimations;
+}
+
+const Solution& ProxySolver::update(const Scene& input, const SolverOptions& options,
+  std::size_t proxyVertices, const ProgressCallback& progress)
+{
+  validateOptions(options);
+  Impl& m = *impl;
+  Scene s = input;
+  std::vector<std::string> warnings = validateScene(s, options.albedoPolicy);
+  std::vector<std::pair<const char*, double>> parts;
+  const bool sameGeometry = m.haveGeometry && m.target == proxyVertices && sameBits(s.positions, m.positions) &&
+    sameBits(s.normals, m.normals) && sameBits(s.triangles, m.triangles);
+  // Everything per geometry is made aside and kept only once the whole update succeeded.
+  Impl fresh;
+  Impl& g = sameGeometry ? m : fresh;
+  if (!sameGeometry)
+  {
+    auto t = std::chrono::steady_clock::now();
+    g.proxy = decimate(s, proxyVertices); // checks the target
+    parts.emplace_back("Decimate", msSince(t));
+    t = std::chrono::steady_clock::now();
+    g.transfer = buildTransfer(s, g.proxy.scene);
+    g.topology = Topology::build(s.vertexCount(), s.triangles);
+    g.shifts = originShifts(s, g.topology);
+    g.tracer = createCpuRayTracer();
+    g.tracer->build(s.positions, s.triangles);
+    parts.emplace_back("Transfer", msSince(t));
+  }
+  // The proxy's materials and lights follow the input's on every update.
+  Scene& p = g.proxy.scene;
+  for (std::size_t v = 0; v < g.proxy.sourceVertex.size(); ++v)
+  {
+    p.albedo[v] = s.albedo[g.proxy.sourceVertex[v]];
+  }
+  p.emission.clear();
+  for (std::size_t v = 0; !s.emission.empty() && v < g.proxy.sourceVertex.size(); ++v)
+  {
+    p.emission.push_back(s.emission[g.proxy.sourceVertex[v]]);
+  }
+  p.lights = s.lights;
+  p.environment = s.environment;
+
+  const Solution& onProxy = m.inner.update(p, options, progress);
+  auto t = std::chrono::steady_clock::now();
+  const DirectLightResult direct = computeDirectLight(s, g.topology, g.shifts, *g.tracer, options.twoSided,
+    options.lightOversampling);
+  parts.emplace_back("InputDirect", msSince(t));
+
+  // Element layout: front sides, then back sides (two-sided), on both meshes.
+  const Elements elements{ s.vertexCount(), options.twoSided };
+  const std::size_t nv = s.vertexCount(), np = p.vertexCount();
+  Solution sol;
+  sol.direct = direct.irradiance;
+  sol.indirect.resize(elements.count());
+  sol.radiance.resize(elements.count());
+  for (std::size_t side = 0; side < (options.twoSided ? 2u : 1u); ++side)
+  {
+    const std::vector<Vec3f> values(onProxy.indirect.begin() + side * np, onProxy.indirect.begin() + (side + 1) * np);
+    const std::vector<Vec3f> carried = g.transfer.apply(values);
+    std::copy(carried.begin(), carried.end(), sol.indirect.begin() + side * nv);
+  }
+  for (std::size_t e = 0; e < elements.count(); ++e)
+  {
+    const Vec3f le = (e < nv && !s.emission.empty()) ? s.emission[e] : Vec3f(0.f);
+    sol.radiance[e] = outgoingRadiance(s.albedo[elements.vertexOf(e)], sol.direct[e], sol.indirect[e], le);
+  }
+
+  // Commit.
+  if (!sameGeometry)
+  {
+    m.proxy = std::move(fresh.proxy);
+    m.transfer = std::move(fresh.transfer);
+    m.topology = std::move(fresh.topology);
+    m.shifts = std::move(fresh.shifts);
+    m.tracer = std::move(fresh.tracer);
+    ++m.decimations;
+    m.positions = std::move(s.positions);
+    m.normals = std::move(s.normals);
+    m.triangles = std::move(s.triangles);
+    m.target = proxyVertices;
+    m.haveGeometry = true;
+  }
+  m.solution = std::move(sol);
+  m.stats = m.inner.stats();
+  m.stats.warnings.insert(m.stats.warnings.begin(), warnings.begin(), warnings.end());
+  if (m.proxy.droppedTriangles > 0)
+  {
+    m.stats.warnings.push_back("The proxy left out " + std::to_string(m.proxy.droppedTriangles) +
+      " non-manifold input triangles; their vertices take the light of the nearest proxy triangle.");
+  }
+  for (const auto& part : parts)
+  {
+    addPart(m.stats, part.first, part.second);
+  }
+  return m.solution;
+}
+}
