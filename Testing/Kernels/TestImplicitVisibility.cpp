@@ -379,3 +379,47 @@ TEST(TestImplicitVisibility, ProgressRisesAndAnAbortKeepsThePreviousSolution)
   solver.update(s, ivOptions(8));
   EXPECT_FALSE(solver.stats().ran("ImplicitLinks"));
 }
+
+TEST(TestImplicitVisibility, EmptyBinsSeeTheEnvironment)
+{
+  // A lone floor under a constant sky: no bin of any vertex holds a link (the floor's discs
+  // are coplanar), so every vertex gathers the sky over its whole hemisphere: E = pi L.
+  // With a block on it, the vertices beside the block lose the sky behind it.
+  MeshBuilder b;
+  b.addQuadGrid({ -2, 0, 2 }, { 4, 0, 0 }, { 0, 0, -4 }, 16, 16, Vec3f(0.5f)); // faces +y
+  const Index floorVertices = b.vertexCount();
+  Scene s = b.take();
+  s.environment.color = { 1.f, 0.5f, 0.25f };
+  SolverOptions o = ivOptions(8, 1);
+  o.smoothing = false;
+  {
+    Solver solver;
+    const Solution& sol = solver.update(s, o);
+    for (std::size_t v = 0; v < s.vertexCount(); ++v)
+    {
+      ASSERT_NEAR(sol.indirect[v].x, kPi * 1.f, 1e-4f) << "vertex " << v;
+      ASSERT_NEAR(sol.indirect[v].z, kPi * 0.25f, 1e-4f) << "vertex " << v;
+    }
+  }
+  MeshBuilder withBlock(s);
+  withBlock.addBox({ -0.5f, 0.f, -0.5f }, { 0.5f, 1.f, 0.5f }, 0.125f, Vec3f(0.f));
+  const Scene t = withBlock.take();
+  Solver solver;
+  const Solution& sol = solver.update(t, o);
+  float nearest = kPi, farthest = 0.f;
+  for (Index v = 0; v < floorVertices; ++v)
+  {
+    const float r = std::max(std::abs(t.positions[v].x), std::abs(t.positions[v].z));
+    if (r > 0.6f && r < 0.8f)
+    {
+      nearest = std::min(nearest, sol.indirect[v].x);
+    }
+    if (r > 1.9f)
+    {
+      farthest = std::max(farthest, sol.indirect[v].x);
+    }
+  }
+  EXPECT_LT(nearest, 0.9f * kPi); // a black block hides part of the sky
+  EXPECT_GT(farthest, 0.9f * kPi);
+  EXPECT_LE(farthest, kPi + 1e-4f);
+}
