@@ -76,7 +76,8 @@ void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverO
   }
   message += v.verticesThatFit > 0 ?
     " a mesh of at most " + std::to_string(v.verticesThatFit) + " vertices at " + rays +
-      " rays per vertex (decimate the input);" :
+      " rays per vertex (decimate the input, or light it through a proxy of that size:"
+      " ProxyVertices);" :
     " no mesh at " + rays + " rays per vertex;";
   message += " or a larger MemoryBudget, if the machine has the memory. The previous result is kept.";
   throw Error(message);
