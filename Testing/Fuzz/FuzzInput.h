@@ -9,9 +9,23 @@
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <vector>
+
+/// A property every accepted input must have: a violation is reported as a crash, with the
+/// property's text.
+#define LINKGI_FUZZ_REQUIRE(condition)                                                       \
+  do                                                                                         \
+  {                                                                                          \
+    if (!(condition))                                                                        \
+    {                                                                                        \
+      std::fprintf(stderr, "%s:%d: %s does not hold\n", __FILE__, __LINE__, #condition);   \
+      std::abort();                                                                          \
+    }                                                                                        \
+  } while (false)
 
 namespace linkgi_fuzz
 {

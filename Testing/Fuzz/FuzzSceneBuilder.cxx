@@ -39,14 +39,6 @@ using linkgi_fuzz::Input;
 
 namespace
 {
-void require(bool condition)
-{
-  if (!condition)
-  {
-    std::abort();
-  }
-}
-
 const char* const kNames[] = { "Albedo", "Emission", "Normals", "Colors", "" };
 
 vtkSmartPointer<vtkAbstractArray> makeArray(Input& in, vtkIdType tuples)
@@ -173,26 +165,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const vtkGlobalIlluminationSceneBuilder::Mesh mesh =
       vtkGlobalIlluminationSceneBuilder::BuildMesh(pd, computeNormals, featureAngle);
     const std::size_t elements = mesh.Scene.vertexCount();
-    require(mesh.ElementPoint.size() == elements);
-    require(mesh.TriangleCell.size() == mesh.Scene.triangleCount());
+    LINKGI_FUZZ_REQUIRE(mesh.ElementPoint.size() == elements);
+    LINKGI_FUZZ_REQUIRE(mesh.TriangleCell.size() == mesh.Scene.triangleCount());
     for (vtkIdType p : mesh.ElementPoint)
     {
-      require(p >= 0 && p < pd->GetNumberOfPoints());
+      LINKGI_FUZZ_REQUIRE(p >= 0 && p < pd->GetNumberOfPoints());
     }
     for (vtkIdType c : mesh.TriangleCell)
     {
-      require(c >= 0 && c < pd->GetNumberOfCells());
+      LINKGI_FUZZ_REQUIRE(c >= 0 && c < pd->GetNumberOfCells());
     }
     const int association = in.boolean() ? vtkDataObject::FIELD_ASSOCIATION_POINTS
                                           : vtkDataObject::FIELD_ASSOCIATION_CELLS;
     const char* name = in.boolean() ? kNames[in.count(4)] : nullptr;
     const std::vector<linkgi::Vec3f> colors = vtkGlobalIlluminationSceneBuilder::GatherColors(
       pd, mesh, name, association, linkgi::Vec3f(0.5f), "albedo");
-    require(colors.size() == elements);
+    LINKGI_FUZZ_REQUIRE(colors.size() == elements);
     const std::vector<linkgi::Vec3f> values(elements, linkgi::Vec3f(1.f));
     vtkSmartPointer<vtkFloatArray> mapped =
       vtkGlobalIlluminationSceneBuilder::MapToPoints(mesh, values, 0, "Radiance");
-    require(mapped->GetNumberOfTuples() == pd->GetNumberOfPoints());
+    LINKGI_FUZZ_REQUIRE(mapped->GetNumberOfTuples() == pd->GetNumberOfPoints());
   }
   catch (const linkgi::Error&)
   {

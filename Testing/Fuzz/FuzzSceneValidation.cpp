@@ -14,14 +14,6 @@ using namespace linkgi;
 
 namespace
 {
-void require(bool condition)
-{
-  if (!condition)
-  {
-    std::abort(); // a validated scene the solver may not trust: report it as a crash
-  }
-}
-
 bool finite(const Vec3f& v)
 {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -30,31 +22,31 @@ bool finite(const Vec3f& v)
 void checkValidated(const Scene& s)
 {
   const std::size_t n = s.vertexCount();
-  require(n > 0 && s.triangleCount() > 0);
-  require(s.normals.size() == n && s.albedo.size() == n);
-  require(s.emission.empty() || s.emission.size() == n);
+  LINKGI_FUZZ_REQUIRE(n > 0 && s.triangleCount() > 0);
+  LINKGI_FUZZ_REQUIRE(s.normals.size() == n && s.albedo.size() == n);
+  LINKGI_FUZZ_REQUIRE(s.emission.empty() || s.emission.size() == n);
   for (const Triangle& t : s.triangles)
   {
-    require(t.v[0] < n && t.v[1] < n && t.v[2] < n);
-    require(t.v[0] != t.v[1] && t.v[1] != t.v[2] && t.v[0] != t.v[2]);
+    LINKGI_FUZZ_REQUIRE(t.v[0] < n && t.v[1] < n && t.v[2] < n);
+    LINKGI_FUZZ_REQUIRE(t.v[0] != t.v[1] && t.v[1] != t.v[2] && t.v[0] != t.v[2]);
   }
   for (std::size_t i = 0; i < n; ++i)
   {
-    require(finite(s.positions[i]) && finite(s.normals[i]) && finite(s.albedo[i]));
+    LINKGI_FUZZ_REQUIRE(finite(s.positions[i]) && finite(s.normals[i]) && finite(s.albedo[i]));
     const float len = std::sqrt(dot(s.normals[i], s.normals[i]));
-    require(std::fabs(len - 1.f) < 1e-3f);
+    LINKGI_FUZZ_REQUIRE(std::fabs(len - 1.f) < 1e-3f);
     for (float c : { s.albedo[i].x, s.albedo[i].y, s.albedo[i].z })
     {
-      require(c >= 0.f && c <= 1.f);
+      LINKGI_FUZZ_REQUIRE(c >= 0.f && c <= 1.f);
     }
   }
   for (const Vec3f& e : s.emission)
   {
-    require(finite(e) && e.x >= 0.f && e.y >= 0.f && e.z >= 0.f);
+    LINKGI_FUZZ_REQUIRE(finite(e) && e.x >= 0.f && e.y >= 0.f && e.z >= 0.f);
   }
   for (const Light& l : s.lights)
   {
-    require(finite(l.position) && finite(l.direction) && finite(l.intensity));
+    LINKGI_FUZZ_REQUIRE(finite(l.position) && finite(l.direction) && finite(l.intensity));
   }
 }
 }

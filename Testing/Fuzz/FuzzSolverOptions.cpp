@@ -14,14 +14,6 @@ using namespace linkgi;
 
 namespace
 {
-void require(bool condition)
-{
-  if (!condition)
-  {
-    std::abort();
-  }
-}
-
 SolverOptions options(linkgi_fuzz::Input& in)
 {
   SolverOptions o;
@@ -91,14 +83,14 @@ bool solve(Solver& solver, const Scene& scene, const SolverOptions& o)
     return false;
   }
   const Solution& s = solver.solution();
-  require(s.elementCount() == scene.vertexCount() * (o.twoSided ? 2 : 1));
-  require(s.indirect.size() == s.elementCount() && s.radiance.size() == s.elementCount());
+  LINKGI_FUZZ_REQUIRE(s.elementCount() == scene.vertexCount() * (o.twoSided ? 2 : 1));
+  LINKGI_FUZZ_REQUIRE(s.indirect.size() == s.elementCount() && s.radiance.size() == s.elementCount());
   for (std::size_t i = 0; i < s.elementCount(); ++i)
   {
     for (const Vec3f& v : { s.direct[i], s.indirect[i], s.radiance[i] })
     {
-      require(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
-      require(v.x >= 0.f && v.y >= 0.f && v.z >= 0.f);
+      LINKGI_FUZZ_REQUIRE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
+      LINKGI_FUZZ_REQUIRE(v.x >= 0.f && v.y >= 0.f && v.z >= 0.f);
     }
   }
   return true;
@@ -120,7 +112,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const Solution &a = solver.solution(), &b = fresh.solution();
   for (std::size_t i = 0; i < a.elementCount(); ++i)
   {
-    require(std::memcmp(&a.radiance[i], &b.radiance[i], sizeof(Vec3f)) == 0);
+    LINKGI_FUZZ_REQUIRE(std::memcmp(&a.radiance[i], &b.radiance[i], sizeof(Vec3f)) == 0);
   }
   return 0;
 }

@@ -97,7 +97,10 @@ TEST(TestAsyncSolver, AbortRunningPolicy)
       std::lock_guard<std::mutex> lock(m);
       return !shown.empty() && shown.back() == second;
     };
-    while (!published() && std::chrono::steady_clock::now() < deadline)
+    // A deadline of its own: the slow update may have used up the first one (under a
+    // sanitizer on a loaded machine it takes longer than 30 s).
+    const auto callbackDeadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!published() && std::chrono::steady_clock::now() < callbackDeadline)
     {
       std::this_thread::yield();
     }

@@ -179,7 +179,22 @@ std::size_t removeDegenerateTriangles(Scene& scene)
   return before - scene.triangles.size();
 }
 
-/// Replaces zero-length normals by the area-weighted normal of the adjacent triangles.
+/// `n` at unit length, zero for a zero vector. Scaled first by the power of two of its
+/// largest component (exact, and no reciprocal of a denormal), so that the squares neither
+/// overflow (1e20, 0, 0) nor underflow (1e-30, 0, 0) to a length of infinity or zero.
+Vec3f unitLength(const Vec3f& n)
+{
+  const float largest = std::max({ std::abs(n.x), std::abs(n.y), std::abs(n.z) });
+  if (!(largest > 0.f))
+  {
+    return Vec3f(0.f);
+  }
+  const int e = std::ilogb(largest);
+  return normalize(Vec3f(std::ldexp(n.x, -e), std::ldexp(n.y, -e), std::ldexp(n.z, -e)));
+}
+
+/// Replaces zero-length normals by the area-weighted normal of the adjacent triangles (+Z
+/// for a vertex of no triangle, or of triangles that cancel: any direction will do).
 std::size_t repairNormals(Scene& scene)
 {
   std::vector<Vec3f> faceSum;
@@ -191,9 +206,10 @@ std::size_t repairNormals(Scene& scene)
     {
       continue;
     }
-    if (len > 0.f)
+    const Vec3f unit = unitLength(scene.normals[i]);
+    if (unit != Vec3f(0.f))
     {
-      scene.normals[i] = scene.normals[i] / len; // merely unnormalized: not worth a warning
+      scene.normals[i] = unit; // merely unnormalized: not worth a warning
       continue;
     }
     if (faceSum.empty())
@@ -209,7 +225,8 @@ std::size_t repairNormals(Scene& scene)
         }
       }
     }
-    scene.normals[i] = normalize(faceSum[i]);
+    const Vec3f face = unitLength(faceSum[i]);
+    scene.normals[i] = face != Vec3f(0.f) ? face : Vec3f(0.f, 0.f, 1.f);
     ++repaired;
   }
   return repaired;
