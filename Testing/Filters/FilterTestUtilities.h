@@ -2,12 +2,14 @@
 // and the conversion of an engine scene into the VTK objects the filter reads.
 #pragma once
 
+#include "vtkAppendPolyData.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkGlobalIlluminationFilter.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
@@ -15,6 +17,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
 #include "vtkStringArray.h"
 
 #include "linkgi/Scene.h"
@@ -218,5 +221,45 @@ inline vtkDataArray* PointArray(vtkPolyData* pd, const char* name)
 inline double Value(vtkPolyData* pd, const char* name, vtkIdType i, int c = 0)
 {
   return PointArray(pd, name)->GetComponent(i, c);
+}
+
+/// The mean of component 0 of point array `name` over the points (not area-weighted).
+inline double MeanValue(vtkPolyData* pd, const char* name)
+{
+  vtkDataArray* a = PointArray(pd, name);
+  double sum = 0.0;
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    sum += a->GetComponent(i, 0);
+  }
+  return sum / double(a->GetNumberOfTuples());
+}
+
+/// The field data's LinkGI.Method ("links", ...), empty when missing.
+inline std::string MethodName(vtkPolyData* pd)
+{
+  auto* names = vtkStringArray::SafeDownCast(pd->GetFieldData()->GetAbstractArray("LinkGI.Method"));
+  return names && names->GetNumberOfValues() > 0 ? names->GetValue(0) : "";
+}
+
+/// A filter on a sphere (radius 0.4, centre 0.5 above the floor) over a 4 x 4 floor of
+/// `floorResolution`^2 cells, lit by a point light, on the CPU.
+inline vtkSmartPointer<vtkGlobalIlluminationFilter> MakeSphereOnFloorFilter(int floorResolution = 20)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0, 0, 0.5);
+  sphere->SetRadius(0.4);
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(12);
+  vtkNew<vtkAppendPolyData> append;
+  append->AddInputData(MakeFloor(2, floorResolution));
+  append->AddInputConnection(sphere->GetOutputPort());
+  append->Update();
+  auto filter = vtkSmartPointer<vtkGlobalIlluminationFilter>::New();
+  filter->SetInputData(append->GetOutput());
+  const double light[3] = { 0.5, 0.3, 2.0 }, origin[3] = { 0, 0, 0 };
+  filter->AddLight(MakeLight(light, origin, 4.0));
+  filter->SetBackendToCPU();
+  return filter;
 }
 }

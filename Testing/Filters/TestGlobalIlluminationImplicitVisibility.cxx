@@ -2,55 +2,11 @@
 // what it reports in the field data, and that it lights a scene like the link method.
 #include "FilterTestUtilities.h"
 
-#include "vtkAppendPolyData.h"
-#include "vtkFieldData.h"
 #include "vtkGlobalIlluminationFilter.h"
-#include "vtkSphereSource.h"
-#include "vtkStringArray.h"
 
 #include <gtest/gtest.h>
 
 using namespace linkgi_test;
-
-namespace
-{
-std::string MethodName(vtkPolyData* pd)
-{
-  auto* names = vtkStringArray::SafeDownCast(pd->GetFieldData()->GetAbstractArray("LinkGI.Method"));
-  return names && names->GetNumberOfValues() > 0 ? names->GetValue(0) : "";
-}
-
-double Mean(vtkPolyData* pd, const char* name)
-{
-  vtkDataArray* a = PointArray(pd, name);
-  double sum = 0.0;
-  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
-  {
-    sum += a->GetComponent(i, 0);
-  }
-  return sum / double(a->GetNumberOfTuples());
-}
-
-// A sphere (radius 0.4) above a 4 x 4 floor, lit by a point light.
-vtkSmartPointer<vtkGlobalIlluminationFilter> SphereOnFloorFilter()
-{
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(0, 0, 0.5);
-  sphere->SetRadius(0.4);
-  sphere->SetThetaResolution(24);
-  sphere->SetPhiResolution(12);
-  vtkNew<vtkAppendPolyData> append;
-  append->AddInputData(MakeFloor(2, 20));
-  append->AddInputConnection(sphere->GetOutputPort());
-  append->Update();
-  auto filter = vtkSmartPointer<vtkGlobalIlluminationFilter>::New();
-  filter->SetInputData(append->GetOutput());
-  const double light[3] = { 0.5, 0.3, 2.0 }, origin[3] = { 0, 0, 0 };
-  filter->AddLight(MakeLight(light, origin, 4.0));
-  filter->SetBackendToCPU();
-  return filter;
-}
-}
 
 TEST(TestGlobalIlluminationImplicitVisibility, PropertiesAndTheirLimits)
 {
@@ -67,7 +23,7 @@ TEST(TestGlobalIlluminationImplicitVisibility, PropertiesAndTheirLimits)
 
 TEST(TestGlobalIlluminationImplicitVisibility, SwitchFromLinksGivesTheSameArraysAndSimilarLight)
 {
-  auto filter = SphereOnFloorFilter();
+  auto filter = MakeSphereOnFloorFilter();
   filter->Update();
   vtkNew<vtkPolyData> links;
   links->DeepCopy(filter->GetOutput());
@@ -87,8 +43,8 @@ TEST(TestGlobalIlluminationImplicitVisibility, SwitchFromLinksGivesTheSameArrays
   }
   // The same direct light (the shared light-link stage); bounced light within 15% on
   // average (the bins' full coverage brightens what the floor sees of the sphere).
-  EXPECT_NEAR(Mean(iv, "DirectIrradiance"), Mean(links, "DirectIrradiance"), 1e-6 * Mean(links, "DirectIrradiance"));
-  EXPECT_NEAR(Mean(iv, "IndirectIrradiance") / Mean(links, "IndirectIrradiance"), 1.0, 0.15);
+  EXPECT_NEAR(MeanValue(iv, "DirectIrradiance"), MeanValue(links, "DirectIrradiance"), 1e-6 * MeanValue(links, "DirectIrradiance"));
+  EXPECT_NEAR(MeanValue(iv, "IndirectIrradiance") / MeanValue(links, "IndirectIrradiance"), 1.0, 0.15);
 
   // More bins re-link and gather again, and leave the direct light alone.
   filter->SetImplicitVisibilityBins(8);
