@@ -92,6 +92,8 @@ vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
   , ProxyVisibility(0)
   , ProxyResolution(32)
   , ImplicitVisibilityBins(12)
+  , MemoryBudget(0.0)
+  , ProxyVertices(0)
   , FeatureAngle(30.0)
   , Smoothing(1)
   , ComputeNormals(0)
@@ -202,11 +204,10 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
     {
       internals.Async.reset();
       const linkgi::Scene& scene = internals.UpdateScene(this, surface);
-      internals.Solver.update(scene, internals.Options(this), internals.Progress(this));
+      internals.Update(this, scene);
       lit->ShallowCopy(surface);
       const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
-      internals.AttachResults(
-        this, lit, elapsed.count(), internals.Solver.solution(), internals.Solver.stats());
+      internals.AttachResults(this, lit, elapsed.count(), internals.Solution(), internals.Stats());
       for (const std::string& warning : internals.AllWarnings())
       {
         vtkWarningMacro(<< warning);
@@ -404,6 +405,8 @@ void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Proxy Visibility: " << (this->ProxyVisibility ? "On" : "Off") << "\n";
   os << indent << "Proxy Resolution: " << this->ProxyResolution << "\n";
   os << indent << "Implicit Visibility Bins: " << this->ImplicitVisibilityBins << "\n";
+  os << indent << "Memory Budget: " << this->MemoryBudget << " MiB\n";
+  os << indent << "Proxy Vertices: " << this->ProxyVertices << "\n";
   os << indent << "Feature Angle: " << this->FeatureAngle << "\n";
   os << indent << "Smoothing: " << (this->Smoothing ? "On" : "Off") << "\n";
   os << indent << "Compute Normals: " << (this->ComputeNormals ? "On" : "Off") << "\n";

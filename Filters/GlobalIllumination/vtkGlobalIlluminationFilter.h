@@ -178,6 +178,31 @@ public:
 
   ///@{
   /**
+   * Host memory an update may use, in MiB. An update estimated to need more (the links of a
+   * large mesh at many rays) fails with an error that says what would fit, before anything
+   * is allocated, and the previous output stays: the operating system never kills the
+   * process. 0 (automatic): what the machine has available, less a margin. The default
+   * value is 0.
+   */
+  vtkSetClampMacro(MemoryBudget, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MemoryBudget, double);
+  ///@}
+
+  ///@{
+  /**
+   * Lighting through a proxy: when above 0, the indirect light is solved on a copy of the
+   * surface decimated to about this many vertices (OpenMesh) and carried to every input
+   * point; the direct light is still computed at every input point. The proxy is kept while
+   * the geometry stays, so a light move does not decimate again. It must be smaller than the
+   * input; negative values are an error. Synchronous updates only. The default value is 0
+   * (off).
+   */
+  vtkSetMacro(ProxyVertices, vtkIdType);
+  vtkGetMacro(ProxyVertices, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
    * Number of rays traced from each vertex (n_C), a perfect square k*k because the
    * directions form a k x k stratified grid. Other values are rounded to the nearest perfect
    * square (with a warning). Changing it rebuilds the links. The default value is 256.
@@ -469,6 +494,8 @@ protected:
   vtkTypeBool ProxyVisibility;
   int ProxyResolution;
   int ImplicitVisibilityBins;
+  double MemoryBudget;
+  vtkIdType ProxyVertices;
   double FeatureAngle;
   vtkTypeBool Smoothing;
   vtkTypeBool ComputeNormals;

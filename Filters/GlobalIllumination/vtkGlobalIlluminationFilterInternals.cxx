@@ -126,6 +126,27 @@ vtkPolyData* vtkGlobalIlluminationFilter::vtkInternals::Surface(
 }
 
 //------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::vtkInternals::Update(
+  vtkGlobalIlluminationFilter* self, const linkgi::Scene& scene)
+{
+  if (self->ProxyVertices < 0)
+  {
+    throw linkgi::Error("ProxyVertices must be 0 (no proxy) or a vertex count smaller than the "
+                        "input's; got " + std::to_string(self->ProxyVertices) + ".");
+  }
+  this->ProxyUsed = self->ProxyVertices > 0;
+  if (this->ProxyUsed)
+  {
+    this->Proxy.update(scene, this->Options(self), static_cast<std::size_t>(self->ProxyVertices),
+      this->Progress(self));
+  }
+  else
+  {
+    this->Solver.update(scene, this->Options(self), this->Progress(self));
+  }
+}
+
+//------------------------------------------------------------------------------
 linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
   vtkGlobalIlluminationFilter* self)
 {
@@ -141,6 +162,7 @@ linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
     ? linkgi::Method::ImplicitVisibility
     : linkgi::Method::Links;
   options.implicitVisibility.binsPerSide = static_cast<std::uint32_t>(self->ImplicitVisibilityBins);
+  options.memoryBudget = static_cast<std::uint64_t>(self->MemoryBudget * 1024.0 * 1024.0);
   options.instantRadiosity.vplCount = static_cast<std::uint32_t>(self->NumberOfVPLs);
   options.instantRadiosity.clampDistance = static_cast<float>(self->VPLClampDistance);
   options.instantRadiosity.interleave = static_cast<std::uint32_t>(self->VPLInterleaving);
@@ -211,6 +233,11 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   vtkGlobalIlluminationFilter* self, vtkPolyData* input, vtkPolyData* output)
 {
   const auto start = std::chrono::steady_clock::now();
+  if (self->ProxyVertices != 0)
+  {
+    this->Warnings.push_back("ProxyVertices applies to synchronous updates only; this "
+                             "asynchronous one lights the full surface.");
+  }
   if (!this->Async)
   {
     this->Async = std::make_unique<linkgi::AsyncSolver>();

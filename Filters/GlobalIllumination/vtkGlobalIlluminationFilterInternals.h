@@ -15,6 +15,7 @@
 #include "vtkSmartPointer.h"
 
 #include "linkgi/AsyncSolver.h"
+#include "linkgi/Proxy.h"
 #include "linkgi/Solver.h"
 
 #include <memory>
@@ -24,6 +25,12 @@
 struct vtkGlobalIlluminationFilter::vtkInternals
 {
   linkgi::Solver Solver;
+  linkgi::ProxySolver Proxy; // ProxyVertices > 0
+  bool ProxyUsed = false;    // the last synchronous update went through Proxy
+  /// A synchronous update: through the proxy when ProxyVertices > 0, else the Solver.
+  void Update(vtkGlobalIlluminationFilter* self, const linkgi::Scene& scene);
+  const linkgi::Solution& Solution() const { return this->ProxyUsed ? this->Proxy.solution() : this->Solver.solution(); }
+  const linkgi::SolverStats& Stats() const { return this->ProxyUsed ? this->Proxy.stats() : this->Solver.stats(); }
   std::vector<vtkSmartPointer<vtkLight>> Lights;
   vtkSmartPointer<vtkDataObject> LastOutput; // the last good output, handed out after errors
   std::vector<std::string> Warnings;         // the filter's own, for this update
@@ -60,7 +67,7 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   std::vector<std::string> AllWarnings() const
   {
     std::vector<std::string> all = this->Warnings;
-    const auto& engine = this->Solver.stats().warnings;
+    const auto& engine = this->Stats().warnings;
     all.insert(all.end(), engine.begin(), engine.end());
     return all;
   }

@@ -1,0 +1,116 @@
+// vtkGlobalIlluminationFilter's MemoryBudget and ProxyVertices (issue 15): a budget too small
+// for the update is an error that keeps the previous output; a proxy lights every input point,
+// with the direct light of the full surface, and bad proxy sizes are errors.
+#include "FilterTestUtilities.h"
+
+#include "vtkAppendPolyData.h"
+#include "vtkGlobalIlluminationFilter.h"
+#include "vtkSphereSource.h"
+
+#include "linkgi/Proxy.h"
+
+#include <gtest/gtest.h>
+
+using namespace linkgi_test;
+
+namespace
+{
+// A sphere (radius 0.4) above a 4 x 4 floor, lit by a point light.
+vtkSmartPointer<vtkGlobalIlluminationFilter> SphereOnFloorFilter()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0, 0, 0.5);
+  sphere->SetRadius(0.4);
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(12);
+  vtkNew<vtkAppendPolyData> append;
+  append->AddInputData(MakeFloor(2, 30));
+  append->AddInputConnection(sphere->GetOutputPort());
+  append->Update();
+  auto filter = vtkSmartPointer<vtkGlobalIlluminationFilter>::New();
+  filter->SetInputData(append->GetOutput());
+  const double light[3] = { 0.5, 0.3, 2.0 }, origin[3] = { 0, 0, 0 };
+  filter->AddLight(MakeLight(light, origin, 4.0));
+  filter->SetBackendToCPU();
+  filter->SetRaysPerVertex(64);
+  return filter;
+}
+
+bool SameArray(vtkDataArray* a, vtkDataArray* b)
+{
+  if (!a || !b || a->GetNumberOfTuples() != b->GetNumberOfTuples())
+  {
+    return false;
+  }
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+    {
+      if (a->GetComponent(i, c) != b->GetComponent(i, c))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+}
+
+TEST(TestGlobalIlluminationProxy, PropertiesAndTheirDefaults)
+{
+  vtkNew<vtkGlobalIlluminationFilter> filter;
+  EXPECT_EQ(filter->GetMemoryBudget(), 0.0);
+  EXPECT_EQ(filter->GetProxyVertices(), 0);
+  filter->SetMemoryBudget(-5.0);
+  EXPECT_EQ(filter->GetMemoryBudget(), 0.0);
+}
+
+TEST(TestGlobalIlluminationProxy, ABudgetTooSmallIsAnErrorAndKeepsTheOutput)
+{
+  auto filter = SphereOnFloorFilter();
+  filter->Update();
+  vtkNew<vtkPolyData> before;
+  before->DeepCopy(filter->GetOutput());
+
+  MessageCapture messages(filter);
+  filter->SetMemoryBudget(0.5); // MiB: not enough for 1024 rays on ~1.2k points
+  filter->SetRaysPerVertex(1024);
+  filter->Update();
+  EXPECT_TRUE(messages.HasError("Not enough memory")) << (messages.Errors.empty() ? "" : messages.Errors[0]);
+  EXPECT_TRUE(messages.HasError("rays per vertex"));
+  EXPECT_TRUE(SameArray(PointArray(filter->GetOutput(), "IndirectIrradiance"),
+    PointArray(before, "IndirectIrradiance")));
+}
+
+TEST(TestGlobalIlluminationProxy, AProxyLightsEveryPointWithTheFullDirectLight)
+{
+  if (!linkgi::proxyAvailable())
+  {
+    GTEST_SKIP() << "This build has no OpenMesh.";
+  }
+  auto filter = SphereOnFloorFilter();
+  filter->Update();
+  vtkNew<vtkPolyData> full;
+  full->DeepCopy(filter->GetOutput());
+  const vtkIdType points = full->GetNumberOfPoints();
+
+  MessageCapture messages(filter);
+  filter->SetProxyVertices(points / 3);
+  filter->Update();
+  vtkPolyData* out = filter->GetOutput();
+  EXPECT_TRUE(messages.Errors.empty()) << messages.Errors[0];
+  ASSERT_EQ(out->GetNumberOfPoints(), points);
+  EXPECT_TRUE(SameArray(PointArray(out, "DirectIrradiance"), PointArray(full, "DirectIrradiance")));
+  vtkDataArray* indirect = PointArray(out, "IndirectIrradiance");
+  ASSERT_NE(indirect, nullptr);
+  EXPECT_FALSE(SameArray(indirect, PointArray(full, "IndirectIrradiance"))); // it did go through a proxy
+  EXPECT_GT(indirect->GetRange(0)[1], 0.0);
+
+  filter->SetProxyVertices(2 * points); // more than the input has, split normals included
+  filter->Update();
+  EXPECT_TRUE(messages.HasError("fewer vertices than the input"));
+  messages.Clear();
+  filter->SetProxyVertices(-1);
+  filter->Update();
+  EXPECT_TRUE(messages.HasError("ProxyVertices must be 0"));
+}
