@@ -11,13 +11,14 @@ precondition did not hold (the worker was quicker than a render) fails naming it
 2. A render during a pending update does not wait and shows the previous indirect light:
    after Rays Per Vertex changes (a link rebuild) the Indirect display's pixels equal the
    previous frame's, while the new request is still unsolved; Wait = Always then shows the
-   new solution, which differs.
+   new solution, which differs, and reports the worker's progress while it waits.
 3. Changes while a solve runs replace the request waiting instead of queueing: two light
    moves during a link rebuild give exactly one newer solution (the second move's): the
    solver ran the bounces twice (the rebuild's and that one) and built light links once.
 """
 import os
 
+from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403 (the pvbatch idiom)
 from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -32,7 +33,7 @@ def statistics(display):
     proxy = display.SMProxy
     proxy.UpdatePropertyInformation()
     names = ("LinkBuilds", "LightLinkBuilds", "BounceRuns", "Updates", "NewestRequest",
-             "ShownRequest", "SolvingRequest")
+             "ShownRequest", "SolvingRequest", "ShadowMapRenders")
     return {n: proxy.GetProperty("GlobalIllumination" + n).GetElement(0) for n in names}
 
 
@@ -123,8 +124,22 @@ t.check(pending["NewestRequest"] == solved["NewestRequest"] + 1,
 t.check((during == before).all(),
         "while it is solved, the picture keeps the previous indirect light, pixel for pixel")
 gi.GlobalIlluminationWait = "Always"
+progress = []
+handler = servermanager.ActiveConnection.Session.GetProgressHandler()
+handler.SetProgressInterval(0.01)
+observer = handler.AddObserver("ProgressEvent",
+                               lambda h, e: progress.append(h.GetLastProgress()))
 after = pixels(view, "AsyncIndirectAfter")
+handler.RemoveObserver(observer)
+t.check(any(0 < p < 100 for p in progress),
+        "waiting, the render reported the worker's progress (%d events, last %s)"
+        % (len(progress), progress[-3:]))
 done = statistics(gi)
+Render(view)
+t.check(statistics(gi)["ShadowMapRenders"] == done["ShadowMapRenders"],
+        "a render with nothing changed reuses the shadow maps")
+print("shadow map renders: before the rebuild %d, while pending %d, with its solution %d"
+      % (solved["ShadowMapRenders"], pending["ShadowMapRenders"], done["ShadowMapRenders"]))
 t.check(done["ShownRequest"] == pending["NewestRequest"] and done["LinkBuilds"] == 2,
         "Wait = Always drew the rebuilt links' solution: %s" % done)
 t.check(not (after == before).all(), "the new solution changed the picture")

@@ -529,6 +529,11 @@ int vtkGlobalIlluminationRepresentation::GetSolvingRequest()
   return static_cast<int>(this->Internals->Filter->GetAsynchronousSolving());
 }
 
+int vtkGlobalIlluminationRepresentation::GetShadowMapRenders()
+{
+  return static_cast<vtkGlobalIlluminationCompositeMapper*>(this->Mapper)->GetShadowMapRenderCount();
+}
+
 int vtkGlobalIlluminationRepresentation::GetNumberOfLights()
 {
   return this->Internals->Filter->GetNumberOfLights();

@@ -173,6 +173,9 @@ public:
   int GetSolvingRequest();
   ///@}
 
+  /// How many times the mapper rendered its shadow maps (for tests of the shadow cache).
+  int GetShadowMapRenders();
+
   /// The internal filter, for C++ callers.
   vtkGlobalIlluminationFilter* GetFilter();
 

@@ -1,0 +1,214 @@
+"""pvbatch benchmark of the Global Illumination representation: ms per orbit frame (issue 19).
+
+    pvbatch paraview-plugin/examples/benchmark_orbit.py --plugin <LinkGI.so> [--repeats 5]
+        [--output result.json]
+
+(with PYTHONPATH holding ParaView's Python modules, as Testing/ParaView/CMakeLists.txt sets
+it). Datasets: Wavelet -40..40 contoured at RTData 160 (the issue's 54k-point surface) and
+Wavelet -64..64 at 160 (a larger one, >= 120k points). View 800x600, default view lights
+(the light kit), 10 orbit steps of 5 degrees (Azimuth) per run, each step one Render();
+a run's figure is its mean ms per frame, and the table gives the median, minimum and
+maximum of `--repeats` runs. Rows:
+
+- Surface;
+- Global Illumination, key light not bounced, no shadows;
+- ... key light not bounced, shadows;
+- ... key light bounced (the default), shadows;
+- ... light kit off and one static scene point light, shadows.
+
+Each Global Illumination row starts from a finished solution (the first render waits).
+With a plugin that solves in the background, orbit frames then do not wait (Wait For
+Global Illumination = Never, as the GUI renders); the key-light-bounced row is also
+measured with the scripts' default (In Scripts: every frame waits for its solution). With
+an older plugin (no such property) every frame solves synchronously.
+
+`apply_s` is Show + the first Render of the dataset as Global Illumination: in the
+background mode it returns with direct light while the links build; `solved_s` is when
+its first solution was drawn; `apply_surface_s` is Show + first Render as Surface (in a
+view of its own, before), for comparison. Prints the JSON and writes it to --output if given.
+"""
+import argparse
+import json
+import os
+import platform
+import statistics
+import sys
+import time
+
+from paraview import servermanager
+from paraview.simple import *  # noqa: F401,F403 (the pvbatch idiom)
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--plugin", required=True)
+parser.add_argument("--repeats", type=int, default=5)
+parser.add_argument("--steps", type=int, default=10)
+parser.add_argument("--output")
+parser.add_argument("--datasets", default="wavelet40,wavelet64")
+arguments = parser.parse_args(sys.argv[1:])
+LoadPlugin(arguments.plugin, remote=False, ns=globals())
+
+EXTENTS = {"wavelet40": 40, "wavelet64": 64}
+
+
+def cpu_name():
+    try:
+        with open("/proc/cpuinfo") as info:
+            for line in info:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor()
+
+
+def information(display, name):
+    display.SMProxy.UpdatePropertyInformation()
+    return display.SMProxy.GetProperty("GlobalIllumination" + name).GetElement(0)
+
+
+def has_background_mode(display):
+    return display.GetProperty("GlobalIlluminationWait") is not None
+
+
+def orbit(view, steps):
+    """Mean ms per frame of `steps` orbit steps of 5 degrees."""
+    camera = GetActiveCamera()
+    elapsed = 0.0
+    for _ in range(steps):
+        camera.Azimuth(5)
+        start = time.perf_counter()
+        Render(view)
+        elapsed += time.perf_counter() - start
+    return 1000.0 * elapsed / steps
+
+
+def row(view, display, setup, wait=None):
+    """Runs of one row: `setup` sets the display and view, `wait` the orbit's wait mode."""
+    setup(display, view)
+    background = display.Representation == "Global Illumination" and \
+        has_background_mode(display)
+    if background:
+        display.GlobalIlluminationWait = "Always"
+    Render(view)  # a finished solution to start from
+    if background and wait:
+        display.GlobalIlluminationWait = wait
+    runs = []
+    for _ in range(arguments.repeats):
+        view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = HOME
+        runs.append(orbit(view, arguments.steps))
+    if background:
+        display.GlobalIlluminationWait = "Always"
+        Render(view)  # let the worker finish before the next row
+    return {"median_ms": round(statistics.median(runs), 1), "min_ms": round(min(runs), 1),
+            "max_ms": round(max(runs), 1), "runs_ms": [round(r, 1) for r in runs]}
+
+
+def gi(key, shadows, point_light=False):
+    def setup(display, view):
+        display.Representation = "Global Illumination"
+        display.GlobalIlluminationKeyLight = 1 if key else 0
+        display.GlobalIlluminationShadows = 1 if shadows else 0
+        if point_light:
+            view.UseLight = 0
+            view.AdditionalLights = [LAMP]
+        else:
+            view.UseLight = 1
+            view.AdditionalLights = []
+    return setup
+
+
+def surface(display, view):
+    display.Representation = "Surface"
+    view.UseLight = 1
+    view.AdditionalLights = []
+
+
+def opengl_renderer():
+    probe = CreateView("RenderView")
+    Render(probe)
+    report = probe.GetRenderWindow().ReportCapabilities() or ""
+    Delete(probe)
+    for line in report.splitlines():
+        if line.startswith("OpenGL renderer string:"):
+            return line.split(":", 1)[1].strip()
+    return "unknown"
+
+
+result = {"benchmark": "paraview-plugin/examples/benchmark_orbit.py",
+          "machine": {"cpu": cpu_name(), "cores": os.cpu_count(),
+                      "opengl": opengl_renderer(), "load_average": os.getloadavg()},
+          "protocol": {"view": [800, 600], "steps": arguments.steps, "degrees": 5,
+                       "repeats": arguments.repeats, "figure": "mean ms/frame per run"},
+          "datasets": {}}
+
+for name in arguments.datasets.split(","):
+    extent = EXTENTS[name]
+    view = CreateView("RenderView")
+    view.ViewSize = [800, 600]
+    SetActiveView(view)
+    wavelet = Wavelet(WholeExtent=[-extent, extent] * 3)
+    contour = Contour(Input=wavelet, ContourBy=["POINTS", "RTData"], Isosurfaces=[160.0])
+    contour.UpdatePipeline()
+    points = contour.GetDataInformation().GetNumberOfPoints()
+    LAMP = CreateLight()
+    LAMP.Coords = "Scene"
+    LAMP.Type = "Positional"
+    LAMP.ConeAngle = 180
+    LAMP.Position = [extent * 0.5, extent * 2.0, extent * 1.5]
+    LAMP.Intensity = float(extent * extent * 2)
+
+    # For comparison: Show + first Render as Surface, in a view of its own.
+    other = CreateView("RenderView")
+    other.ViewSize = [800, 600]
+    start = time.perf_counter()
+    shown = Show(contour, other)
+    other.ResetCamera()
+    Render(other)
+    apply_surface_s = time.perf_counter() - start
+    Delete(shown)
+    Delete(other)
+    SetActiveView(view)
+
+    # Apply: Show + first Render as Global Illumination, the links built from nothing.
+    start = time.perf_counter()
+    display = Show(contour, view)
+    display.Representation = "Global Illumination"
+    background = has_background_mode(display)
+    if background:
+        display.GlobalIlluminationWait = "Never"
+    view.ResetCamera()
+    Render(view)
+    apply_s = time.perf_counter() - start
+    if background:
+        display.GlobalIlluminationWait = "Always"
+        Render(view)
+    solved_s = time.perf_counter() - start
+    HOME = (list(view.CameraPosition), list(view.CameraFocalPoint), list(view.CameraViewUp))
+
+    rows = {}
+    rows["Surface"] = row(view, display, surface)
+    rows["GI, key light not bounced, no shadows"] = row(view, display, gi(False, False), "Never")
+    rows["GI, key light not bounced, shadows"] = row(view, display, gi(False, True), "Never")
+    rows["GI, key light bounced (default), shadows"] = row(view, display, gi(True, True), "Never")
+    if background:
+        rows["GI, key light bounced (default), shadows, every frame waits"] = \
+            row(view, display, gi(True, True), "In Scripts")
+    rows["GI, one static scene point light, shadows"] = \
+        row(view, display, gi(False, True, point_light=True), "Never")
+    result["datasets"][name] = {
+        "points": points, "background_mode": background,
+        "apply_surface_s": round(apply_surface_s, 2), "apply_s": round(apply_s, 2),
+        "solved_s": round(solved_s, 2), "rows": rows}
+    Delete(display)
+    Delete(contour)
+    Delete(wavelet)
+    Delete(view)
+
+result["machine"]["load_average_after"] = os.getloadavg()
+text = json.dumps(result, indent=2)
+print(text)
+if arguments.output:
+    with open(arguments.output, "w") as out:
+        out.write(text + "\n")
+sys.stdout.flush()
+os._exit(0)  # skip pvbatch's teardown of live proxies
