@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <atomic>
+#include <chrono>
 #include <numeric>
 
 namespace linkgi
@@ -199,13 +201,15 @@ void assembleCsr(const std::vector<RowChunk>& chunks, std::size_t chunkRows,
     }
   });
 }
-}
 
-LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
+/// Compresses every element's row from the hits `hitsOf(x, scratch)` gives (a pointer to
+/// raysPerVertex hits; `scratch` is the calling thread's buffer) into the CSR rows.
+template <typename HitsOf>
+LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
   const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress, const HitsOf& hitsOf)
 {
-  const std::vector<Vec3f> dirs = makeDirectionSet(hits.raysPerVertex);
+  const std::vector<Vec3f> dirs = makeDirectionSet(raysPerVertex);
   const Elements elements{ scene.vertexCount(), options.twoSided };
   const std::size_t rows = elements.count(), n = dirs.size();
   const Environment& env = scene.environment;
@@ -225,6 +229,7 @@ LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
       // Scratch rows stay all-zero between rows (flush clears them), so they are only
       // reallocated when the size changes.
       thread_local ScratchRow row, envRow;
+      thread_local std::vector<Hit> hitScratch;
       if (row.value.size() != rows)
       {
         row.value.assign(rows, 0.f);
@@ -238,12 +243,13 @@ LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
         RowChunk& chunk = chunks[c];
         for (std::size_t x = c * kChunkRows; x < std::min(rows, (c + 1) * kChunkRows); ++x)
         {
+          const Hit* hits = hitsOf(x, hitScratch);
           const Index v = elements.vertexOf(x);
           const Frame frame = vertexFrame(
             scene.normals[v] * elements.sideSign(x), options.twist, options.seed, Index(x));
           for (std::size_t k = 0; k < n; ++k)
           {
-            const RayLinks links = linksOfRay(hits.hits[x * n + k], frame.toWorld(dirs[k]),
+            const RayLinks links = linksOfRay(hits[k], frame.toWorld(dirs[k]),
               scene.triangles.data(), faceNormals.data(), params);
             for (int j = 0; j < links.count; ++j)
             {
@@ -254,6 +260,12 @@ LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
           rowCounts[x] = Index(row.flush(chunk.columns, chunk.weights));
           envRowCounts[x] = Index(envRow.flush(chunk.envColumns, chunk.envWeights));
         }
+        // Grown by doubling, a chunk holds up to twice its links until the CSR copy: at
+        // their size, all chunks and the CSR together are twice the links, not three times.
+        chunk.columns.shrink_to_fit();
+        chunk.weights.shrink_to_fit();
+        chunk.envColumns.shrink_to_fit();
+        chunk.envWeights.shrink_to_fit();
       }
     },
     progress);
@@ -261,10 +273,59 @@ LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
   LinkStructure out;
   assembleCsr(chunks, kChunkRows, rowCounts, false, out.transport);
   assembleCsr(chunks, kChunkRows, envRowCounts, true, out.environment);
-  out.rays = hits.hits.size();
+  out.rays = std::uint64_t(rows) * n;
   for (const RowChunk& chunk : chunks)
   {
     out.rawLinks += chunk.rawLinks;
+  }
+  return out;
+}
+}
+
+LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
+  const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
+  const ProgressCallback& progress)
+{
+  const std::size_t n = hits.raysPerVertex;
+  return linkRows(scene, hits.raysPerVertex, faceNormals, options, progress,
+    [&](std::size_t x, std::vector<Hit>&) { return &hits.hits[x * n]; });
+}
+
+LinkStructure buildLinks(const Scene& scene, const std::vector<Vec3f>& shifts,
+  const RayTracer& tracer, const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
+  const ProgressCallback& progress, double* msCompress)
+{
+  const std::vector<Vec3f> dirs = makeDirectionSet(options.raysPerVertex);
+  const Elements elements{ scene.vertexCount(), options.twoSided };
+  const std::size_t n = dirs.size();
+  const float eps = rayEpsilon(scene);
+  std::atomic<std::int64_t> traceNs{ 0 };
+  const auto start = std::chrono::steady_clock::now();
+  LinkStructure out = linkRows(scene, options.raysPerVertex, faceNormals, options, progress,
+    [&](std::size_t x, std::vector<Hit>& hits) {
+      const auto t = std::chrono::steady_clock::now();
+      thread_local std::vector<Ray> rays;
+      rays.resize(n);
+      hits.resize(n);
+      const Index v = elements.vertexOf(x);
+      const Vec3f normal = scene.normals[v] * elements.sideSign(x);
+      const Frame frame = vertexFrame(normal, options.twist, options.seed, Index(x));
+      const Vec3f origin = elementRayOrigin(scene.positions[v], normal, shifts[v], eps);
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        rays[k].origin = origin;
+        rays[k].direction = frame.toWorld(dirs[k]);
+      }
+      tracer.trace(rays.data(), hits.data(), n);
+      traceNs += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t).count();
+      return hits.data();
+    });
+  if (msCompress)
+  {
+    // The threads' tracing time, spread over the workers, is the wall time they traced.
+    const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double tracing = double(traceNs.load()) * 1e-6 / double(std::max(1, workerCount()));
+    *msCompress = std::max(0.0, wall - tracing);
   }
   return out;
 }

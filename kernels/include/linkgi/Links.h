@@ -201,4 +201,12 @@ void traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
 LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
   const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
   const ProgressCallback& progress = {});
+
+/// Stages 1 and 2 element by element: each element's rays are traced and its row compressed
+/// at once, so no buffer holds every hit (raysPerVertex x 16 bytes per element) and the
+/// compressed rows are kept at their size. The same rows as compressLinks(traceLinkRays()).
+/// `msCompress`, when given, receives the compression's share of the wall time.
+LinkStructure buildLinks(const Scene& scene, const std::vector<Vec3f>& shifts,
+  const RayTracer& tracer, const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
+  const ProgressCallback& progress = {}, double* msCompress = nullptr);
 }

@@ -118,10 +118,11 @@ private:
     const auto within = [&c](double lo, double hi) -> ProgressCallback {
       return [&c, lo, hi](const char*, double f) { return !c.progress || c.progress("Links", lo + (hi - lo) * f); };
     };
-    traceLinkRays(c.scene, shifts, *tracer, linkOptions, hitScratch, within(0.0, 0.9));
-    const auto t = std::chrono::steady_clock::now();
-    nextLinks = compressLinks(c.scene, hitScratch, faceNormals, linkOptions, within(0.9, 1.0));
-    c.part("Compress", msSince(t));
+    // Traced and compressed element by element: no buffer of every hit (4 KB per element
+    // at 256 rays, held between updates before).
+    double msCompress = 0.0;
+    nextLinks = linkgi::buildLinks(c.scene, shifts, *tracer, faceNormals, linkOptions, within(0.0, 1.0), &msCompress);
+    c.part("Compress", msCompress);
     linksStaged = true;
   }
 
@@ -186,7 +187,6 @@ private:
   Topology topology;
   std::vector<Vec3f> shifts, faceNormals;
   bool geometryTouched = false;
-  LinkHits hitScratch; // link rays' hits, kept so the next relink reuses the buffer
   LinkStructure links, nextLinks;
   DirectLightResult direct, nextDirect;
   bool linksStaged = false, directStaged = false;
@@ -218,13 +218,15 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
   }
   if (stale & (1u << kLinkStage))
   {
-    // compressLinks: every hit of every ray at once (traceLinkRays), the compressed rows of
-    // each chunk (vectors grown by doubling: up to twice their size) and the CSR they are
-    // copied into, the row counts and offsets, and a dense scratch row per worker.
+    // buildLinks: the compressed rows of each chunk (at their size once the chunk is done)
+    // and the CSR they are copied into, the row counts and offsets; per worker a dense
+    // scratch row, one element's rays and hits, and a chunk growing by doubling.
     const LinksPerElement links = LinksPerElement::bound(shape, o);
-    const std::uint64_t perElement = n * sizeof(Hit) +
-      (links.transport + links.environment) * csrEntry * (2 + 1) + 2 * (sizeof(Index) + sizeof(Offset));
-    bytes += e * perElement + std::uint64_t(workerCount()) * (e + shape.texels) * sizeof(float);
+    const std::uint64_t perElement =
+      (links.transport + links.environment) * csrEntry * 2 + 2 * (sizeof(Index) + sizeof(Offset));
+    const std::uint64_t perWorker = (e + shape.texels) * sizeof(float) + n * (sizeof(Hit) + sizeof(Ray)) +
+      64 * (links.transport + links.environment) * csrEntry * 2;
+    bytes += e * perElement + std::uint64_t(workerCount()) * perWorker;
   }
   if (stale & (1u << kLightLinkStage))
   {
