@@ -9,6 +9,7 @@
 #include "linkgi/Memory.h"
 #include "linkgi/Metrics.h"
 #include "linkgi/Parallel.h"
+#include "linkgi/Proxy.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 
@@ -19,6 +20,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -40,6 +42,7 @@ struct Args
   int repeat = 3;
   std::string dump, compare;
   bool bare = true, gather = true;
+  std::size_t proxyVertices = 0; ///< also solve through a proxy of this many vertices (issue 15)
 };
 
 std::vector<std::string> split(const std::string& s)
@@ -91,6 +94,10 @@ Args parse(int argc, char** argv)
       a.options.instantRadiosity.proxyResolution = std::stoul(value());
       a.options.instantRadiosity.proxyVisibility = a.options.instantRadiosity.proxyResolution > 0;
     }
+    else if (arg == "--proxy-vertices")
+      a.proxyVertices = std::stoull(value());
+    else if (arg == "--memory-budget")
+      a.options.memoryBudget = std::stoull(value());
     else if (arg == "--bins")
       a.options.implicitVisibility.binsPerSide = std::stoul(value());
     else if (arg == "--rays")
@@ -123,7 +130,7 @@ Args parse(int argc, char** argv)
     else
     {
       throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method links|instant-radiosity|implicit-visibility] "
-                  "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--bins 12] [--rays 256] [--bounces 3] [--repeat 3] "
+                  "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--bins 12] [--proxy-vertices N] [--memory-budget BYTES] [--rays 256] [--bounces 3] [--repeat 3] "
                   "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] [--bvh-build gpu|sah] "
                   "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather]; unknown argument " +
         arg + ".");
@@ -443,6 +450,54 @@ std::string memoryJson(const Scene& scene, const UpdateRuns& runs)
   return out.str();
 }
 
+/// The same scene through a ProxySolver: fresh solvers (decimation included) and light
+/// moves, medians, and the carried indirect light against the full solve's.
+std::string proxyJson(const Scene& scene, const UpdateRuns& full, const Args& args)
+{
+  const Scene moved = movedLights(scene);
+  std::vector<double> fullTimes, lightTimes, decimate, transfer, inputDirect;
+  Solution solution;
+  std::size_t proxyVertices = 0;
+  const bool peakReset = resetPeakResident();
+  const std::uint64_t residentBefore = residentBytes();
+  for (int r = 0; r < args.repeat; ++r)
+  {
+    ProxySolver solver;
+    auto t = std::chrono::steady_clock::now();
+    solver.update(scene, args.options, args.proxyVertices);
+    fullTimes.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count());
+    decimate.push_back(solver.stats().ms("Decimate"));
+    transfer.push_back(solver.stats().ms("Transfer"));
+    solution = solver.solution();
+    proxyVertices = solver.proxy().scene.vertexCount();
+    t = std::chrono::steady_clock::now();
+    solver.update(moved, args.options, args.proxyVertices);
+    lightTimes.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count());
+    inputDirect.push_back(solver.stats().ms("InputDirect"));
+  }
+  const std::uint64_t peak = peakReset ? peakResidentBytes() - residentBefore : 0;
+  std::vector<float> areas = vertexAreas(scene);
+  if (args.options.twoSided)
+  {
+    areas.insert(areas.end(), areas.begin(), areas.end());
+  }
+  const ErrorMetrics e = relativeRmse(solution.indirect, full.solution.indirect, areas);
+  std::ostringstream out;
+  out << ",\"proxy\":{\"target_vertices\":" << args.proxyVertices << ",\"vertices\":" << proxyVertices
+      << ",\"median_ms\":{\"full_update\":" << median(fullTimes) << ",\"decimate\":" << median(decimate)
+      << ",\"transfer\":" << median(transfer) << ",\"light_update\":" << median(lightTimes)
+      << ",\"input_direct\":" << median(inputDirect) << "},\"ms_full_update_runs\":[";
+  for (std::size_t i = 0; i < fullTimes.size(); ++i)
+  {
+    out << (i ? "," : "") << fullTimes[i];
+  }
+  out << "],\"speedup_full_update\":" << median(full.fullTimes) / median(fullTimes)
+      << ",\"indirect_rel_rmse_luminance\":" << e.relRmseLuminance << ",\"indirect_rel_rmse_max_channel\":"
+      << std::max({ e.relRmse.x, e.relRmse.y, e.relRmse.z }) << ",\"host_peak_bytes_per_vertex\":"
+      << double(peak) / double(std::max<std::size_t>(1, scene.vertexCount())) << "}";
+  return out.str();
+}
+
 void benchScene(const std::string& name, const Args& args)
 {
   const Scene scene = bench::makeScene(name);
@@ -458,6 +513,10 @@ void benchScene(const std::string& name, const Args& args)
     extra += ",\"agreement\":" + agreement(scene, runs.solution, readSolution(args.compare + "/" + name + ".bin"));
   }
   extra += yardstickJson(scene, runs.full, args);
+  if (args.proxyVertices > 0)
+  {
+    extra += proxyJson(scene, runs, args);
+  }
   printRecord(name, scene, runs, args, extra);
 }
 }
