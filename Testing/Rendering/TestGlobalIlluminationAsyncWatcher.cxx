@@ -9,8 +9,10 @@
 #include "vtkCallbackCommand.h"
 #include "vtkGenericRenderWindowInteractor.h"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
+#include <vector>
 
 int TestGlobalIlluminationAsyncWatcher(int, char*[])
 {
@@ -93,6 +95,27 @@ int TestGlobalIlluminationAsyncWatcher(int, char*[])
   watcher->Stop();
   ok &= Check(!interactor->HasObserver(vtkCommand::TimerEvent) && watcher->GetTimerId() == -1,
     "Stop() removed the observer and the timer");
+
+  // A poll function instead of the filter (the ParaView plugin's): WAIT renders nothing,
+  // RENDER renders once per tick, STOP ends the watch.
+  std::vector<int> answers = { vtkGlobalIlluminationAsyncWatcher::WAIT,
+    vtkGlobalIlluminationAsyncWatcher::RENDER, vtkGlobalIlluminationAsyncWatcher::STOP };
+  std::size_t asked = 0;
+  watcher->SetPollFunction([&] { return answers[std::min(asked++, answers.size() - 1)]; });
+  watcher->Watch(interactor);
+  const int before = watcher->GetNumberOfRenders();
+  int tick = watcher->GetTimerId();
+  interactor->InvokeEvent(vtkCommand::TimerEvent, &tick);
+  ok &= Check(watcher->GetNumberOfRenders() == before, "WAIT: no render");
+  interactor->InvokeEvent(vtkCommand::TimerEvent, &tick);
+  ok &= Check(watcher->GetNumberOfRenders() == before + 1, "RENDER: one render");
+  interactor->InvokeEvent(vtkCommand::TimerEvent, &tick);
+  ok &= Check(watcher->GetTimerId() == -1 && watcher->GetInteractor() == nullptr &&
+      !interactor->HasObserver(vtkCommand::TimerEvent),
+    "STOP: the watch ended");
+  ok &= Check(asked == 3 && watcher->GetNumberOfRenders() == before + 1,
+    "the function was asked once per tick");
+  watcher->SetPollFunction(nullptr);
 
   watcher->Watch(interactor);
   window->SetInteractor(nullptr);
