@@ -64,7 +64,7 @@ TEST(TestGlobalIlluminationMethod, DefaultIsLinks)
   EXPECT_LE(filter->GetMethod(), 7);
   EXPECT_GE(filter->GetMethod(), vtkGlobalIlluminationFilter::INSTANT_RADIOSITY);
   EXPECT_EQ(filter->GetNumberOfVPLs(), 1024);
-  EXPECT_DOUBLE_EQ(filter->GetVPLClampDistance(), 0.02);
+  EXPECT_DOUBLE_EQ(filter->GetVPLClampDistance(), 0.01);
 }
 
 TEST(TestGlobalIlluminationMethod, SwitchingMethodsGivesTheSameArraysAndSimilarLight)

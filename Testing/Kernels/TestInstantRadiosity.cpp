@@ -21,7 +21,7 @@ using namespace linkgi;
 
 namespace
 {
-SolverOptions instantRadiosity(std::uint32_t vpls, float clamp = 0.02f)
+SolverOptions instantRadiosity(std::uint32_t vpls, float clamp = InstantRadiosityOptions().clampDistance)
 {
   SolverOptions o;
   o.method = Method::InstantRadiosity;
@@ -120,7 +120,7 @@ TEST(TestInstantRadiosity, ClampBiasIsBoundedOnPerpendicularSquares)
   ASSERT_NEAR(exact / kPi, 0.2000, 1e-3);
   const float diagonal = boundingDiagonal(s.positions);
   double previous = -1.0;
-  for (float clamp : { 0.f, 0.02f, 0.05f, 0.1f })
+  for (float clamp : { 0.f, 0.01f, 0.02f, 0.05f, 0.1f })
   {
     SolverOptions o = instantRadiosity(8192, clamp);
     o.bounces = 1;
