@@ -218,3 +218,25 @@ TEST(TestMemoryBudget, LinksBuiltElementByElementAreTheTwoPassLinks)
     }
   }
 }
+
+TEST(TestMemoryBudget, TheRefusalCarriesTheVerticesThatFit)
+{
+  const Scene s = test::roomWithBlock();
+  SolverOptions o;
+  o.backend = Backend::Cpu;
+  o.memoryBudget = fullEstimate(s, o) / 2;
+  const engine::MemoryVerdict v = engine::judgeMemory(
+    engine::methodSpec(o.method), MemoryShape::of(s), o, kAllStages, false, o.memoryBudget);
+  Solver solver;
+  try
+  {
+    solver.update(s, o);
+    FAIL() << "not refused";
+  }
+  catch (const OutOfMemoryBudget& e)
+  {
+    EXPECT_EQ(e.verticesThatFit(), v.verticesThatFit);
+    EXPECT_GT(e.verticesThatFit(), 0u);
+    EXPECT_LT(e.verticesThatFit(), s.vertexCount());
+  }
+}

@@ -174,3 +174,25 @@ TEST(TestProxy, ALightMoveDoesNotDecimateAgainAndDirectLightIsTheInputs)
   EXPECT_FALSE(proxy.stats().ran("Links"));
   EXPECT_EQ(proxy.solution().direct, full.solution().direct);
 }
+
+TEST(TestProxy, AProxyThatCannotReachItsTargetSaysSo)
+{
+  if (!proxyAvailable())
+  {
+    GTEST_SKIP() << "This build has no OpenMesh.";
+  }
+  // The room's face grids keep their boundary vertices: 20 vertices cannot be reached.
+  const Scene s = test::roomWithBlock();
+  SolverOptions o;
+  o.backend = Backend::Cpu;
+  o.raysPerVertex = 16;
+  ProxySolver solver;
+  solver.update(s, o, 20);
+  EXPECT_GT(solver.proxy().scene.vertexCount(), 22u);
+  bool warned = false;
+  for (const std::string& w : solver.stats().warnings)
+  {
+    warned = warned || w.find("more than the 20 asked for") != std::string::npos;
+  }
+  EXPECT_TRUE(warned);
+}

@@ -4,6 +4,7 @@
 // the operating system's out-of-memory killer.
 #pragma once
 
+#include "linkgi/Error.h"
 #include "linkgi/Scene.h"
 
 #include <cstdint>
@@ -25,6 +26,21 @@ struct MemoryShape
   std::uint64_t vertices = 0, triangles = 0;
   std::uint64_t texels = 1; ///< environment texels (1 for a constant colour)
   static MemoryShape of(const Scene& scene);
+};
+
+/// An update refused by the memory budget. verticesThatFit(): the most vertices that the
+/// same update would fit at the same options (0 when none), e.g. for a proxy of that size.
+class OutOfMemoryBudget : public Error
+{
+public:
+  OutOfMemoryBudget(const std::string& message, std::uint64_t verticesThatFit)
+    : Error(message), fit(verticesThatFit)
+  {
+  }
+  std::uint64_t verticesThatFit() const { return fit; }
+
+private:
+  std::uint64_t fit;
 };
 
 /// The host memory the operating system can give this process now without swapping:

@@ -80,6 +80,6 @@ void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverO
       " ProxyVertices);" :
     " no mesh at " + rays + " rays per vertex;";
   message += " or a larger MemoryBudget, if the machine has the memory. The previous result is kept.";
-  throw Error(message);
+  throw OutOfMemoryBudget(message, v.verticesThatFit);
 }
 }

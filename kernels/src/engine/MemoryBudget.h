@@ -25,8 +25,8 @@ MemoryVerdict judgeMemory(const MethodSpec& spec, const MemoryShape& shape,
   const SolverOptions& options, std::uint32_t stale, bool cuda, std::uint64_t budget);
 
 /// Before a backend runs the stages `stale`: records the estimate and the budget
-/// (options.memoryBudget, or what is available less a margin) in `stats`, and throws Error
-/// saying what would fit when the estimate is over the budget. Nothing has been allocated
+/// (options.memoryBudget, or what is available less a margin) in `stats`, and throws
+/// OutOfMemoryBudget saying what would fit when the estimate is over the budget. Nothing has been allocated
 /// or freed at that point, so the previous result stays.
 void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverOptions& options,
   std::uint32_t stale, bool cuda, SolverStats& stats);

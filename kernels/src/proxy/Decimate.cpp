@@ -90,7 +90,15 @@ ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNorm
   decimater.module(edgeLength).set_edge_length(float(2.0 * evenEdge));
   decimater.module(edgeLength).set_binary(true);
   decimater.initialize();
+  // OpenMesh logs when it runs out of legal collapses before the target; the caller sees
+  // that in the proxy's size instead (ProxySolver warns).
+  const bool logging = omlog().is_enabled();
+  omlog().disable();
   decimater.decimate_to(targetVertices);
+  if (logging)
+  {
+    omlog().enable();
+  }
   mesh.garbage_collection();
 
   // The proxy: the kept vertices that still have faces, with the input's data for each.

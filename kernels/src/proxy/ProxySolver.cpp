@@ -156,6 +156,12 @@ const Solution& ProxySolver::update(const Scene& input, const SolverOptions& opt
   m.solution = std::move(sol);
   m.stats = m.inner.stats();
   m.stats.warnings.insert(m.stats.warnings.begin(), warnings.begin(), warnings.end());
+  if (m.proxy.scene.vertexCount() > proxyVertices + proxyVertices / 10)
+  {
+    m.stats.warnings.push_back("The proxy has " + std::to_string(m.proxy.scene.vertexCount()) +
+      " vertices, more than the " + std::to_string(proxyVertices) +
+      " asked for: fewer would have turned its faces too far from the surface's normals.");
+  }
   if (m.proxy.droppedTriangles > 0)
   {
     m.stats.warnings.push_back("The proxy left out " + std::to_string(m.proxy.droppedTriangles) +
