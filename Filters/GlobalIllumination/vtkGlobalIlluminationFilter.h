@@ -178,11 +178,12 @@ public:
 
   ///@{
   /**
-   * Host memory an update may use, in MiB. An update estimated to need more (the links of a
-   * large mesh at many rays) fails with an error that says what would fit, before anything
-   * is allocated, and the previous output stays: the operating system never kills the
-   * process. 0 (automatic): what the machine has available, less a margin. The default
-   * value is 0.
+   * Host memory an update may use, in MiB. A synchronous update estimated to need more (the
+   * links of a large mesh at many rays) is lit through a proxy of half the vertices that
+   * would fit (see ProxyVertices), with a warning; where that would be under 1000 vertices,
+   * or asynchronously, it fails with an error that says what would fit, before anything is
+   * allocated, and the previous output stays: the operating system never kills the process.
+   * 0 (automatic): what the machine has available, less a margin. The default value is 0.
    */
   vtkSetClampMacro(MemoryBudget, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MemoryBudget, double);

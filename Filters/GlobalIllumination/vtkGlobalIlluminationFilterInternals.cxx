@@ -9,6 +9,7 @@
 #include "vtkVersionMacros.h"
 
 #include "linkgi/Error.h"
+#include "linkgi/Memory.h"
 
 #include <algorithm>
 #include <chrono>
@@ -126,6 +127,13 @@ vtkPolyData* vtkGlobalIlluminationFilter::vtkInternals::Surface(
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// Below this, a proxy chosen by the memory budget would light nothing worth seeing: the
+// budget's error is reported instead.
+constexpr std::size_t kSmallestAutomaticProxy = 1000;
+}
+
 void vtkGlobalIlluminationFilter::vtkInternals::Update(
   vtkGlobalIlluminationFilter* self, const linkgi::Scene& scene)
 {
@@ -134,16 +142,31 @@ void vtkGlobalIlluminationFilter::vtkInternals::Update(
     throw linkgi::Error("ProxyVertices must be 0 (no proxy) or a vertex count smaller than the "
                         "input's; got " + std::to_string(self->ProxyVertices) + ".");
   }
-  this->ProxyUsed = self->ProxyVertices > 0;
-  if (this->ProxyUsed)
+  std::size_t proxy = static_cast<std::size_t>(self->ProxyVertices);
+  if (proxy == 0)
   {
-    this->Proxy.update(scene, this->Options(self), static_cast<std::size_t>(self->ProxyVertices),
-      this->Progress(self));
+    try
+    {
+      this->Solver.update(scene, this->Options(self), this->Progress(self));
+      this->ProxyUsed = false;
+      return;
+    }
+    catch (const linkgi::OutOfMemoryBudget& tooLarge)
+    {
+      // Over the budget: a proxy of half what would fit (the proxy itself, the input's
+      // shadow-ray structures and the decimation need the rest), if that is still a mesh.
+      proxy = static_cast<std::size_t>(tooLarge.verticesThatFit() / 2);
+      if (!linkgi::proxyAvailable() || proxy < kSmallestAutomaticProxy)
+      {
+        throw;
+      }
+      this->Warnings.push_back("The surface is too large for the memory budget, so it is lit "
+                               "through a proxy of about " + std::to_string(proxy) +
+        " vertices (ProxyVertices chooses its size). " + tooLarge.what());
+    }
   }
-  else
-  {
-    this->Solver.update(scene, this->Options(self), this->Progress(self));
-  }
+  this->Proxy.update(scene, this->Options(self), proxy, this->Progress(self));
+  this->ProxyUsed = true;
 }
 
 //------------------------------------------------------------------------------

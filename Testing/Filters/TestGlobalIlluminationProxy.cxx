@@ -16,7 +16,7 @@ using namespace linkgi_test;
 namespace
 {
 // A sphere (radius 0.4) above a 4 x 4 floor, lit by a point light.
-vtkSmartPointer<vtkGlobalIlluminationFilter> SphereOnFloorFilter()
+vtkSmartPointer<vtkGlobalIlluminationFilter> SphereOnFloorFilter(int floorResolution = 30)
 {
   vtkNew<vtkSphereSource> sphere;
   sphere->SetCenter(0, 0, 0.5);
@@ -24,7 +24,7 @@ vtkSmartPointer<vtkGlobalIlluminationFilter> SphereOnFloorFilter()
   sphere->SetThetaResolution(24);
   sphere->SetPhiResolution(12);
   vtkNew<vtkAppendPolyData> append;
-  append->AddInputData(MakeFloor(2, 30));
+  append->AddInputData(MakeFloor(2, floorResolution));
   append->AddInputConnection(sphere->GetOutputPort());
   append->Update();
   auto filter = vtkSmartPointer<vtkGlobalIlluminationFilter>::New();
@@ -113,4 +113,25 @@ TEST(TestGlobalIlluminationProxy, AProxyLightsEveryPointWithTheFullDirectLight)
   filter->SetProxyVertices(-1);
   filter->Update();
   EXPECT_TRUE(messages.HasError("ProxyVertices must be 0"));
+}
+
+TEST(TestGlobalIlluminationProxy, OverTheBudgetAProxyThatFitsLightsTheSurface)
+{
+  if (!linkgi::proxyAvailable())
+  {
+    GTEST_SKIP() << "This build has no OpenMesh.";
+  }
+  // ~5.3k points at 256 rays need ~65 MB; 40 MiB fits ~3.3k, so a proxy of about half.
+  auto filter = SphereOnFloorFilter(70);
+  filter->SetRaysPerVertex(256);
+  filter->SetMemoryBudget(40.0);
+  MessageCapture messages(filter);
+  filter->Update();
+  EXPECT_TRUE(messages.Errors.empty()) << messages.Errors[0];
+  EXPECT_TRUE(messages.HasWarning("lit through a proxy of about"));
+  vtkPolyData* out = filter->GetOutput();
+  vtkDataArray* indirect = PointArray(out, "IndirectIrradiance");
+  ASSERT_NE(indirect, nullptr);
+  EXPECT_EQ(indirect->GetNumberOfTuples(), out->GetNumberOfPoints());
+  EXPECT_GT(indirect->GetRange(0)[1], 0.0);
 }
