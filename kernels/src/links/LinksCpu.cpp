@@ -1,6 +1,8 @@
 // The link-structure method on the CPU: Embree (or our BVH) and all cores.
 #include "links/LinksBackends.h"
 
+#include "engine/CpuGeometry.h"
+
 #include "linkgi/Bounce.h"
 #include "linkgi/DirectLight.h"
 #include "linkgi/Links.h"
@@ -65,7 +67,7 @@ public:
   void describe(SolverStats& st) const override
   {
     st.backend = "cpu";
-    st.device = tracer ? tracer->name() : "";
+    st.device = geometry.tracer ? geometry.tracer->name() : "";
     st.devices = 0;
     st.linkedPerDevice.clear();
     st.batchesPerDevice.clear();
@@ -83,33 +85,10 @@ public:
 private:
   void updateGeometry(const StageContext& c)
   {
-    const Scene& s = c.scene;
     geometryTouched = true;
-    auto t = std::chrono::steady_clock::now();
-    if (c.changes & kTopology)
-    {
-      topology = Topology::build(s.vertexCount(), s.triangles);
-    }
-    shifts = originShifts(s, topology);
-    faceNormals = frontFaceNormals(s);
-    c.part("Topology", msSince(t));
-    if (!tracer)
-    {
-      tracer = createCpuRayTracer();
-    }
-    if (c.changes & kTopology)
-    {
-      tracer->build(s.positions, s.triangles);
-      c.stats.builtBvh = true;
-      ++c.stats.bvhBuilds;
-    }
-    else if (c.changes & kPositions)
-    {
-      tracer->refit(s.positions);
-      c.stats.refitBvh = true;
-      ++c.stats.bvhRefits;
-    }
+    geometry.update(c);
   }
+
 
   void buildLinks(const StageContext& c)
   {
@@ -121,14 +100,14 @@ private:
     // Traced and compressed element by element: no buffer of every hit (4 KB per element
     // at 256 rays, held between updates before).
     double msCompress = 0.0;
-    nextLinks = linkgi::buildLinks(c.scene, shifts, *tracer, faceNormals, linkOptions, within(0.0, 1.0), &msCompress);
+    nextLinks = linkgi::buildLinks(c.scene, geometry.shifts, *geometry.tracer, geometry.faceNormals, linkOptions, within(0.0, 1.0), &msCompress);
     c.part("Compress", msCompress);
     linksStaged = true;
   }
 
   void lightLinks(const StageContext& c)
   {
-    nextDirect = computeDirectLight(c.scene, topology, shifts, *tracer, c.options.twoSided,
+    nextDirect = computeDirectLight(c.scene, geometry.topology, geometry.shifts, *geometry.tracer, c.options.twoSided,
       c.options.lightOversampling, c.progress);
     directStaged = true;
   }
@@ -168,7 +147,7 @@ private:
     {
       const auto t = std::chrono::steady_clock::now();
       const float cosFeature = std::cos(o.featureAngleDegrees * (kPi / 180.f));
-      indirect = smoothFeatureAware(indirect, topology, s.normals, elements, cosFeature);
+      indirect = smoothFeatureAware(indirect, geometry.topology, s.normals, elements, cosFeature);
       c.part("Smoothing", msSince(t));
     }
 
@@ -183,9 +162,7 @@ private:
     sol.indirect = std::move(indirect);
   }
 
-  std::unique_ptr<RayTracer> tracer;
-  Topology topology;
-  std::vector<Vec3f> shifts, faceNormals;
+  CpuGeometry geometry;
   bool geometryTouched = false;
   LinkStructure links, nextLinks;
   DirectLightResult direct, nextDirect;
