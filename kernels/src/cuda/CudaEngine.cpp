@@ -1,3 +1,4 @@
+#include "DirectLightStage.h"
 #include "EngineDevice.h"
 
 #include "linkgi/Cuda.h"
@@ -398,45 +399,10 @@ void Engine::updateGeometry(const engine::StageContext& c)
 
 void Engine::computeDirectLight(const engine::StageContext& c)
 {
-  const Scene& s = c.scene;
-  const SolverOptions& options = c.options;
   EngineDevice& d = *devices[0];
   d.use();
-  const Index nv = Index(s.vertexCount());
-  const Elements elements{ s.vertexCount(), options.twoSided };
-  std::vector<Light> lit;
-  for (const Light& light : s.lights)
-  {
-    if (maxComponent(light.intensity) > 0.f) // dark lights trace nothing, as on the CPU
-    {
-      lit.push_back(light);
-    }
-  }
-  const std::size_t edges = edgeCount;
-  d.direct.resize(elements.count());
-  d.direct.fillZero(d.stream);
-  d.lights.upload(lit, d.stream);
-  d.vertexVisible.resize(std::max<std::size_t>(1, lit.size() * nv));
-  d.edgeVisible.resize(std::max<std::size_t>(1, lit.size() * edges));
-  d.counter.resize(1);
-  d.counter.fillZero(d.stream);
-  DirectLightParams p;
-  p.bvh = d.bvh.view();
-  p.positions = d.positions.data();
-  p.normals = d.normals.data();
-  p.shifts = d.shifts.data();
-  p.edges = d.topology.edges.data();
-  p.neighbourOffsets = d.topology.neighbourOffsets.data();
-  p.vertexEdges = d.topology.vertexEdges.data();
-  p.vertexCount = nv;
-  p.edgeCount = Index(edges);
-  p.eps = eps;
-  p.oversampling = options.lightOversampling;
-  for (int side = 0; side < (options.twoSided ? 2 : 1); ++side)
-  {
-    addDirectLights(p, d.lights.data(), int(lit.size()), side == 0 ? 1.f : -1.f, side == 0 ? 0 : nv,
-      d.vertexVisible.data(), d.edgeVisible.data(), d.direct.data(), d.counter.data(), d.stream);
-  }
+  queueDirectLight(c.scene, c.options, { d.bvh, d.positions, d.normals, d.shifts, d.topology, edgeCount, eps },
+    { d.lights, d.vertexVisible, d.edgeVisible, d.direct, d.counter }, d.stream);
   // No wait here: the bounces queue behind the light links, the ray count arrives with
   // their outputs, and the other partitions copy E_d after this event.
   LINKGI_CUDA_CHECK(cudaMemcpyAsync(d.tracedLightRays, d.counter.data(), sizeof(unsigned long long),

@@ -6,6 +6,7 @@
 #include "ir/IrKernels.h"
 
 #include "cuda/DeviceBvh.h"
+#include "cuda/DirectLightStage.h"
 #include "cuda/DeviceTopology.h"
 #include "cuda/GPUBuffer.h"
 
@@ -267,42 +268,9 @@ private:
 
   void directLight(const StageContext& c)
   {
-    const Scene& s = c.scene;
-    const Index nv = mesh.vertexCount;
-    const Elements elements{ s.vertexCount(), c.options.twoSided };
-    std::vector<Light> lit;
-    for (const Light& light : s.lights)
-    {
-      if (maxComponent(light.intensity) > 0.f) // dark lights trace nothing, as on the CPU
-      {
-        lit.push_back(light);
-      }
-    }
-    const std::size_t edges = mesh.topology.edgeCount();
-    direct.resize(elements.count());
-    direct.fillZero(stream);
-    litLights.upload(lit, stream);
-    vertexVisible.resize(std::max<std::size_t>(1, lit.size() * nv));
-    edgeVisible.resize(std::max<std::size_t>(1, lit.size() * edges));
-    counter.resize(1);
-    counter.fillZero(stream);
-    cuda::DirectLightParams p;
-    p.bvh = mesh.bvh.view();
-    p.positions = mesh.positions.data();
-    p.normals = mesh.normals.data();
-    p.shifts = mesh.shifts.data();
-    p.edges = mesh.topology.edges.data();
-    p.neighbourOffsets = mesh.topology.neighbourOffsets.data();
-    p.vertexEdges = mesh.topology.vertexEdges.data();
-    p.vertexCount = nv;
-    p.edgeCount = Index(edges);
-    p.eps = rayEpsilon(s);
-    p.oversampling = c.options.lightOversampling;
-    for (int side = 0; side < (c.options.twoSided ? 2 : 1); ++side)
-    {
-      cuda::addDirectLights(p, litLights.data(), int(lit.size()), side == 0 ? 1.f : -1.f,
-        side == 0 ? 0 : nv, vertexVisible.data(), edgeVisible.data(), direct.data(), counter.data(), stream);
-    }
+    cuda::queueDirectLight(c.scene, c.options,
+      { mesh.bvh, mesh.positions, mesh.normals, mesh.shifts, mesh.topology, mesh.topology.edgeCount(), rayEpsilon(c.scene) },
+      { litLights, vertexVisible, edgeVisible, direct, counter }, stream);
     unsigned long long traced = 0;
     LINKGI_CUDA_CHECK(cudaMemcpyAsync(&traced, counter.data(), sizeof(traced), cudaMemcpyDeviceToHost, stream));
     LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
