@@ -3,9 +3,7 @@
 // with the direct light of the full surface, and bad proxy sizes are errors.
 #include "FilterTestUtilities.h"
 
-#include "vtkAppendPolyData.h"
 #include "vtkGlobalIlluminationFilter.h"
-#include "vtkSphereSource.h"
 
 #include "linkgi/Proxy.h"
 
@@ -15,23 +13,10 @@ using namespace linkgi_test;
 
 namespace
 {
-// A sphere (radius 0.4) above a 4 x 4 floor, lit by a point light.
+// The shared sphere over a floor, at 64 rays (the proxy tests need no more).
 vtkSmartPointer<vtkGlobalIlluminationFilter> SphereOnFloorFilter(int floorResolution = 30)
 {
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(0, 0, 0.5);
-  sphere->SetRadius(0.4);
-  sphere->SetThetaResolution(24);
-  sphere->SetPhiResolution(12);
-  vtkNew<vtkAppendPolyData> append;
-  append->AddInputData(MakeFloor(2, floorResolution));
-  append->AddInputConnection(sphere->GetOutputPort());
-  append->Update();
-  auto filter = vtkSmartPointer<vtkGlobalIlluminationFilter>::New();
-  filter->SetInputData(append->GetOutput());
-  const double light[3] = { 0.5, 0.3, 2.0 }, origin[3] = { 0, 0, 0 };
-  filter->AddLight(MakeLight(light, origin, 4.0));
-  filter->SetBackendToCPU();
+  auto filter = MakeSphereOnFloorFilter(floorResolution);
   filter->SetRaysPerVertex(64);
   return filter;
 }

@@ -88,6 +88,27 @@ std::vector<Vec3f> frontFaceNormals(const Scene& scene)
   return normals;
 }
 
+namespace
+{
+/// Traces element x's rays - the shared directions in its twisted frame, from its shifted
+/// origin - into `hits` (rays.size() of them).
+void traceElement(const Scene& scene, const std::vector<Vec3f>& shifts, const std::vector<Vec3f>& dirs,
+  const Elements& elements, const LinkOptions& options, float eps, std::size_t x,
+  const RayTracer& tracer, std::vector<Ray>& rays, Hit* hits)
+{
+  const Index v = elements.vertexOf(x);
+  const Vec3f normal = scene.normals[v] * elements.sideSign(x);
+  const Frame frame = vertexFrame(normal, options.twist, options.seed, Index(x));
+  const Vec3f origin = elementRayOrigin(scene.positions[v], normal, shifts[v], eps);
+  for (std::size_t k = 0; k < rays.size(); ++k)
+  {
+    rays[k].origin = origin;
+    rays[k].direction = frame.toWorld(dirs[k]);
+  }
+  tracer.trace(rays.data(), hits, rays.size());
+}
+}
+
 LinkHits traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
   const RayTracer& tracer, const LinkOptions& options, const ProgressCallback& progress)
 {
@@ -117,16 +138,7 @@ void traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
       std::vector<Ray> rays(n);
       for (std::size_t x = begin; x < end; ++x)
       {
-        const Index v = elements.vertexOf(x);
-        const Vec3f normal = scene.normals[v] * elements.sideSign(x);
-        const Frame frame = vertexFrame(normal, options.twist, options.seed, Index(x));
-        const Vec3f origin = elementRayOrigin(scene.positions[v], normal, shifts[v], eps);
-        for (std::size_t k = 0; k < n; ++k)
-        {
-          rays[k].origin = origin;
-          rays[k].direction = frame.toWorld(dirs[k]);
-        }
-        tracer.trace(rays.data(), &out.hits[x * n], n);
+        traceElement(scene, shifts, dirs, elements, options, eps, x, tracer, rays, &out.hits[x * n]);
       }
     },
     progress);
@@ -307,16 +319,7 @@ LinkStructure buildLinks(const Scene& scene, const std::vector<Vec3f>& shifts,
       thread_local std::vector<Ray> rays;
       rays.resize(n);
       hits.resize(n);
-      const Index v = elements.vertexOf(x);
-      const Vec3f normal = scene.normals[v] * elements.sideSign(x);
-      const Frame frame = vertexFrame(normal, options.twist, options.seed, Index(x));
-      const Vec3f origin = elementRayOrigin(scene.positions[v], normal, shifts[v], eps);
-      for (std::size_t k = 0; k < n; ++k)
-      {
-        rays[k].origin = origin;
-        rays[k].direction = frame.toWorld(dirs[k]);
-      }
-      tracer.trace(rays.data(), hits.data(), n);
+      traceElement(scene, shifts, dirs, elements, options, eps, x, tracer, rays, hits.data());
       traceNs += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t).count();
       return hits.data();
     });
