@@ -31,10 +31,11 @@ struct CornellPipeline
     this->filter->AddLight(this->lights->GetNextItem());
   }
 
-  /// Polls like a render loop until a new result is shown (or 60 s pass).
+  /// Polls like a render loop until a new result is shown (or 600 s pass: minutes under
+  /// ThreadSanitizer on a loaded machine).
   bool WaitForResult()
   {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(600);
     while (std::chrono::steady_clock::now() < deadline)
     {
       if (this->filter->PollAsynchronousResult())

@@ -1,7 +1,8 @@
 // libFuzzer target: validateScene and validateShading on arbitrary arrays of arbitrary
 // sizes (floats of any bit pattern: NaN, infinities, denormals, 1e38). Either validation
 // throws linkgi::Error, or the scene it leaves is one the solver may trust: sizes that
-// agree, indices in range, finite data, albedo in [0, 1], unit normals.
+// agree, indices in range, finite data, albedo in [0, 1], unit normals and light
+// directions, no negative light.
 #include "FuzzInput.h"
 
 #include "linkgi/Error.h"
@@ -47,6 +48,14 @@ void checkValidated(const Scene& s)
   for (const Light& l : s.lights)
   {
     LINKGI_FUZZ_REQUIRE(finite(l.position) && finite(l.direction) && finite(l.intensity));
+    LINKGI_FUZZ_REQUIRE(l.intensity.x >= 0.f && l.intensity.y >= 0.f && l.intensity.z >= 0.f);
+    LINKGI_FUZZ_REQUIRE(l.type == LightType::Point || std::fabs(length(l.direction) - 1.f) < 1e-3f);
+  }
+  const Environment& sky = s.environment;
+  LINKGI_FUZZ_REQUIRE(finite(sky.color) && sky.color.x >= 0.f && sky.color.y >= 0.f && sky.color.z >= 0.f);
+  for (const Vec3f& t : sky.texels)
+  {
+    LINKGI_FUZZ_REQUIRE(finite(t) && t.x >= 0.f && t.y >= 0.f && t.z >= 0.f);
   }
 }
 }

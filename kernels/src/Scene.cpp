@@ -94,6 +94,20 @@ constexpr auto negativeOrNotFinite = [](const Vec3f& v) {
   return !(v.x >= 0.f && v.x <= kMax && v.y >= 0.f && v.y <= kMax && v.z >= 0.f && v.z <= kMax);
 };
 
+/// `n` at unit length, zero for a zero vector. Scaled first by the power of two of its
+/// largest component (exact, and no reciprocal of a denormal), so that the squares neither
+/// overflow (1e20, 0, 0) nor underflow (1e-30, 0, 0) to a length of infinity or zero.
+Vec3f unitLength(const Vec3f& n)
+{
+  const float largest = std::max({ std::abs(n.x), std::abs(n.y), std::abs(n.z) });
+  if (!(largest > 0.f))
+  {
+    return Vec3f(0.f);
+  }
+  const int e = std::ilogb(largest);
+  return normalize(Vec3f(std::ldexp(n.x, -e), std::ldexp(n.y, -e), std::ldexp(n.z, -e)));
+}
+
 void checkLights(const std::vector<Light>& lights)
 {
   for (std::size_t i = 0; i < lights.size(); ++i)
@@ -109,27 +123,37 @@ void checkLights(const std::vector<Light>& lights)
     {
       fail("Light " + std::to_string(i) + " has a negative intensity.");
     }
-    if (l.type != LightType::Point && length(l.direction) == 0.f)
+    if (l.type != LightType::Point && unitLength(l.direction) == Vec3f(0.f))
     {
       fail("Light " + std::to_string(i) + " is a spot or directional light without a direction.");
     }
   }
 }
 
-/// Multiplies the lights' positions by 2^-exponent and point and spot intensities by
-/// 4^-exponent (see Scene::lengthExponent). Throws where an intensity leaves float range.
+/// Gives the lights unit directions (a direction of (1e20, 0, 0) would overflow at use),
+/// and multiplies point and spot positions by 2^-exponent and their intensities by
+/// 4^-exponent (see Scene::lengthExponent; a directional light has no position). Throws
+/// where a position or an intensity leaves float range.
 void scaleLights(std::vector<Light>& lights, int exponent)
 {
-  for (std::size_t i = 0; exponent != 0 && i < lights.size(); ++i)
+  for (std::size_t i = 0; i < lights.size(); ++i)
   {
     Light& l = lights[i];
+    l.direction = unitLength(l.direction);
+    if (exponent == 0 || l.type == LightType::Directional)
+    {
+      continue;
+    }
     for (int k = 0; k < 3; ++k)
     {
       l.position[k] = std::ldexp(l.position[k], -exponent);
-      if (l.type != LightType::Directional)
-      {
-        l.intensity[k] = std::ldexp(l.intensity[k], -2 * exponent);
-      }
+      l.intensity[k] = std::ldexp(l.intensity[k], -2 * exponent);
+    }
+    if (!isFinite(l.position))
+    {
+      fail("Light " + std::to_string(i) + " is so far from a scene this small that its "
+        "position, in the scene's size, exceeds single precision; move it closer or scale "
+        "the data up.");
     }
     if (!isFinite(l.intensity))
     {
@@ -177,20 +201,6 @@ std::size_t removeDegenerateTriangles(Scene& scene)
   scene.triangles.erase(
     std::remove_if(scene.triangles.begin(), scene.triangles.end(), degenerate), scene.triangles.end());
   return before - scene.triangles.size();
-}
-
-/// `n` at unit length, zero for a zero vector. Scaled first by the power of two of its
-/// largest component (exact, and no reciprocal of a denormal), so that the squares neither
-/// overflow (1e20, 0, 0) nor underflow (1e-30, 0, 0) to a length of infinity or zero.
-Vec3f unitLength(const Vec3f& n)
-{
-  const float largest = std::max({ std::abs(n.x), std::abs(n.y), std::abs(n.z) });
-  if (!(largest > 0.f))
-  {
-    return Vec3f(0.f);
-  }
-  const int e = std::ilogb(largest);
-  return normalize(Vec3f(std::ldexp(n.x, -e), std::ldexp(n.y, -e), std::ldexp(n.z, -e)));
 }
 
 /// Replaces zero-length normals by the area-weighted normal of the adjacent triangles (+Z
@@ -257,15 +267,23 @@ void checkShading(const Scene& scene, bool albedoValid = false, bool emissionVal
     checkArray(scene.emission, "emission", negativeOrNotFinite, "a negative or non-finite");
   }
   checkLights(scene.lights);
-  if (!isFinite(scene.environment.color))
+  const Environment& sky = scene.environment;
+  if (negativeOrNotFinite(sky.color))
   {
-    fail("The environment colour is not finite.");
+    fail("The environment colour is negative or not finite.");
   }
-  if (!scene.environment.texels.empty() &&
-    scene.environment.texels.size() !=
-      static_cast<std::size_t>(scene.environment.width) * scene.environment.height)
+  if (sky.width < 0 || sky.height < 0 ||
+    (!sky.texels.empty() &&
+      sky.texels.size() != static_cast<std::size_t>(sky.width) * std::size_t(sky.height)))
   {
     fail("The environment map's texel count does not match its width x height.");
+  }
+  for (std::size_t i = 0; i < sky.texels.size(); ++i)
+  {
+    if (negativeOrNotFinite(sky.texels[i]))
+    {
+      fail("Texel " + std::to_string(i) + " of the environment map is negative or not finite.");
+    }
   }
 }
 

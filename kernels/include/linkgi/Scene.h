@@ -100,9 +100,11 @@ enum class AlbedoPolicy
 /// Checks a scene before solving and repairs what can be repaired, so that the solver never
 /// sees NaNs or out-of-range data. Throws linkgi::Error with a sentence naming the problem for:
 /// no vertices, no triangles, index out of range, array sizes that disagree, non-finite
-/// positions/normals/albedo/emission/light data, negative albedo or emission.
+/// positions/normals/albedo/emission/light data, negative albedo, emission, light or
+/// environment, a point or spot light too far away for the rescaled scene (below).
 /// Repairs (each listed in the returned warnings): degenerate triangles (zero area or repeated
 /// indices) are removed; zero-length normals are replaced by the area-weighted face normal;
+/// normals and light directions of any other length are made unit length (not warned);
 /// albedo above 1 is clamped (AlbedoPolicy::Clamp). A scene far from unit size is rescaled
 /// by a power of two (see Scene::lengthExponent), which changes no result. A scene with no lights and a black
 /// environment and no emission is valid: its solution is all zero (warned).
