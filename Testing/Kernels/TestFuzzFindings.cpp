@@ -131,3 +131,24 @@ TEST(FuzzFindings, ANegativeEnvironmentIsAnError)
   size.height = -1;
   EXPECT_NE(message(size).find("width x height"), std::string::npos);
 }
+
+TEST(FuzzFindings, EmissionBeyondWhatTheBouncesCanCarryIsAnError)
+{
+  // An emission of 3.4e38, finite, was accepted; gathered over the bounces it gave
+  // infinite radiance. Above 1e30 it is an error naming the vertex.
+  Scene s = triangleAndLoneVertex(Vec3f(0.f, 0.f, 1.f), Vec3f(0.f, 0.f, 1.f));
+  s.emission.assign(4, Vec3f(0.f));
+  s.emission[2] = Vec3f(3.4e38f);
+  try
+  {
+    validateScene(s);
+    ADD_FAILURE() << "an emission of 3.4e38 was accepted";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("Vertex 2 has a negative, non-finite or too large"),
+      std::string::npos) << e.what();
+  }
+  s.emission[2] = Vec3f(1e30f);
+  EXPECT_NO_THROW(validateScene(s));
+}

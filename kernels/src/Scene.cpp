@@ -93,6 +93,13 @@ constexpr auto negativeOrNotFinite = [](const Vec3f& v) {
   constexpr float kMax = 3.402823466e38f;
   return !(v.x >= 0.f && v.x <= kMax && v.y >= 0.f && v.y <= kMax && v.z >= 0.f && v.z <= kMax);
 };
+/// Emitted radiance above this is an error: gathered over the bounces (up to 1000) it would
+/// leave single precision (an emission of 3.4e38 gave infinite radiance).
+constexpr float kBrightest = 1e30f;
+constexpr auto negativeOrTooBright = [](const Vec3f& v) {
+  return !(v.x >= 0.f && v.x <= kBrightest && v.y >= 0.f && v.y <= kBrightest && v.z >= 0.f &&
+    v.z <= kBrightest);
+};
 
 /// `n` at unit length, zero for a zero vector. Scaled first by the power of two of its
 /// largest component (exact, and no reciprocal of a denormal), so that the squares neither
@@ -264,13 +271,14 @@ void checkShading(const Scene& scene, bool albedoValid = false, bool emissionVal
   }
   if (!emissionValid)
   {
-    checkArray(scene.emission, "emission", negativeOrNotFinite, "a negative or non-finite");
+    checkArray(scene.emission, "emission", negativeOrTooBright,
+      "a negative, non-finite or too large (above 1e30)");
   }
   checkLights(scene.lights);
   const Environment& sky = scene.environment;
-  if (negativeOrNotFinite(sky.color))
+  if (negativeOrTooBright(sky.color))
   {
-    fail("The environment colour is negative or not finite.");
+    fail("The environment colour is negative, not finite or above 1e30.");
   }
   if (sky.width < 0 || sky.height < 0 ||
     (!sky.texels.empty() &&
@@ -280,9 +288,9 @@ void checkShading(const Scene& scene, bool albedoValid = false, bool emissionVal
   }
   for (std::size_t i = 0; i < sky.texels.size(); ++i)
   {
-    if (negativeOrNotFinite(sky.texels[i]))
+    if (negativeOrTooBright(sky.texels[i]))
     {
-      fail("Texel " + std::to_string(i) + " of the environment map is negative or not finite.");
+      fail("Texel " + std::to_string(i) + " of the environment map is negative, not finite or above 1e30.");
     }
   }
 }

@@ -101,7 +101,8 @@ enum class AlbedoPolicy
 /// sees NaNs or out-of-range data. Throws linkgi::Error with a sentence naming the problem for:
 /// no vertices, no triangles, index out of range, array sizes that disagree, non-finite
 /// positions/normals/albedo/emission/light data, negative albedo, emission, light or
-/// environment, a point or spot light too far away for the rescaled scene (below).
+/// environment, emission or environment above 1e30 (the bounces would overflow), a point or
+/// spot light too far away for the rescaled scene (below).
 /// Repairs (each listed in the returned warnings): degenerate triangles (zero area or repeated
 /// indices) are removed; zero-length normals are replaced by the area-weighted face normal;
 /// normals and light directions of any other length are made unit length (not warned);
