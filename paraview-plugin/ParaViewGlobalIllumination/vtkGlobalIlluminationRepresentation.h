@@ -72,7 +72,7 @@ public:
    */
   void SetRaysPerVertex(int rays);
   void SetNumberOfBounces(int bounces);
-  /// vtkGlobalIlluminationFilter::SetMethod (LINKS, INSTANT_RADIOSITY).
+  /// vtkGlobalIlluminationFilter::SetMethod (LINKS, INSTANT_RADIOSITY, IMPLICIT_VISIBILITY).
   void SetMethod(int method);
   void SetSmoothing(int smoothing);
   void SetEnvironmentColor(double r, double g, double b);
