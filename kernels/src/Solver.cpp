@@ -19,10 +19,7 @@ namespace linkgi
 {
 namespace
 {
-double msSince(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
+using engine::msSince;
 
 /// sameBits on all cores for large arrays: one core compares ~7 GB/s, so the 7 MB of a
 /// 121k-vertex mesh's geometry and albedo took ~1 ms of every light-only update.

@@ -13,10 +13,7 @@ namespace linkgi::cuda
 {
 namespace
 {
-double msSince(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
+using engine::msSince;
 }
 
 void Engine::exchange(Rgba* (*of)(EngineDevice&), bool toAll)

@@ -14,10 +14,7 @@ namespace linkgi::cuda
 {
 namespace
 {
-double msSince(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
+using engine::msSince;
 
 /// Lets kernels on `from` access `to`'s memory; once per process and pair (enabling it
 /// twice is an error that compute-sanitizer reports).

@@ -16,7 +16,7 @@ void CpuGeometry::update(const StageContext& c)
   }
   shifts = originShifts(s, topology);
   faceNormals = frontFaceNormals(s);
-  c.part("Topology", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  c.part("Topology", msSince(start));
   if (!tracer)
   {
     tracer = createCpuRayTracer();

@@ -9,6 +9,7 @@
 #include "linkgi/Parallel.h"
 #include "linkgi/SolverTypes.h"
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -16,6 +17,12 @@
 
 namespace linkgi::engine
 {
+/// Milliseconds since `start`: what stages, parts and the orchestrator time themselves with.
+inline double msSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
 /// What differs between an update's input and the input of the last update the backend
 /// completed: one bit per kind of change. A backend that never ran, was reset, or lost its
 /// caches sees kEverything.

@@ -117,11 +117,6 @@ namespace
 {
 using namespace engine;
 
-double msSince(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
 class IrCpu final : public MethodBackend
 {
 public:

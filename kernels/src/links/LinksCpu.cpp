@@ -17,11 +17,6 @@ namespace
 {
 using namespace engine;
 
-double msSince(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
 class LinksCpu final : public MethodBackend
 {
 public:

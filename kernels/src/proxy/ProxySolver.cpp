@@ -3,6 +3,8 @@
 // proxy's indirect light to the input.
 #include "linkgi/Proxy.h"
 
+#include "engine/Pipeline.h"
+
 #include "linkgi/Bounce.h"
 #include "linkgi/DirectLight.h"
 #include "linkgi/Error.h"
@@ -15,10 +17,7 @@ namespace linkgi
 {
 namespace
 {
-double msSince(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
+using engine::msSince;
 
 void addPart(SolverStats& stats, const char* name, double ms)
 {
