@@ -4,12 +4,15 @@
 #include "vtkGlobalIlluminationShading.h"
 
 #include "vtkActor.h"
+#include "vtkCellArray.h"
 #include "vtkFloatArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
+
+#include <algorithm>
 
 vtkStandardNewMacro(vtkGlobalIlluminationMapper);
 
@@ -79,9 +82,14 @@ void vtkGlobalIlluminationMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* ac
 {
   if (!ren->GetSelector())
   {
-    this->Core->Prepare(ren, act,
-      vtkGlobalIlluminationMapperCore::MakeCasters(
-        this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()));
+    // The triangles' version: that of the input's cells (the VBO build time would also
+    // move with every new irradiance array).
+    vtkPolyData* input = this->CurrentInput;
+    const vtkMTimeType cells = input
+      ? std::max(input->GetPolys()->GetMTime(), input->GetStrips()->GetMTime())
+      : this->VBOBuildTime.GetMTime();
+    this->Core->Prepare(
+      ren, act, vtkGlobalIlluminationMapperCore::MakeCasters(this->VBOs, this->Primitives, act, cells));
   }
   this->Superclass::RenderPieceDraw(ren, act);
   this->Core->FinishDraw();

@@ -234,7 +234,9 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::MakeCasters(
   }
   casters.ModelToWorld = ModelToWorld(positions, actor);
   actor->GetBounds(casters.WorldBounds.data());
-  casters.Version = version;
+  // The positions' upload, not the VBO group's build time, which also moves when only
+  // point data (a new indirect irradiance) changed; `version` covers the triangles.
+  casters.Version = std::max<vtkMTimeType>(version, positions->GetUploadTime().GetMTime());
   casters.Draw = [vbos, primitives](vtkShaderProgram* program, vtkOpenGLVertexArrayObject* vao)
   {
     vtkOpenGLVertexBufferObject* vbo = vbos->GetVBO("vertexMC");
@@ -264,6 +266,7 @@ void vtkGlobalIlluminationMapperCore::Prepare(
   const double scale = this->Shading ? this->Shading->GetLightIntensityScale() : 1.0;
   const int maximum = vtkGlobalIlluminationShading::GetMaximumNumberOfLights();
   this->Lights.clear();
+  std::vector<bool> atEye;
   int ignored = 0;
   std::vector<std::string> skipped;
   vtkLightCollection* lights = renderer->GetLights();
@@ -283,6 +286,7 @@ void vtkGlobalIlluminationMapperCore::Prepare(
       if (static_cast<int>(this->Lights.size()) < maximum)
       {
         this->Lights.push_back(converted);
+        atEye.push_back(light->LightTypeIsHeadlight());
       }
       else
       {
@@ -309,7 +313,7 @@ void vtkGlobalIlluminationMapperCore::Prepare(
   auto* window = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
   const bool shadows = this->Shading && this->Shading->GetShadows();
   const int resolution = this->Shading ? this->Shading->GetShadowMapResolution() : 1024;
-  this->ShadowMaps.Update(window, this->Lights, shadows, casters, resolution);
+  this->ShadowMaps.Update(window, this->Lights, atEye, shadows, casters, resolution);
 }
 
 //------------------------------------------------------------------------------

@@ -109,6 +109,8 @@ public:
   std::string BufferKey() const;
 
   /// The shadow casters drawn from a mapper's buffers (its triangles and strips).
+  /// `version` must change whenever the triangles do; the positions' own upload time is
+  /// added here, so new point data alone never re-renders the shadow maps.
   static vtkGlobalIlluminationShadowMaps::Casters MakeCasters(
     vtkOpenGLVertexBufferObjectGroup* vbos, vtkOpenGLHelper* primitives, vtkActor* actor,
     vtkMTimeType version);

@@ -182,14 +182,21 @@ vtkGlobalIlluminationShadowMaps::~vtkGlobalIlluminationShadowMaps() = default;
 
 //------------------------------------------------------------------------------
 std::vector<vtkGlobalIlluminationShadowMaps::Map> vtkGlobalIlluminationShadowMaps::Plan(
-  const std::vector<Light>& lights, const double bounds[6], int resolution) const
+  const std::vector<Light>& lights, const std::vector<bool>& atEye, const double bounds[6],
+  int resolution, int& layers) const
 {
   std::vector<Map> maps;
   int layer = 0;
   const double wideSpot = std::cos(vtkMath::RadiansFromDegrees(MaxSpotMapAngle));
-  for (const Light& light : lights)
+  for (std::size_t i = 0; i < lights.size(); ++i)
   {
+    const Light& light = lights[i];
     Map map;
+    if (i < atEye.size() && atEye[i])
+    {
+      maps.push_back(map); // kind 0: no map, no lookup in the shader
+      continue;
+    }
     if (light.Type == Light::DIRECTIONAL)
     {
       map = DirectionalMap(light, bounds, resolution);
@@ -206,19 +213,28 @@ std::vector<vtkGlobalIlluminationShadowMaps::Map> vtkGlobalIlluminationShadowMap
     layer += map.Kind == 1 ? 6 : 1;
     maps.push_back(map);
   }
+  layers = layer;
   return maps;
 }
 
 //------------------------------------------------------------------------------
 bool vtkGlobalIlluminationShadowMaps::Update(vtkOpenGLRenderWindow* window,
-  const std::vector<Light>& lights, bool shadows, const Casters& casters, int resolution)
+  const std::vector<Light>& lights, const std::vector<bool>& atEye, bool shadows,
+  const Casters& casters, int resolution)
 {
-  // Everything the depth images depend on; colours and intensities are not part of it.
+  // Everything the depth images depend on; colours and intensities are not part of it, nor
+  // is where a light at the eye is.
   std::vector<double> signature{ shadows ? 1.0 : 0.0, double(resolution), double(casters.Version) };
   signature.insert(signature.end(), casters.ModelToWorld.begin(), casters.ModelToWorld.end());
   signature.insert(signature.end(), casters.WorldBounds.begin(), casters.WorldBounds.end());
-  for (const Light& light : lights)
+  for (std::size_t i = 0; i < lights.size(); ++i)
   {
+    const Light& light = lights[i];
+    if (i < atEye.size() && atEye[i])
+    {
+      signature.push_back(-1.0);
+      continue;
+    }
     signature.push_back(light.Type);
     signature.insert(signature.end(), light.Position.begin(), light.Position.end());
     signature.insert(signature.end(), light.Direction.begin(), light.Direction.end());
@@ -235,13 +251,17 @@ bool vtkGlobalIlluminationShadowMaps::Update(vtkOpenGLRenderWindow* window,
   }
   this->Signature = signature;
   this->Maps.clear();
-  const bool empty = !shadows || lights.empty() || !casters.Draw;
-  if (!empty)
+  int layers = 0;
+  if (shadows && casters.Draw)
   {
-    this->Maps = this->Plan(lights, casters.WorldBounds.data(), resolution);
+    this->Maps = this->Plan(lights, atEye, casters.WorldBounds.data(), resolution, layers);
   }
-  const int layers = empty ? 1 : this->Maps.back().Layer + (this->Maps.back().Kind == 1 ? 6 : 1);
-  this->Allocate(window, layers, empty ? 1 : resolution);
+  const bool empty = layers == 0;
+  if (empty)
+  {
+    this->Maps.clear();
+  }
+  this->Allocate(window, empty ? 1 : layers, empty ? 1 : resolution);
   this->Render(window, empty ? std::vector<Light>() : lights, casters);
   ++this->RenderCount;
   return true;
@@ -325,6 +345,10 @@ void vtkGlobalIlluminationShadowMaps::Render(
   {
     const Light& light = lights[i];
     const Map& map = this->Maps[i];
+    if (map.Kind == 0)
+    {
+      continue;
+    }
     program->SetUniform3f("giLightPosition", light.Position.data());
     program->SetUniform3f("giLightDirection", light.Direction.data());
     program->SetUniformi("giRadial", map.Kind != 3);

@@ -4,9 +4,11 @@
  *          2D maps for spot and directional lights, all layers of one depth texture array
  *
  * Owned by one mapper (or composite helper), which hands it the renderer's lights and a
- * callback that draws its triangles. Update() re-renders the maps only when a light's
- * placement, the geometry, its placement or the resolution changed: colour and intensity
- * changes, camera moves and ordinary frames reuse them.
+ * callback that draws its triangles. Update() re-renders the maps only when a shadowed
+ * light's placement, the caster positions, their placement or the resolution changed:
+ * colour and intensity changes, new point data (a new indirect irradiance), camera moves and
+ * ordinary frames reuse them. A light at the eye (a headlight) gets no map: every surface
+ * point the camera sees is also seen by that light, so its shadows are never visible.
  *
  * Every layer stores linear depth: the distance to the light (point and spot lights) or
  * along the light's direction (directional lights), scaled to [0,1]. A point light takes
@@ -50,7 +52,9 @@ public:
     std::function<void(vtkShaderProgram*, vtkOpenGLVertexArrayObject*)> Draw;
     std::array<double, 16> ModelToWorld{}; ///< row-major, from the positions as drawn
     std::array<double, 6> WorldBounds{};
-    vtkMTimeType Version = 0; ///< changes whenever the drawn geometry changes
+    /// Changes whenever the caster positions or triangles change; nothing else (new point
+    /// colours or irradiance must not re-render the maps).
+    vtkMTimeType Version = 0;
   };
 
   vtkGlobalIlluminationShadowMaps();
@@ -60,10 +64,12 @@ public:
 
   /**
    * Makes the maps match `lights` (shadowed if `shadows`) and `casters`, re-rendering them
-   * only if something they depend on changed. Returns true if it rendered.
+   * only if something they depend on changed. Lights whose `atEye` entry is true (headlights)
+   * get no map, and their placement is not part of what the maps depend on. Returns true if
+   * it rendered.
    */
-  bool Update(vtkOpenGLRenderWindow* window, const std::vector<Light>& lights, bool shadows,
-    const Casters& casters, int resolution);
+  bool Update(vtkOpenGLRenderWindow* window, const std::vector<Light>& lights,
+    const std::vector<bool>& atEye, bool shadows, const Casters& casters, int resolution);
 
   ///@{
   /// Binds the depth texture array to a free texture unit for the lighting shader;
@@ -99,8 +105,8 @@ public:
   };
 
 private:
-  std::vector<Map> Plan(
-    const std::vector<Light>& lights, const double bounds[6], int resolution) const;
+  std::vector<Map> Plan(const std::vector<Light>& lights, const std::vector<bool>& atEye,
+    const double bounds[6], int resolution, int& layers) const;
   void Allocate(vtkOpenGLRenderWindow* window, int layers, int resolution);
   void Render(
     vtkOpenGLRenderWindow* window, const std::vector<Light>& lights, const Casters& casters);

@@ -1,6 +1,8 @@
 // Shadow maps are rendered again only when what they depend on changes: the lights'
-// placement, the geometry, the actor's transform, the shadow settings. Ordinary frames,
-// camera moves, light colour and intensity, exposure and display mode reuse them.
+// placement, the caster positions, the actor's transform, the shadow settings. Ordinary
+// frames, camera moves, light colour and intensity, exposure and display mode, a modified
+// input with the same points (a new irradiance array) and a headlight following the camera
+// reuse them.
 #include "RenderingTestUtilities.h"
 
 #include "vtkProperty.h"
@@ -55,8 +57,12 @@ int TestGlobalIlluminationMapperShadowCache(int, char*[])
   light->GetPosition(p);
   light->SetPosition(p[0] + 0.05, p[1], p[2]);
   expect("light moved", 2);
+  // The mapper rebuilds its vertex buffers (new point data) but uploads the same positions.
+  box->Modified();
+  expect("input modified, same points", 2);
   box->GetPoints()->SetPoint(
     0, box->GetPoint(0)[0], box->GetPoint(0)[1] + 0.01, box->GetPoint(0)[2]);
+  box->GetPoints()->Modified();
   box->Modified();
   expect("geometry changed", 3);
   actor->SetPosition(0.01, 0, 0);
@@ -64,5 +70,12 @@ int TestGlobalIlluminationMapperShadowCache(int, char*[])
   mapper->GetShading()->SetShadowMapResolution(256);
   expect("shadow map resolution changed", 5);
   expect("another frame", 5);
+  // A headlight's shadows are never visible: it gets no map and may follow the camera.
+  vtkNew<vtkLight> headlight;
+  headlight->SetLightTypeToHeadlight();
+  renderer->AddLight(headlight);
+  expect("headlight added", 6);
+  renderer->GetActiveCamera()->Azimuth(10);
+  expect("camera and headlight moved", 6);
   return ok ? 0 : 1;
 }
