@@ -258,14 +258,17 @@ void vtkGlobalIlluminationBlockMerger::Deliver(vtkPolyData* lit, vtkDataObject* 
       {
         continue;
       }
+      if (leaf.FirstPoint == 0 && n == source->GetNumberOfTuples())
+      {
+        // The only leaf: its array is the result itself (each update makes new ones).
+        leaf.Output->GetPointData()->AddArray(source);
+        continue;
+      }
       auto slice = vtk::TakeSmartPointer(source->NewInstance());
       slice->SetName(source->GetName());
       slice->SetNumberOfComponents(source->GetNumberOfComponents());
       slice->SetNumberOfTuples(n);
-      for (vtkIdType i = 0; i < n; ++i)
-      {
-        slice->SetTuple(i, leaf.FirstPoint + i, source);
-      }
+      slice->InsertTuples(0, n, leaf.FirstPoint, source);
       leaf.Output->GetPointData()->AddArray(slice);
     }
   }
