@@ -450,7 +450,8 @@ void vtkGlobalIlluminationSceneBuilder::AddStatistics(vtkFieldData* fd,
   const std::pair<const char*, std::uint64_t> counters[] = { { "BvhBuilds", s.bvhBuilds },
     { "BvhRefits", s.bvhRefits }, { "Elements", s.elements }, { "Rays", s.rays },
     { "LightRays", s.lightRays }, { "LinksRaw", s.linksRaw },
-    { "LinksCompressed", s.linksCompressed }, { "LinkBytes", s.linkBytes } };
+    { "LinksCompressed", s.linksCompressed }, { "LinkBytes", s.linkBytes },
+    { "Vpls", s.vpls } };
   for (const auto& c : counters)
   {
     AddFieldValue(fd, c.first, c.second);
