@@ -94,6 +94,10 @@ vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
   , ImplicitVisibilityBins(12)
   , MemoryBudget(0.0)
   , ProxyVertices(0)
+  , Refinement(0)
+  , RefinementTolerance(0.1)
+  , RefinementMaxVertices(0)
+  , RefinementRounds(3)
   , FeatureAngle(30.0)
   , Smoothing(1)
   , ComputeNormals(0)
@@ -205,7 +209,7 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
       internals.Async.reset();
       const linkgi::Scene& scene = internals.UpdateScene(this, surface);
       internals.Update(this, scene);
-      lit->ShallowCopy(surface);
+      internals.ShapeOutput(surface, lit);
       const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
       internals.AttachResults(this, lit, elapsed.count(), internals.Solution(), internals.Stats());
       for (const std::string& warning : internals.AllWarnings())
@@ -407,6 +411,10 @@ void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Implicit Visibility Bins: " << this->ImplicitVisibilityBins << "\n";
   os << indent << "Memory Budget: " << this->MemoryBudget << " MiB\n";
   os << indent << "Proxy Vertices: " << this->ProxyVertices << "\n";
+  os << indent << "Refinement: " << (this->Refinement ? "On" : "Off") << "\n";
+  os << indent << "Refinement Tolerance: " << this->RefinementTolerance << "\n";
+  os << indent << "Refinement Max Vertices: " << this->RefinementMaxVertices << "\n";
+  os << indent << "Refinement Rounds: " << this->RefinementRounds << "\n";
   os << indent << "Feature Angle: " << this->FeatureAngle << "\n";
   os << indent << "Smoothing: " << (this->Smoothing ? "On" : "Off") << "\n";
   os << indent << "Compute Normals: " << (this->ComputeNormals ? "On" : "Off") << "\n";

@@ -204,6 +204,31 @@ public:
 
   ///@{
   /**
+   * Adaptive refinement: the lighting's resolution follows the light instead of the input's
+   * tessellation. After a solve, every edge across which the direct or indirect irradiance
+   * changes by more than RefinementTolerance (relative to the local light level), or whose
+   * midpoint's direct light departs from its ends' by that much (a shadow boundary), is
+   * split at its midpoint, and the refined surface is solved again, for up to
+   * RefinementRounds rounds and at most RefinementMaxVertices points (0: four times the
+   * input's). The output is then the refined surface: the input's point arrays interpolated
+   * onto the new points, its cell arrays inherited by the pieces of each cell, and the light
+   * arrays. Its triangles lie inside the input's, so edges, boundaries and creases stay.
+   * Synchronous updates of a vtkPolyData input only; not with ProxyVertices. Defaults: off,
+   * 0.1, 0 and 3.
+   */
+  vtkSetMacro(Refinement, vtkTypeBool);
+  vtkGetMacro(Refinement, vtkTypeBool);
+  vtkBooleanMacro(Refinement, vtkTypeBool);
+  vtkSetMacro(RefinementTolerance, double);
+  vtkGetMacro(RefinementTolerance, double);
+  vtkSetMacro(RefinementMaxVertices, vtkIdType);
+  vtkGetMacro(RefinementMaxVertices, vtkIdType);
+  vtkSetMacro(RefinementRounds, int);
+  vtkGetMacro(RefinementRounds, int);
+  ///@}
+
+  ///@{
+  /**
    * Number of rays traced from each vertex (n_C), a perfect square k*k because the
    * directions form a k x k stratified grid. Other values are rounded to the nearest perfect
    * square (with a warning). Changing it rebuilds the links. The default value is 256.
@@ -497,6 +522,10 @@ protected:
   int ImplicitVisibilityBins;
   double MemoryBudget;
   vtkIdType ProxyVertices;
+  vtkTypeBool Refinement;
+  double RefinementTolerance;
+  vtkIdType RefinementMaxVertices;
+  int RefinementRounds;
   double FeatureAngle;
   vtkTypeBool Smoothing;
   vtkTypeBool ComputeNormals;

@@ -4,8 +4,11 @@
 #include "vtkDataObject.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkVersionMacros.h"
 
 #include "linkgi/Error.h"
@@ -15,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 
 using Builder = vtkGlobalIlluminationSceneBuilder;
 
@@ -108,6 +112,12 @@ vtkPolyData* vtkGlobalIlluminationFilter::vtkInternals::Surface(
   {
     return poly;
   }
+  if (self->Refinement)
+  {
+    throw linkgi::Error(std::string("Refinement needs a vtkPolyData input (its output is a new "
+                                    "surface); this input is a ") + input->GetClassName() +
+      ". Extract its surface first, or switch Refinement off.");
+  }
   // The merged surface carries the colour arrays under their names, with the constant
   // albedo (or no emission) for blocks that lack them, so UpdateScene reads it as it reads
   // a vtkPolyData.
@@ -143,6 +153,28 @@ void vtkGlobalIlluminationFilter::vtkInternals::Update(
                         "input's; got " + std::to_string(self->ProxyVertices) + ".");
   }
   std::size_t proxy = static_cast<std::size_t>(self->ProxyVertices);
+  if (self->Refinement)
+  {
+    if (proxy != 0)
+    {
+      throw linkgi::Error("Refinement and ProxyVertices exclude each other (one adds points "
+                          "where the light needs them, the other lights fewer); set one.");
+    }
+    linkgi::RefinementOptions refinement;
+    refinement.tolerance = static_cast<float>(self->RefinementTolerance);
+    refinement.rounds = static_cast<std::uint32_t>(std::max(self->RefinementRounds, 0));
+    if (self->RefinementMaxVertices < 0)
+    {
+      throw linkgi::Error("RefinementMaxVertices must be 0 (four times the input) or a vertex "
+                          "count; got " + std::to_string(self->RefinementMaxVertices) + ".");
+    }
+    refinement.maxVertices = static_cast<std::size_t>(self->RefinementMaxVertices);
+    this->Refining.update(scene, this->Options(self), refinement, this->Progress(self));
+    this->RefinedUsed = true;
+    this->ProxyUsed = false;
+    return;
+  }
+  this->RefinedUsed = false;
   if (proxy == 0)
   {
     try
@@ -237,15 +269,16 @@ void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(vtkGlobalIlluminat
   vtkPolyData* output, double msFilter, const linkgi::Solution& solution,
   const linkgi::SolverStats& s)
 {
-  const std::size_t elements = this->Mesh.ElementPoint.size();
+  const Builder::Mesh& mesh = this->RefinedUsed ? this->RefinedMesh : this->Mesh;
+  const std::size_t elements = mesh.ElementPoint.size();
   vtkPointData* pd = output->GetPointData();
   for (std::size_t side = 0; side < (self->TwoSided ? 2 : 1); ++side)
   {
     const std::string suffix = side ? "Back" : "";
     const std::size_t offset = side * elements;
-    pd->AddArray(Builder::MapToPoints(this->Mesh, solution.direct, offset, ("DirectIrradiance" + suffix).c_str()));
-    pd->AddArray(Builder::MapToPoints(this->Mesh, solution.indirect, offset, ("IndirectIrradiance" + suffix).c_str()));
-    pd->AddArray(Builder::MapToPoints(this->Mesh, solution.radiance, offset, ("Radiance" + suffix).c_str()));
+    pd->AddArray(Builder::MapToPoints(mesh, solution.direct, offset, ("DirectIrradiance" + suffix).c_str()));
+    pd->AddArray(Builder::MapToPoints(mesh, solution.indirect, offset, ("IndirectIrradiance" + suffix).c_str()));
+    pd->AddArray(Builder::MapToPoints(mesh, solution.radiance, offset, ("Radiance" + suffix).c_str()));
   }
 
   Builder::AddStatistics(output->GetFieldData(), s, msFilter, this->Warnings);
@@ -261,6 +294,12 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
     this->Warnings.push_back("ProxyVertices applies to synchronous updates only; this "
                              "asynchronous one lights the full surface.");
   }
+  if (self->Refinement)
+  {
+    this->Warnings.push_back("Refinement applies to synchronous updates only; this "
+                             "asynchronous one lights the input's points.");
+  }
+  this->RefinedUsed = false;
   if (!this->Async)
   {
     this->Async = std::make_unique<linkgi::AsyncSolver>();
@@ -298,3 +337,76 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   return true;
 }
 
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::vtkInternals::ShapeOutput(vtkPolyData* input, vtkPolyData* output)
+{
+  if (!this->RefinedUsed)
+  {
+    output->ShallowCopy(input);
+    return;
+  }
+  // One output point per element of the refined scene: the input's elements first (their
+  // input points' data), then the midpoints in order (their two parents' mean).
+  const linkgi::RefinedScene& refined = this->Refining.refined();
+  const linkgi::Scene& scene = refined.scene;
+  const vtkIdType n = static_cast<vtkIdType>(scene.vertexCount());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  points->SetNumberOfPoints(n);
+  for (vtkIdType v = 0; v < n; ++v)
+  {
+    const linkgi::Vec3f& p = scene.positions[static_cast<std::size_t>(v)];
+    points->SetPoint(v, p.x, p.y, p.z);
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(static_cast<vtkIdType>(scene.triangleCount()), 3 * static_cast<vtkIdType>(scene.triangleCount()));
+  for (const linkgi::Triangle& t : scene.triangles)
+  {
+    const vtkIdType ids[3] = { t.v[0], t.v[1], t.v[2] };
+    polys->InsertNextCell(3, ids);
+  }
+  output->Initialize();
+  output->SetPoints(points);
+  output->SetPolys(polys);
+  output->GetFieldData()->ShallowCopy(input->GetFieldData());
+
+  vtkPointData* inPoints = input->GetPointData();
+  vtkPointData* outPoints = output->GetPointData();
+  outPoints->CopyAllocate(inPoints, n);
+  const std::size_t first = refined.inputVertices;
+  for (std::size_t v = 0; v < first; ++v)
+  {
+    outPoints->CopyData(inPoints, this->Mesh.ElementPoint[v], static_cast<vtkIdType>(v));
+  }
+  for (int a = 0; a < outPoints->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = outPoints->GetAbstractArray(a);
+    array->SetNumberOfTuples(n);
+    for (std::size_t k = 0; k < refined.midpointOf.size(); ++k)
+    {
+      array->InterpolateTuple(static_cast<vtkIdType>(first + k), refined.midpointOf[k][0], array,
+        refined.midpointOf[k][1], array, 0.5);
+    }
+  }
+  if (vtkDataArray* normals = outPoints->GetNormals())
+  {
+    for (vtkIdType v = static_cast<vtkIdType>(first); v < n; ++v)
+    {
+      const linkgi::Vec3f& nv = scene.normals[static_cast<std::size_t>(v)];
+      normals->SetTuple3(v, nv.x, nv.y, nv.z);
+    }
+  }
+  vtkCellData* inCells = input->GetCellData();
+  vtkCellData* outCells = output->GetCellData();
+  const vtkIdType triangles = static_cast<vtkIdType>(scene.triangleCount());
+  outCells->CopyAllocate(inCells, triangles);
+  for (vtkIdType t = 0; t < triangles; ++t)
+  {
+    outCells->CopyData(inCells, this->Mesh.TriangleCell[refined.sourceTriangle[static_cast<std::size_t>(t)]], t);
+  }
+
+  this->RefinedMesh.ElementPoint.resize(static_cast<std::size_t>(n));
+  std::iota(this->RefinedMesh.ElementPoint.begin(), this->RefinedMesh.ElementPoint.end(), vtkIdType(0));
+  this->RefinedMesh.InputPointCount = n;
+}

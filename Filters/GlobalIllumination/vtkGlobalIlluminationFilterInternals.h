@@ -16,6 +16,7 @@
 
 #include "linkgi/AsyncSolver.h"
 #include "linkgi/Proxy.h"
+#include "linkgi/Refine.h"
 #include "linkgi/Solver.h"
 
 #include <memory>
@@ -27,10 +28,28 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   linkgi::Solver Solver;
   linkgi::ProxySolver Proxy; // ProxyVertices > 0
   bool ProxyUsed = false;    // the last synchronous update went through Proxy
-  /// A synchronous update: through the proxy when ProxyVertices > 0, else the Solver.
+  linkgi::RefiningSolver Refining; // Refinement on
+  bool RefinedUsed = false;        // the last synchronous update refined the surface
+  /// The refined surface's points are its elements: the identity mapping for AttachResults.
+  vtkGlobalIlluminationSceneBuilder::Mesh RefinedMesh;
+  /// A synchronous update: refined when Refinement is on, through the proxy when
+  /// ProxyVertices > 0, else the Solver.
   void Update(vtkGlobalIlluminationFilter* self, const linkgi::Scene& scene);
-  const linkgi::Solution& Solution() const { return this->ProxyUsed ? this->Proxy.solution() : this->Solver.solution(); }
-  const linkgi::SolverStats& Stats() const { return this->ProxyUsed ? this->Proxy.stats() : this->Solver.stats(); }
+  const linkgi::Solution& Solution() const
+  {
+    return this->RefinedUsed ? this->Refining.solution()
+      : this->ProxyUsed      ? this->Proxy.solution()
+                             : this->Solver.solution();
+  }
+  const linkgi::SolverStats& Stats() const
+  {
+    return this->RefinedUsed ? this->Refining.stats()
+      : this->ProxyUsed      ? this->Proxy.stats()
+                             : this->Solver.stats();
+  }
+  /// The synchronous output's geometry: `input` itself, or after refinement the refined
+  /// surface with the input's point arrays interpolated and its cell arrays inherited.
+  void ShapeOutput(vtkPolyData* input, vtkPolyData* output);
   std::vector<vtkSmartPointer<vtkLight>> Lights;
   vtkSmartPointer<vtkDataObject> LastOutput; // the last good output, handed out after errors
   std::vector<std::string> Warnings;         // the filter's own, for this update

@@ -55,3 +55,21 @@ fitted = t.fetch(gi)
 t.check(fitted.GetNumberOfPoints() == n and values(fitted, "DirectIrradiance") == values(full, "DirectIrradiance"),
         "over the budget: lit through a proxy that fits, the direct light unchanged")
 t.check(max(v[0] for v in values(fitted, "IndirectIrradiance")) > 0.0, "and bounced light")
+
+# Refinement through the proxy: a plane of 2 x 2 cells under the lamp is refined where the
+# light asks for it, within the vertex budget, and every output point carries the light.
+coarse = GlobalIllumination(Input=Plane(Origin=[-2, 0, -2], Point1=[-2, 0, 2], Point2=[2, 0, -2],
+                                        XResolution=2, YResolution=2))
+t.check(coarse.Refinement == 0 and coarse.RefinementRounds == 3, "refinement off by default")
+coarse.LightType = "Point"
+coarse.LightPosition = [1, 1, 0.5]
+coarse.LightIntensity = 4.0
+coarse.RaysPerVertex = "16"
+coarse.Refinement = 1
+coarse.RefinementMaxVertices = 300
+coarse.UpdatePipeline()
+refined = t.fetch(coarse)
+t.check(9 < refined.GetNumberOfPoints() <= 300,
+        "refined from 9 to %d points (budget 300)" % refined.GetNumberOfPoints())
+t.check(refined.GetPointData().GetArray("DirectIrradiance").GetNumberOfTuples() == refined.GetNumberOfPoints(),
+        "light on every refined point")
