@@ -137,7 +137,7 @@ void addQuadAwayFrom(MeshBuilder& b, const Vec3f& inside, Vec3f p0, Vec3f p1, Ve
 Scene makeCornell(const SceneParams& params)
 {
   MeshBuilder b;
-  const float mm = 0.001f, cell = 0.016f;
+  const float mm = 0.001f, cell = params.cornellCell > 0.f ? params.cornellCell : 0.016f;
   const auto P = [&](float x, float y, float z) { return Vec3f(x, y, z) * mm; };
   const Vec3f room = P(278.f, 274.4f, 279.6f);
   // Walls face the room's centre: "away from" a point mirrored far behind each wall.

@@ -16,6 +16,10 @@ struct SceneParams
   /// cornell only: false = a point light just below the ceiling opening (the opening is a
   /// plain white patch); true = the opening is an emissive patch and there is no point light.
   bool cornellAreaLight = false;
+  /// cornell only: the largest cell edge in metres (0: the published box's 16 mm). A size
+  /// above the walls' gives two triangles per wall (the ceiling keeps the cells that frame
+  /// the light's opening): the coarse input of refinement.
+  float cornellCell = 0.f;
 };
 
 /// Names accepted by makeStandardScene:
