@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -195,4 +196,42 @@ TEST(TestProxy, AProxyThatCannotReachItsTargetSaysSo)
     warned = warned || w.find("more than the 20 asked for") != std::string::npos;
   }
   EXPECT_TRUE(warned);
+}
+
+TEST(TestProxy, DecimationReportsProgressAndAbortsKeepingThePreviousProxy)
+{
+  if (!proxyAvailable())
+  {
+    GTEST_SKIP() << "This build has no OpenMesh.";
+  }
+  const Scene s = validated(test::roomWithBlock(0.1f));
+  const std::size_t target = s.vertexCount() / 4;
+  std::vector<double> fractions;
+  decimate(s, target, 60.f,
+    [&](const char* stage, double f)
+    {
+      EXPECT_STREQ(stage, "Decimate");
+      fractions.push_back(f);
+      return true;
+    });
+  ASSERT_GE(fractions.size(), 10u) << "about a hundred reports";
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_GE(fractions.front(), 0.0);
+  EXPECT_LE(fractions.back(), 1.0);
+
+  int calls = 0;
+  const auto stopEarly = [&](const char*, double) { return ++calls < 5; };
+  EXPECT_THROW(decimate(s, target, 60.f, stopEarly), Aborted);
+  EXPECT_EQ(calls, 5) << "the decimation stops at the first refusal";
+
+  // Through the solver: an abort during a new decimation keeps the last proxy and result.
+  ProxySolver solver;
+  SolverOptions o;
+  o.backend = Backend::Cpu;
+  o.raysPerVertex = 16;
+  const Solution before = solver.update(s, o, target);
+  calls = 0;
+  EXPECT_THROW(solver.update(s, o, target / 2, stopEarly), Aborted);
+  EXPECT_EQ(solver.decimations(), 1u);
+  EXPECT_EQ(solver.solution().indirect, before.indirect);
 }

@@ -5,6 +5,7 @@
 // emission are the input's.
 #pragma once
 
+#include "linkgi/Parallel.h"
 #include "linkgi/Scene.h"
 
 #include <array>
@@ -29,7 +30,10 @@ struct ProxyMesh
 /// `maxNormalDeviationDegrees` or flip it refused, boundary vertices kept (so the borders of
 /// open surfaces and the creases a mesh builder splits stay where they are). Throws Error for
 /// a target of 0 or not smaller than the input, or where this build has no OpenMesh.
-ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNormalDeviationDegrees = 60.f);
+/// `progress` hears ("Decimate", fraction of the collapses done) about a hundred times; when
+/// it returns false the decimation stops and Aborted is thrown.
+ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNormalDeviationDegrees = 60.f,
+  const ProgressCallback& progress = {});
 
 /// Where each input vertex lies on the proxy: its nearest proxy triangle among those facing
 /// the same way (normals within 90 degrees; the nearest of all where none does), and the

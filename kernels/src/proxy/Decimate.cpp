@@ -3,6 +3,7 @@
 
 #include "linkgi/Error.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -35,7 +36,35 @@ bool proxyAvailable()
   return true;
 }
 
-ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNormalDeviationDegrees)
+namespace
+{
+/// Hands OpenMesh's progress to a ProgressCallback, and its abort back to the decimater.
+class ProgressObserver final : public OpenMesh::Decimater::Observer
+{
+public:
+  ProgressObserver(std::size_t collapses, const ProgressCallback& progress)
+    : Observer(std::max<std::size_t>(1, collapses / 100)), collapses(std::max<std::size_t>(1, collapses)),
+      progress(progress)
+  {
+  }
+  void notify(std::size_t step) override
+  {
+    if (!aborted && !progress("Decimate", std::min(1.0, double(step) / double(collapses))))
+    {
+      aborted = true;
+    }
+  }
+  bool abort() const override { return aborted; }
+  bool aborted = false;
+
+private:
+  std::size_t collapses;
+  const ProgressCallback& progress;
+};
+}
+
+ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNormalDeviationDegrees,
+  const ProgressCallback& progress)
 {
   if (targetVertices == 0 || targetVertices >= scene.vertexCount())
   {
@@ -94,10 +123,19 @@ ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNorm
   // that in the proxy's size instead (ProxySolver warns).
   const bool logging = omlog().is_enabled();
   omlog().disable();
+  ProgressObserver observer(scene.vertexCount() - targetVertices, progress);
+  if (progress)
+  {
+    decimater.set_observer(&observer);
+  }
   decimater.decimate_to(targetVertices);
   if (logging)
   {
     omlog().enable();
+  }
+  if (observer.aborted)
+  {
+    throw Aborted();
   }
   mesh.garbage_collection();
 

@@ -88,7 +88,7 @@ const Solution& ProxySolver::update(const Scene& input, const SolverOptions& opt
   if (!sameGeometry)
   {
     auto t = std::chrono::steady_clock::now();
-    g.proxy = decimate(s, proxyVertices); // checks the target
+    g.proxy = decimate(s, proxyVertices, 60.f, progress); // checks the target
     parts.emplace_back("Decimate", msSince(t));
     t = std::chrono::steady_clock::now();
     g.transfer = buildTransfer(s, g.proxy.scene);

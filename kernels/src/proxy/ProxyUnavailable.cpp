@@ -10,7 +10,7 @@ bool proxyAvailable()
   return false;
 }
 
-ProxyMesh decimate(const Scene&, std::size_t, float)
+ProxyMesh decimate(const Scene&, std::size_t, float, const ProgressCallback&)
 {
   throw Error("Proxies need OpenMesh, and this build has none (install libopenmesh-dev, or "
               "OpenMesh 9, and configure again); use 0 proxy vertices.");
