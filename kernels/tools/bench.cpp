@@ -44,6 +44,7 @@ struct Args
   std::string dump, compare;
   bool bare = true, gather = true;
   std::size_t proxyVertices = 0; ///< also solve through a proxy of this many vertices (issue 15)
+  bool proxyOnly = false; ///< only the proxy (a mesh too large for the full solve's budget)
 };
 
 std::vector<std::string> split(const std::string& s)
@@ -97,6 +98,8 @@ Args parse(int argc, char** argv)
     }
     else if (arg == "--proxy-vertices")
       a.proxyVertices = std::stoull(value());
+    else if (arg == "--proxy-only")
+      a.proxyOnly = true;
     else if (arg == "--memory-budget")
       a.options.memoryBudget = std::stoull(value());
     else if (arg == "--bins")
@@ -131,7 +134,7 @@ Args parse(int argc, char** argv)
     else
     {
       throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method links|instant-radiosity|implicit-visibility] "
-                  "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--bins 12] [--proxy-vertices N] [--memory-budget BYTES] [--rays 256] [--bounces 3] [--repeat 3] "
+                  "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--bins 12] [--proxy-vertices N [--proxy-only]] [--memory-budget BYTES] [--rays 256] [--bounces 3] [--repeat 3] "
                   "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] [--bvh-build gpu|sah] "
                   "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather]; unknown argument " +
         arg + ".");
@@ -459,7 +462,7 @@ std::string memoryJson(const Scene& scene, const UpdateRuns& runs)
 
 /// The same scene through a ProxySolver: fresh solvers (decimation included) and light
 /// moves, medians, and the carried indirect light against the full solve's.
-std::string proxyJson(const Scene& scene, const UpdateRuns& full, const Args& args)
+std::string proxyJson(const Scene& scene, const UpdateRuns* full, const Args& args)
 {
   const Scene moved = movedLights(scene);
   std::vector<double> fullTimes, lightTimes, decimate, transfer, inputDirect;
@@ -489,7 +492,6 @@ std::string proxyJson(const Scene& scene, const UpdateRuns& full, const Args& ar
   {
     areas.insert(areas.end(), areas.begin(), areas.end());
   }
-  const ErrorMetrics e = relativeRmse(solution.indirect, full.solution.indirect, areas);
   std::ostringstream out;
   out << ",\"proxy\":{\"target_vertices\":" << args.proxyVertices << ",\"vertices\":" << proxyVertices
       << ",\"median_ms\":{\"full_update\":" << median(fullTimes) << ",\"decimate\":" << median(decimate)
@@ -499,16 +501,28 @@ std::string proxyJson(const Scene& scene, const UpdateRuns& full, const Args& ar
   {
     out << (i ? "," : "") << fullTimes[i];
   }
-  out << "],\"speedup_full_update\":" << median(full.fullTimes) / median(fullTimes)
-      << ",\"indirect_rel_rmse_luminance\":" << e.relRmseLuminance << ",\"indirect_rel_rmse_max_channel\":"
-      << std::max({ e.relRmse.x, e.relRmse.y, e.relRmse.z }) << ",\"host_peak_bytes_per_vertex\":"
-      << double(peak) / double(std::max<std::size_t>(1, scene.vertexCount())) << "}";
+  out << "]";
+  if (full) // against the full solve, where there is one
+  {
+    const ErrorMetrics e = relativeRmse(solution.indirect, full->solution.indirect, areas);
+    out << ",\"speedup_full_update\":" << median(full->fullTimes) / median(fullTimes)
+        << ",\"indirect_rel_rmse_luminance\":" << e.relRmseLuminance << ",\"indirect_rel_rmse_max_channel\":"
+        << std::max({ e.relRmse.x, e.relRmse.y, e.relRmse.z });
+  }
+  out << ",\"host_peak_bytes_per_vertex\":" << double(peak) / double(std::max<std::size_t>(1, scene.vertexCount()))
+      << "}";
   return out.str();
 }
 
 void benchScene(const std::string& name, const Args& args)
 {
   const Scene scene = bench::makeScene(name);
+  if (args.proxyOnly)
+  {
+    std::printf("{\"scene\":\"%s\",\"vertices\":%zu,\"triangles\":%zu,\"rays_per_vertex\":%u%s}\n", name.c_str(),
+      scene.vertexCount(), scene.triangleCount(), args.options.raysPerVertex, proxyJson(scene, nullptr, args).c_str());
+    return;
+  }
   const UpdateRuns runs = runUpdates(scene, args);
   std::string extra = timingJson(runs) + deformationJson(name, scene, args) +
     meanIndirectJson(scene, runs.solution) + memoryJson(scene, runs);
@@ -523,7 +537,7 @@ void benchScene(const std::string& name, const Args& args)
   extra += yardstickJson(scene, runs.full, args);
   if (args.proxyVertices > 0)
   {
-    extra += proxyJson(scene, runs, args);
+    extra += proxyJson(scene, &runs, args);
   }
   printRecord(name, scene, runs, args, extra);
 }
