@@ -30,8 +30,8 @@ public:
 
 private:
   void gatherAndBound(const Vec3f* positions, const Triangle* triangles, cudaStream_t stream);
-  /// PLOC on the Morton-sorted triangles of `order`: hierarchy and boxes.
-  void cluster(const Vec3f* positions, const Triangle* triangles, cudaStream_t stream);
+  /// PLOC on `triangles`, gathered in Morton order: hierarchy and boxes (DeviceBvhPloc.cu).
+  void cluster(cudaStream_t stream);
   /// Renumbers nodes and leaves depth-first (subtrees contiguous in memory).
   void reorderDepthFirst(cudaStream_t stream);
 
