@@ -1,7 +1,9 @@
-// Instant radiosity on one GPU: the mesh, its BVH (cuda/DeviceBvh), the VPLs and the gather
-// stay on the device; the direct light and the finish (smoothing, radiance) are the link
-// method's CUDA launchers (cuda/Kernels.h). The host builds the source table and packs the
-// VPL set (the same packVpls as the CPU, so both backends gather the same layout).
+// Instant radiosity on one GPU: the mesh, its BVH (cuda/DeviceBvh), the proxy, the VPLs and
+// the gather stay on the device; the direct light and the finish (smoothing, radiance) are
+// the link method's CUDA launchers (cuda/Kernels.h). The host builds the source table; the
+// device packs the VPL set in the layout of the CPU's packVpls and clusters the proxy as the
+// CPU's buildProxy does. One stream: an update waits for the device where the host needs a
+// number (the VPLs found, the proxy's size) and once at the end, for the output.
 #include "ir/IrBackends.h"
 #include "ir/IrKernels.h"
 
@@ -9,6 +11,8 @@
 #include "cuda/DirectLightStage.h"
 #include "cuda/DeviceTopology.h"
 #include "cuda/GPUBuffer.h"
+#include "cuda/PinnedStaging.h"
+#include "cuda/Primitives.h"
 
 #include "linkgi/Cuda.h"
 
@@ -31,7 +35,7 @@ struct DeviceMesh
   cuda::DeviceBvh bvh;
   Index vertexCount = 0, triangleCount = 0;
 
-  /// Uploads what `changes` touched and brings the rest up to date; synchronizes.
+  /// Uploads what `changes` touched and queues the rest on `stream` (no wait).
   void update(const Scene& s, Changes changes, cudaStream_t stream, SolverStats* stats)
   {
     vertexCount = Index(s.vertexCount());
@@ -73,7 +77,6 @@ struct DeviceMesh
         ++stats->bvhRefits;
       }
     }
-    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
   }
 };
 
@@ -84,6 +87,20 @@ struct DeviceVpls
   GPUBuffer<std::uint32_t> subsetOffsets;
   GPUBuffer<float> subsetScale;
   std::size_t count = 0, subsets = 0;
+
+  /// Packs the light paths' VPLs (ir::gpu::packVpls); `total`: the VPLs found.
+  void pack(const GPUBuffer<Vpl>& slots, const GPUBuffer<Index>& counts, const GPUBuffer<Offset>& pathOffsets,
+    std::uint32_t paths, std::uint32_t slotsPerPath, std::uint32_t interleave, std::size_t total,
+    cudaStream_t stream)
+  {
+    subsets = std::max(1u, std::min(interleave, paths));
+    vpls.resize(std::max<std::size_t>(total, 1));
+    subsetOffsets.resize(subsets + 1);
+    subsetScale.resize(subsets);
+    gpu::packVpls(slots.data(), counts.data(), pathOffsets.data(), paths, slotsPerPath, std::uint32_t(subsets),
+      vpls.data(), subsetOffsets.data(), subsetScale.data(), stream);
+    count = total;
+  }
 
   void upload(const VplSet& set, cudaStream_t stream)
   {
@@ -135,9 +152,13 @@ public:
     LINKGI_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
     name = prop.name;
     LINKGI_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
+    void* pinned = nullptr;
+    LINKGI_CUDA_CHECK(cudaMallocHost(&pinned, (kFoundSlot + 1) * sizeof(unsigned long long)));
+    rayCounts = static_cast<unsigned long long*>(pinned);
   }
   ~IrCuda() override
   {
+    cudaFreeHost(rayCounts);
     if (stream)
     {
       cudaStreamDestroy(stream);
@@ -194,16 +215,25 @@ private:
     {
       return;
     }
-    const Proxy proxy = buildProxy(c.scene, c.options.instantRadiosity.proxyResolution);
-    proxyMargin = proxy.margin;
-    proxyTriangles = Index(proxy.triangles.size());
+    const ProxyGrid grid = proxyGrid(c.scene, c.options.instantRadiosity.proxyResolution);
+    proxyMargin = grid.margin();
+    if (gpu::DeviceProxy::fits(grid, mesh.vertexCount))
+    {
+      proxy.build(grid, mesh.positions.data(), mesh.vertexCount, mesh.triangles.data(), mesh.triangleCount, stream);
+    }
+    else
+    {
+      // Too many clusters for the device's sort keys: the host's clustering, uploaded.
+      const Proxy host = buildProxy(c.scene, grid.resolution);
+      proxy.positions.upload(host.positions, stream);
+      proxy.triangles.upload(host.triangles, stream);
+      proxy.positionCount = Index(host.positions.size());
+      proxy.triangleCount = Index(host.triangles.size());
+    }
+    proxyTriangles = proxy.triangleCount;
     if (proxyTriangles)
     {
-      proxyPositions.upload(proxy.positions, stream);
-      proxyTriangleBuffer.upload(proxy.triangles, stream);
-      proxyBvh.build(proxyPositions.data(), Index(proxy.positions.size()), proxyTriangleBuffer.data(),
-        proxyTriangles, stream);
-      LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+      proxyBvh.build(proxy.positions.data(), proxy.positionCount, proxy.triangles.data(), proxyTriangles, stream);
     }
   }
 
@@ -239,19 +269,20 @@ private:
     view.cdf = cdf.data();
     view.envTexels = s.environment.texels.empty() ? nullptr : envTexels.data();
     const std::uint32_t slotsPerPath = view.bounces + 1;
-    std::vector<int> hostCounts;
+    std::size_t found = 0;
     for (int pass = 0; pass < 2; ++pass)
     {
       slots.resize(std::size_t(view.paths) * slotsPerPath);
-      counts.resize(view.paths);
+      counts.resize(std::size_t(view.paths) + 1);
+      pathOffsets.resize(std::size_t(view.paths) + 1);
+      LINKGI_CUDA_CHECK(cudaMemsetAsync(counts.data() + view.paths, 0, sizeof(Index), stream));
       gpu::traceLightPaths(view, mesh.bvh.view(), slots.data(), counts.data(), stream);
+      cuda::exclusiveSum(counts.data(), pathOffsets.data(), std::size_t(view.paths) + 1, scanTemp, stream);
+      static_assert(sizeof(Offset) == sizeof(unsigned long long), "the VPL total lands in a ray-count slot");
+      LINKGI_CUDA_CHECK(cudaMemcpyAsync(rayCounts + kFoundSlot, pathOffsets.data() + view.paths, sizeof(Offset),
+        cudaMemcpyDeviceToHost, stream));
       LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
-      hostCounts = counts.download();
-      std::size_t found = 0;
-      for (int n : hostCounts)
-      {
-        found += std::size_t(n);
-      }
+      found = std::size_t(rayCounts[kFoundSlot]);
       // The same rule as the CPU's (traceVplsCpu), so both trace the same paths.
       const std::uint32_t more = pass == 0 ? secondPassPaths(view.paths, found, setup.targetVpls, slotsPerPath) : 0;
       if (!more)
@@ -260,10 +291,8 @@ private:
       }
       view.paths = more;
     }
-    // Packed on the host as the CPU packs them: the same layout, subsets and scales.
-    const VplSet set = packVpls(slots.download(), hostCounts, slotsPerPath,
-      c.options.instantRadiosity.interleave);
-    vpls.upload(set, stream);
+    vpls.pack(slots, counts, pathOffsets, view.paths, slotsPerPath, c.options.instantRadiosity.interleave, found,
+      stream);
   }
 
   void directLight(const StageContext& c)
@@ -271,10 +300,10 @@ private:
     cuda::queueDirectLight(c.scene, c.options,
       { mesh.bvh, mesh.positions, mesh.normals, mesh.shifts, mesh.topology, mesh.topology.edgeCount(), rayEpsilon(c.scene) },
       { litLights, vertexVisible, edgeVisible, direct, counter }, stream);
-    unsigned long long traced = 0;
-    LINKGI_CUDA_CHECK(cudaMemcpyAsync(&traced, counter.data(), sizeof(traced), cudaMemcpyDeviceToHost, stream));
-    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
-    lightRays = traced;
+    // Read by finish, after its wait.
+    LINKGI_CUDA_CHECK(cudaMemcpyAsync(rayCounts + kLightSlot, counter.data(), sizeof(unsigned long long),
+      cudaMemcpyDeviceToHost, stream));
+    lightPending = true;
   }
 
   void gather(const StageContext& c)
@@ -289,14 +318,13 @@ private:
       ? (proxyTriangles ? proxyBvh.view() : BvhView{})
       : mesh.bvh.view();
     gathered.resize(elements.count());
-    counter.resize(1);
-    counter.fillZero(stream);
+    gatherCounter.resize(1);
+    gatherCounter.fillZero(stream);
     gpu::gatherVpls(gatherLaunch(mesh, vpls, visibility, gp, c.options.twoSided), gathered.data(),
-      counter.data(), stream);
-    unsigned long long traced = 0;
-    LINKGI_CUDA_CHECK(cudaMemcpyAsync(&traced, counter.data(), sizeof(traced), cudaMemcpyDeviceToHost, stream));
-    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
-    gatherRays = traced;
+      gatherCounter.data(), stream);
+    LINKGI_CUDA_CHECK(cudaMemcpyAsync(rayCounts + kGatherSlot, gatherCounter.data(), sizeof(unsigned long long),
+      cudaMemcpyDeviceToHost, stream));
+    gatherPending = true;
   }
 
   void finish(const StageContext& c)
@@ -320,21 +348,37 @@ private:
     f.normals = mesh.normals.data();
     output.resize(3 * ne);
     cuda::finish(f, output.data(), stream);
+    const std::size_t bytes = ne * sizeof(Vec3f);
+    staging.begin(3 * bytes);
+    const auto* at = static_cast<const unsigned char*>(staging.download(output.data(), 3 * bytes, stream));
+    // The update's one wait for the device (besides the VPL count and the proxy's size).
+    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+    if (lightPending)
+    {
+      lightRays = rayCounts[kLightSlot];
+      lightPending = false;
+    }
+    if (gatherPending)
+    {
+      gatherRays = rayCounts[kGatherSlot];
+      gatherPending = false;
+    }
     Solution& sol = c.solution;
     sol.direct.resize(ne);
     sol.indirect.resize(ne);
     sol.radiance.resize(ne);
-    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
-    output.download(sol.direct.data(), ne);
-    LINKGI_CUDA_CHECK(cudaMemcpy(sol.indirect.data(), output.data() + ne, ne * sizeof(Vec3f), cudaMemcpyDeviceToHost));
-    LINKGI_CUDA_CHECK(cudaMemcpy(sol.radiance.data(), output.data() + 2 * ne, ne * sizeof(Vec3f), cudaMemcpyDeviceToHost));
+    cuda::PinnedStaging::copy(sol.direct.data(), at, bytes);
+    cuda::PinnedStaging::copy(sol.indirect.data(), at + bytes, bytes);
+    cuda::PinnedStaging::copy(sol.radiance.data(), at + 2 * bytes, bytes);
   }
+
+  /// rayCounts' slots: the direct light's and the gather's shadow rays, the VPLs found.
+  static constexpr int kLightSlot = 0, kGatherSlot = 1, kFoundSlot = 2;
 
   cudaStream_t stream = nullptr;
   std::string name;
   DeviceMesh mesh;
-  GPUBuffer<Vec3f> proxyPositions;
-  GPUBuffer<Triangle> proxyTriangleBuffer;
+  gpu::DeviceProxy proxy;
   cuda::DeviceBvh proxyBvh;
   Index proxyTriangles = 0;
   float proxyMargin = 0.f;
@@ -343,10 +387,15 @@ private:
   GPUBuffer<Light> lights, litLights;
   GPUBuffer<Vec3f> albedo, emission, envTexels, direct, output;
   GPUBuffer<Vpl> slots;
-  GPUBuffer<int> counts;
+  GPUBuffer<Index> counts;
+  GPUBuffer<Offset> pathOffsets;
+  GPUBuffer<unsigned char> scanTemp;
   DeviceVpls vpls;
   GPUBuffer<Rgba> gathered;
-  GPUBuffer<unsigned long long> counter;
+  GPUBuffer<unsigned long long> counter, gatherCounter;
+  cuda::PinnedStaging staging;
+  unsigned long long* rayCounts = nullptr; ///< pinned, kFoundSlot + 1 entries
+  bool lightPending = false, gatherPending = false;
   std::uint64_t gatherRays = 0, lightRays = 0;
 };
 }

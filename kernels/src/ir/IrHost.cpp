@@ -158,24 +158,27 @@ VplSet packVpls(const std::vector<Vpl>& slots, const std::vector<int>& counts,
   return set;
 }
 
+ProxyGrid proxyGrid(const Scene& s, std::uint32_t resolution)
+{
+  ProxyGrid grid;
+  Vec3f hi;
+  bounds(s.positions, grid.lo, hi);
+  const Vec3f size = hi - grid.lo;
+  grid.cell = std::max(std::max(size.x, size.y), std::max(size.z, 1e-30f)) / float(resolution);
+  grid.resolution = resolution;
+  return grid;
+}
+
 Proxy buildProxy(const Scene& s, std::uint32_t resolution)
 {
   Proxy proxy;
-  Vec3f lo, hi;
-  bounds(s.positions, lo, hi);
-  const Vec3f size = hi - lo;
-  const float cell = std::max(std::max(size.x, size.y), std::max(size.z, 1e-30f)) / float(resolution);
-  const auto cellOf = [&](const Vec3f& p) {
-    const auto axis = [&](float x, float l) { return std::uint64_t(std::min(float(resolution), (x - l) / cell)); };
-    const std::uint64_t n = resolution + 1;
-    return (axis(p.x, lo.x) * n + axis(p.y, lo.y)) * n + axis(p.z, lo.z);
-  };
+  const ProxyGrid grid = proxyGrid(s, resolution);
   std::unordered_map<std::uint64_t, Index> clusterOf;
   std::vector<Index> vertexCluster(s.vertexCount());
   std::vector<float> members;
   for (std::size_t v = 0; v < s.vertexCount(); ++v)
   {
-    const auto inserted = clusterOf.emplace(cellOf(s.positions[v]), Index(proxy.positions.size()));
+    const auto inserted = clusterOf.emplace(grid.cellOf(s.positions[v]), Index(proxy.positions.size()));
     if (inserted.second)
     {
       proxy.positions.push_back(Vec3f(0.f));
@@ -211,7 +214,7 @@ Proxy buildProxy(const Scene& s, std::uint32_t resolution)
   proxy.triangles.erase(std::unique(proxy.triangles.begin(), proxy.triangles.end(),
                           [&](const Triangle& x, const Triangle& y) { return key(x) == key(y); }),
     proxy.triangles.end());
-  proxy.margin = 1.5f * cell;
+  proxy.margin = grid.margin();
   return proxy;
 }
 }

@@ -52,7 +52,7 @@ struct VplSet
 };
 
 /// First path of subset r of `subsets` over `paths` paths.
-inline std::uint32_t subsetFirstPath(std::uint32_t r, std::uint32_t subsets, std::uint32_t paths)
+LINKGI_HOST_DEVICE inline std::uint32_t subsetFirstPath(std::uint32_t r, std::uint32_t subsets, std::uint32_t paths)
 {
   return std::uint32_t(std::uint64_t(r) * paths / subsets);
 }
@@ -72,4 +72,40 @@ struct Proxy
   float margin = 0.f;
 };
 Proxy buildProxy(const Scene& scene, std::uint32_t resolution);
+
+/// The proxy's grid: `resolution` cells of `cell` along the box's longest axis from `lo`;
+/// cells are numbered in (resolution + 1)^3 (a vertex on the far face gets the extra cell).
+/// One copy for the host's buildProxy and the GPU's (ir/IrKernels.h).
+struct ProxyGrid
+{
+  Vec3f lo;
+  float cell = 1.f;
+  std::uint32_t resolution = 1;
+  LINKGI_HOST_DEVICE std::uint64_t cellOf(const Vec3f& p) const
+  {
+    const std::uint64_t n = resolution + 1;
+    return (axis(p.x, lo.x) * n + axis(p.y, lo.y)) * n + axis(p.z, lo.z);
+  }
+  /// The bits cellOf's numbers take.
+  int cellBits() const
+  {
+    const std::uint64_t cells = std::uint64_t(resolution + 1) * (resolution + 1) * (resolution + 1);
+    int bits = 1;
+    while (bits < 64 && (std::uint64_t(1) << bits) < cells)
+    {
+      ++bits;
+    }
+    return bits;
+  }
+  /// Shadow rays against the proxy skip this much at both ends (proxyShadowRay).
+  float margin() const { return 1.5f * cell; }
+
+private:
+  LINKGI_HOST_DEVICE std::uint64_t axis(float x, float l) const
+  {
+    const float c = (x - l) / cell;
+    return std::uint64_t(c < float(resolution) ? c : float(resolution));
+  }
+};
+ProxyGrid proxyGrid(const Scene& scene, std::uint32_t resolution);
 }

@@ -1,5 +1,7 @@
 #include "ir/IrKernels.h"
 
+#include "cuda/Primitives.h"
+
 #include "linkgi/Bvh.h"
 
 namespace linkgi::ir::gpu
@@ -8,7 +10,7 @@ namespace
 {
 constexpr int kThreads = 128;
 
-__global__ void pathKernel(PathScene scene, BvhView bvh, Vpl* slots, int* counts)
+__global__ void pathKernel(PathScene scene, BvhView bvh, Vpl* slots, Index* counts)
 {
   const std::uint32_t p = blockIdx.x * blockDim.x + threadIdx.x;
   if (p >= scene.paths)
@@ -20,7 +22,7 @@ __global__ void pathKernel(PathScene scene, BvhView bvh, Vpl* slots, int* counts
     bvh::traverse<false>(bvh, ray, h);
     return h;
   };
-  counts[p] = traceLightPath(scene, p, slots + std::size_t(p) * (scene.bounces + 1), trace);
+  counts[p] = Index(traceLightPath(scene, p, slots + std::size_t(p) * (scene.bounces + 1), trace));
 }
 
 __global__ void gatherKernel(GatherLaunch p, cuda::Rgba* out, unsigned long long* rays)
@@ -65,9 +67,142 @@ __global__ void gatherKernel(GatherLaunch p, cuda::Rgba* out, unsigned long long
   out[e] = { sum.x, sum.y, sum.z, 0.f };
   atomicAdd(rays, traced);
 }
+
+unsigned blocks(std::size_t n)
+{
+  return unsigned((n + kThreads - 1) / kThreads);
 }
 
-void traceLightPaths(const PathScene& scene, const BvhView& bvh, Vpl* slots, int* counts,
+__global__ void packKernel(const Vpl* slots, const Index* counts, const Offset* pathOffsets,
+  std::uint32_t paths, std::uint32_t slotsPerPath, Vpl* vpls)
+{
+  const std::size_t i = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  const std::size_t p = i / slotsPerPath, k = i % slotsPerPath;
+  if (p < paths && k < counts[p])
+  {
+    vpls[pathOffsets[p] + k] = slots[i];
+  }
+}
+
+__global__ void subsetKernel(const Offset* pathOffsets, std::uint32_t paths, std::uint32_t subsets,
+  std::uint32_t* subsetOffsets, float* subsetScale)
+{
+  const std::uint32_t r = blockIdx.x * blockDim.x + threadIdx.x;
+  if (r > subsets)
+  {
+    return;
+  }
+  subsetOffsets[r] = std::uint32_t(pathOffsets[subsetFirstPath(r, subsets, paths)]);
+  if (r < subsets)
+  {
+    subsetScale[r] = float(paths) / float(subsetFirstPath(r + 1, subsets, paths) - subsetFirstPath(r, subsets, paths));
+  }
+}
+
+// The proxy: cells of the vertices, sorted with the vertex numbers (stable, so a cluster's
+// vertices stay in vertex order); a cluster is a run of one cell.
+__global__ void cellKernel(ProxyGrid grid, const Vec3f* positions, Index n, std::uint64_t* keys, Index* ids)
+{
+  const Index v = blockIdx.x * blockDim.x + threadIdx.x;
+  if (v < n)
+  {
+    keys[v] = grid.cellOf(positions[v]);
+    ids[v] = v;
+  }
+}
+
+/// heads[i] = 1 where sorted run i starts (i < n), 0 at n.
+__global__ void headKernel(const std::uint64_t* sorted, Index n, std::uint64_t none, Index* heads)
+{
+  const Index i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i <= n)
+  {
+    heads[i] = i < n && sorted[i] != none && (i == 0 || sorted[i] != sorted[i - 1]) ? 1 : 0;
+  }
+}
+
+/// cluster[vertex] and the first sorted entry of every cluster (first[clusters] = n).
+__global__ void clusterKernel(const Index* order, const Index* heads, const Offset* scanned, Index n,
+  Index* cluster, Index* first)
+{
+  const Index i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n)
+  {
+    const Index k = Index(scanned[i + 1] - 1);
+    cluster[order[i]] = k;
+    if (heads[i])
+    {
+      first[k] = i;
+    }
+  }
+  else if (i == n)
+  {
+    first[scanned[n]] = n;
+  }
+}
+
+/// A cluster at the mean of its vertices, summed in vertex order as buildProxy sums them.
+__global__ void meanKernel(const Vec3f* positions, const Index* order, const Index* first,
+  const Offset* scanned, Index n, Vec3f* means)
+{
+  const Index k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= scanned[n])
+  {
+    return;
+  }
+  Vec3f sum(0.f);
+  float members = 0.f;
+  for (Index j = first[k]; j < first[k + 1]; ++j)
+  {
+    sum += positions[order[j]];
+    members += 1.f;
+  }
+  means[k] = sum / members;
+}
+
+constexpr std::uint64_t kDegenerate = ~std::uint64_t(0);
+
+/// A triangle's three clusters, ordered, in one key (21 bits each); degenerate ones last.
+__global__ void triangleKeyKernel(const Triangle* triangles, Index n, const Index* cluster,
+  std::uint64_t* keys, Index* ids)
+{
+  const Index t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= n)
+  {
+    return;
+  }
+  Index a = cluster[triangles[t].v[0]], b = cluster[triangles[t].v[1]], c = cluster[triangles[t].v[2]];
+  ids[t] = t;
+  if (a == b || b == c || a == c)
+  {
+    keys[t] = kDegenerate;
+    return;
+  }
+  const auto swap = [](Index& x, Index& y) {
+    const Index z = x;
+    x = y;
+    y = z;
+  };
+  if (a > b) swap(a, b);
+  if (b > c) swap(b, c);
+  if (a > b) swap(a, b);
+  keys[t] = (std::uint64_t(a) << 42) | (std::uint64_t(b) << 21) | c;
+}
+
+/// The first triangle of every run of one key, as the proxy's.
+__global__ void keepKernel(const Triangle* triangles, const Index* order, const Index* heads,
+  const Offset* scanned, const Index* cluster, Index n, Triangle* kept)
+{
+  const Index i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n && heads[i])
+  {
+    const Triangle& t = triangles[order[i]];
+    kept[scanned[i]] = Triangle{ { cluster[t.v[0]], cluster[t.v[1]], cluster[t.v[2]] } };
+  }
+}
+}
+
+void traceLightPaths(const PathScene& scene, const BvhView& bvh, Vpl* slots, Index* counts,
   cudaStream_t stream)
 {
   if (scene.paths == 0)
@@ -87,5 +222,78 @@ void gatherVpls(const GatherLaunch& p, cuda::Rgba* out, unsigned long long* rays
   }
   gatherKernel<<<unsigned((elements + kThreads - 1) / kThreads), kThreads, 0, stream>>>(p, out, rays);
   LINKGI_CUDA_CHECK_LAUNCH("gatherKernel");
+}
+
+void packVpls(const Vpl* slots, const Index* counts, const Offset* pathOffsets, std::uint32_t paths,
+  std::uint32_t slotsPerPath, std::uint32_t subsets, Vpl* vpls, std::uint32_t* subsetOffsets,
+  float* subsetScale, cudaStream_t stream)
+{
+  const std::size_t n = std::size_t(paths) * slotsPerPath;
+  if (n)
+  {
+    packKernel<<<blocks(n), kThreads, 0, stream>>>(slots, counts, pathOffsets, paths, slotsPerPath, vpls);
+    LINKGI_CUDA_CHECK_LAUNCH("packKernel");
+  }
+  subsetKernel<<<blocks(subsets + 1), kThreads, 0, stream>>>(pathOffsets, paths, subsets, subsetOffsets, subsetScale);
+  LINKGI_CUDA_CHECK_LAUNCH("subsetKernel");
+}
+
+bool DeviceProxy::fits(const ProxyGrid& grid, std::size_t vertexCount)
+{
+  const std::uint64_t cells = std::uint64_t(grid.resolution + 1) * (grid.resolution + 1) * (grid.resolution + 1);
+  return std::min<std::uint64_t>(cells, vertexCount) <= (std::uint64_t(1) << 21);
+}
+
+void DeviceProxy::build(const ProxyGrid& grid, const Vec3f* vertexPositions, Index vertexCount,
+  const Triangle* meshTriangles, Index meshTriangleCount, cudaStream_t stream)
+{
+  const Index nv = vertexCount, nt = meshTriangleCount;
+  positionCount = triangleCount = 0;
+  if (nv == 0 || nt == 0)
+  {
+    return;
+  }
+  const std::size_t most = std::max(nv, nt);
+  keys.resize(most);
+  sortedKeys.resize(most);
+  ids.resize(most);
+  order.resize(most);
+  heads.resize(most + 1);
+  scanned.resize(most + 1);
+  cluster.resize(std::max<Index>(nv, 1));
+  first.resize(nv + 1);
+  sizes.resize(2);
+  positions.resize(std::max<Index>(nv, 1));
+  triangles.resize(std::max<Index>(nt, 1));
+  // Vertices into clusters.
+  cellKernel<<<blocks(nv), kThreads, 0, stream>>>(grid, vertexPositions, nv, keys.data(), ids.data());
+  LINKGI_CUDA_CHECK_LAUNCH("cellKernel");
+  cuda::sortPairs(keys.data(), sortedKeys.data(), ids.data(), order.data(), nv, grid.cellBits(), temp, stream);
+  headKernel<<<blocks(nv + 1), kThreads, 0, stream>>>(sortedKeys.data(), nv, kDegenerate, heads.data());
+  LINKGI_CUDA_CHECK_LAUNCH("headKernel");
+  cuda::exclusiveSum(heads.data(), scanned.data(), nv + 1, temp, stream);
+  clusterKernel<<<blocks(nv + 1), kThreads, 0, stream>>>(order.data(), heads.data(), scanned.data(), nv,
+    cluster.data(), first.data());
+  LINKGI_CUDA_CHECK_LAUNCH("clusterKernel");
+  meanKernel<<<blocks(nv), kThreads, 0, stream>>>(vertexPositions, order.data(), first.data(), scanned.data(), nv,
+    positions.data());
+  LINKGI_CUDA_CHECK_LAUNCH("meanKernel");
+  // Triangles between three clusters, each set of three once.
+  LINKGI_CUDA_CHECK(cudaMemcpyAsync(sizes.data(), scanned.data() + nv, sizeof(Offset), cudaMemcpyDeviceToDevice, stream));
+  triangleKeyKernel<<<blocks(nt), kThreads, 0, stream>>>(meshTriangles, nt, cluster.data(), keys.data(), ids.data());
+  LINKGI_CUDA_CHECK_LAUNCH("triangleKeyKernel");
+  cuda::sortPairs(keys.data(), sortedKeys.data(), ids.data(), order.data(), nt, 64, temp, stream);
+  headKernel<<<blocks(nt + 1), kThreads, 0, stream>>>(sortedKeys.data(), nt, kDegenerate, heads.data());
+  LINKGI_CUDA_CHECK_LAUNCH("headKernel");
+  cuda::exclusiveSum(heads.data(), scanned.data(), nt + 1, temp, stream);
+  keepKernel<<<blocks(nt), kThreads, 0, stream>>>(meshTriangles, order.data(), heads.data(), scanned.data(),
+    cluster.data(), nt, triangles.data());
+  LINKGI_CUDA_CHECK_LAUNCH("keepKernel");
+  LINKGI_CUDA_CHECK(cudaMemcpyAsync(sizes.data() + 1, scanned.data() + nt, sizeof(Offset), cudaMemcpyDeviceToDevice, stream));
+  Offset counts[2] = { 0, 0 };
+  LINKGI_CUDA_CHECK(cudaMemcpyAsync(counts, sizes.data(), sizeof(counts), cudaMemcpyDeviceToHost, stream));
+  LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+  positionCount = Index(counts[0]);
+  triangleCount = Index(counts[1]);
 }
 }

@@ -2,16 +2,49 @@
 // per-item math is IrMath.h's, the same the CPU runs; traversal is linkgi/Bvh.h's.
 #pragma once
 
+#include "ir/IrHost.h"
 #include "ir/IrMath.h"
 
+#include "cuda/GPUBuffer.h"
 #include "cuda/Kernels.h"
 
 namespace linkgi::ir::gpu
 {
 /// Light path p of scene.paths (device pointers in `scene`) into slots[p (bounces + 1), ...),
 /// its VPL count into counts[p]: one thread per path.
-void traceLightPaths(const PathScene& scene, const BvhView& bvh, Vpl* slots, int* counts,
+void traceLightPaths(const PathScene& scene, const BvhView& bvh, Vpl* slots, Index* counts,
   cudaStream_t stream);
+
+/// The VPL set on the device as packVpls (IrHost.h) packs it on the host: the paths' VPLs in
+/// path order, subset r the paths [subsetFirstPath(r), subsetFirstPath(r + 1)).
+/// pathOffsets: the exclusive sum of counts over paths + 1 entries. vpls holds the total;
+/// subsetOffsets subsets + 1 entries, subsetScale subsets.
+void packVpls(const Vpl* slots, const Index* counts, const Offset* pathOffsets, std::uint32_t paths,
+  std::uint32_t slotsPerPath, std::uint32_t subsets, Vpl* vpls, std::uint32_t* subsetOffsets,
+  float* subsetScale, cudaStream_t stream);
+
+/// buildProxy (IrHost.h) on the device: the same clusters at the same means (summed in
+/// vertex order), the same set of triangles, numbered in cell order instead of first
+/// appearance. Scratch is kept for the next build.
+class DeviceProxy
+{
+public:
+  /// Whether the GPU can build this grid over `vertexCount` vertices (three cluster numbers
+  /// of a triangle must fit one 64-bit sort key); buildProxy on the host otherwise.
+  static bool fits(const ProxyGrid& grid, std::size_t vertexCount);
+  /// Clusters the device mesh; synchronizes once to learn the proxy's sizes.
+  void build(const ProxyGrid& grid, const Vec3f* positions, Index vertexCount,
+    const Triangle* triangles, Index triangleCount, cudaStream_t stream);
+  cuda::GPUBuffer<Vec3f> positions;   ///< positionCount used
+  cuda::GPUBuffer<Triangle> triangles; ///< triangleCount used
+  Index positionCount = 0, triangleCount = 0;
+
+private:
+  cuda::GPUBuffer<std::uint64_t> keys, sortedKeys;
+  cuda::GPUBuffer<Index> ids, order, heads, cluster, first;
+  cuda::GPUBuffer<Offset> scanned, sizes;
+  cuda::GPUBuffer<unsigned char> temp;
+};
 
 /// What the gather reads on the device.
 struct GatherLaunch
