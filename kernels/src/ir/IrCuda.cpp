@@ -16,6 +16,7 @@
 
 #include "linkgi/Cuda.h"
 
+#include <array>
 #include <cmath>
 
 namespace linkgi::ir
@@ -34,6 +35,7 @@ struct DeviceMesh
   cuda::DeviceTopology topology;
   cuda::DeviceBvh bvh;
   Index vertexCount = 0, triangleCount = 0;
+  SceneExtent extent; ///< of the positions uploaded
 
   /// Uploads what `changes` touched and queues the rest on `stream` (no wait).
   void update(const Scene& s, Changes changes, cudaStream_t stream, SolverStats* stats)
@@ -47,6 +49,7 @@ struct DeviceMesh
     if (changes & (kTopology | kPositions))
     {
       positions.upload(s.positions, stream);
+      extent = sceneExtent(s);
     }
     normals.upload(s.normals, stream);
     if (changes & kTopology)
@@ -215,7 +218,7 @@ private:
     {
       return;
     }
-    const ProxyGrid grid = proxyGrid(c.scene, c.options.instantRadiosity.proxyResolution);
+    const ProxyGrid grid = proxyGrid(mesh.extent, c.options.instantRadiosity.proxyResolution);
     proxyMargin = grid.margin();
     if (gpu::DeviceProxy::fits(grid, mesh.vertexCount))
     {
@@ -240,7 +243,7 @@ private:
   void traceVpls(const StageContext& c)
   {
     const Scene& s = c.scene;
-    PathSetup setup = buildPathSetup(s, {}, c.options);
+    PathSetup setup = buildPathSetup(s, {}, c.options, &mesh.extent);
     sources.upload(setup.sources, stream);
     cdf.upload(setup.cdf, stream);
     lights.upload(s.lights, stream);
@@ -298,7 +301,7 @@ private:
   void directLight(const StageContext& c)
   {
     cuda::queueDirectLight(c.scene, c.options,
-      { mesh.bvh, mesh.positions, mesh.normals, mesh.shifts, mesh.topology, mesh.topology.edgeCount(), rayEpsilon(c.scene) },
+      { mesh.bvh, mesh.positions, mesh.normals, mesh.shifts, mesh.topology, mesh.topology.edgeCount(), mesh.extent.eps },
       { litLights, vertexVisible, edgeVisible, direct, counter }, stream);
     // Read by finish, after its wait.
     LINKGI_CUDA_CHECK(cudaMemcpyAsync(rayCounts + kLightSlot, counter.data(), sizeof(unsigned long long),
@@ -310,8 +313,8 @@ private:
   {
     const Elements elements{ c.scene.vertexCount(), c.options.twoSided };
     GatherParams gp;
-    gp.dmin = c.options.instantRadiosity.clampDistance * boundingDiagonal(c.scene.positions);
-    gp.eps = rayEpsilon(c.scene);
+    gp.dmin = c.options.instantRadiosity.clampDistance * mesh.extent.diagonal;
+    gp.eps = mesh.extent.eps;
     gp.proxyMargin = c.options.instantRadiosity.proxyVisibility ? proxyMargin : 0.f;
     gp.seed = c.options.seed;
     const BvhView visibility = gp.proxyMargin > 0.f
@@ -320,8 +323,20 @@ private:
     gathered.resize(elements.count());
     gatherCounter.resize(1);
     gatherCounter.fillZero(stream);
-    gpu::gatherVpls(gatherLaunch(mesh, vpls, visibility, gp, c.options.twoSided), gathered.data(),
-      gatherCounter.data(), stream);
+    gpu::GatherLaunch launch = gatherLaunch(mesh, vpls, visibility, gp, c.options.twoSided);
+    if (launch.params.subsets > 1)
+    {
+      // The order depends on the vertex count, the sides, the subsets and the seed only.
+      const std::array<std::uint64_t, 4> key = { mesh.vertexCount, c.options.twoSided, launch.params.subsets, gp.seed };
+      if (key != orderKey)
+      {
+        gpu::elementsBySubset(mesh.vertexCount, c.options.twoSided, launch.params.subsets, gp.seed, orderKeys, orderIds,
+          orderTemp, elementOrder, stream);
+        orderKey = key;
+      }
+      launch.order = elementOrder.data();
+    }
+    gpu::gatherVpls(launch, gathered.data(), gatherCounter.data(), stream);
     LINKGI_CUDA_CHECK(cudaMemcpyAsync(rayCounts + kGatherSlot, gatherCounter.data(), sizeof(unsigned long long),
       cudaMemcpyDeviceToHost, stream));
     gatherPending = true;
@@ -393,6 +408,10 @@ private:
   DeviceVpls vpls;
   GPUBuffer<Rgba> gathered;
   GPUBuffer<unsigned long long> counter, gatherCounter;
+  GPUBuffer<Index> elementOrder, orderIds; ///< the gather's elements by subset, and scratch
+  GPUBuffer<std::uint64_t> orderKeys;
+  GPUBuffer<unsigned char> orderTemp;
+  std::array<std::uint64_t, 4> orderKey{}; ///< what elementOrder was sorted for (0 subsets: none)
   cuda::PinnedStaging staging;
   unsigned long long* rayCounts = nullptr; ///< pinned, kFoundSlot + 1 entries
   bool lightPending = false, gatherPending = false;
@@ -418,7 +437,16 @@ std::vector<Vec3f> gatherCuda(const Scene& scene, const VplSet& set, const Gathe
   GPUBuffer<Rgba> out(elements.count());
   GPUBuffer<unsigned long long> rays(1);
   rays.fillZero(stream);
-  gpu::gatherVpls(gatherLaunch(mesh, vpls, mesh.bvh.view(), params, twoSided), out.data(), rays.data(), stream);
+  gpu::GatherLaunch launch = gatherLaunch(mesh, vpls, mesh.bvh.view(), params, twoSided);
+  GPUBuffer<Index> order, ids;
+  GPUBuffer<std::uint64_t> keys;
+  GPUBuffer<unsigned char> temp;
+  if (launch.params.subsets > 1)
+  {
+    gpu::elementsBySubset(mesh.vertexCount, twoSided, launch.params.subsets, params.seed, keys, ids, temp, order, stream);
+    launch.order = order.data();
+  }
+  gpu::gatherVpls(launch, out.data(), rays.data(), stream);
   LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
   const std::vector<Rgba> rgba = out.download();
   std::vector<Vec3f> result(rgba.size());

@@ -46,11 +46,21 @@ std::uint32_t secondPassPaths(std::uint32_t paths, std::size_t found, std::uint3
   return more > paths ? more : 0;
 }
 
-PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals, const SolverOptions& o)
+SceneExtent sceneExtent(const Scene& s)
+{
+  SceneExtent e;
+  bounds(s.positions, e.lo, e.hi);
+  e.diagonal = boundingDiagonal(s.positions);
+  e.eps = rayEpsilon(s);
+  return e;
+}
+
+PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals, const SolverOptions& o,
+  const SceneExtent* known)
 {
   PathSetup setup;
-  Vec3f lo, hi;
-  bounds(s.positions, lo, hi);
+  const SceneExtent extent = known ? *known : sceneExtent(s);
+  const Vec3f lo = extent.lo, hi = extent.hi;
   const float radius = std::max(0.5f * length(hi - lo), 1e-30f);
   std::vector<float> weights;
   const auto add = [&](std::uint32_t kind, Index index, float weight, float area) {
@@ -72,14 +82,20 @@ PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals, 
       add(kLightSource, i, extent * mean(l.intensity), 0.f);
     }
   }
-  if (!s.emission.empty())
+  // A pass over the vertices first: a scene's all-black emission array (the usual case)
+  // costs no pass over the triangles.
+  if (std::any_of(s.emission.begin(), s.emission.end(), [](const Vec3f& e) { return maxComponent(e) > 0.f; }))
   {
     for (Index t = 0; t < s.triangles.size(); ++t)
     {
       const Triangle& tri = s.triangles[t];
+      const float le = mean(s.emission[tri.v[0]] + s.emission[tri.v[1]] + s.emission[tri.v[2]]) / 3.f;
+      if (!(le > 0.f))
+      {
+        continue; // no source (add would drop it)
+      }
       const Vec3f &a = s.positions[tri.v[0]], &b = s.positions[tri.v[1]], &c = s.positions[tri.v[2]];
       const float area = 0.5f * length(cross(b - a, c - a));
-      const float le = mean(s.emission[tri.v[0]] + s.emission[tri.v[1]] + s.emission[tri.v[2]]) / 3.f;
       add(kEmitterSource, t, kPi * area * le, area);
     }
   }
@@ -131,8 +147,8 @@ PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals, 
   v.twoSided = o.twoSided;
   v.russianRoulette = o.instantRadiosity.russianRoulette;
   v.seed = o.seed;
-  v.eps = rayEpsilon(s);
-  setup.dmin = o.instantRadiosity.clampDistance * boundingDiagonal(s.positions);
+  v.eps = extent.eps;
+  setup.dmin = o.instantRadiosity.clampDistance * extent.diagonal;
   setup.targetVpls = o.instantRadiosity.vplCount;
   return setup;
 }
@@ -158,12 +174,11 @@ VplSet packVpls(const std::vector<Vpl>& slots, const std::vector<int>& counts,
   return set;
 }
 
-ProxyGrid proxyGrid(const Scene& s, std::uint32_t resolution)
+ProxyGrid proxyGrid(const SceneExtent& extent, std::uint32_t resolution)
 {
   ProxyGrid grid;
-  Vec3f hi;
-  bounds(s.positions, grid.lo, hi);
-  const Vec3f size = hi - grid.lo;
+  grid.lo = extent.lo;
+  const Vec3f size = extent.hi - extent.lo;
   grid.cell = std::max(std::max(size.x, size.y), std::max(size.z, 1e-30f)) / float(resolution);
   grid.resolution = resolution;
   return grid;
@@ -172,7 +187,9 @@ ProxyGrid proxyGrid(const Scene& s, std::uint32_t resolution)
 Proxy buildProxy(const Scene& s, std::uint32_t resolution)
 {
   Proxy proxy;
-  const ProxyGrid grid = proxyGrid(s, resolution);
+  SceneExtent extent;
+  bounds(s.positions, extent.lo, extent.hi);
+  const ProxyGrid grid = proxyGrid(extent, resolution);
   std::unordered_map<std::uint64_t, Index> clusterOf;
   std::vector<Index> vertexCluster(s.vertexCount());
   std::vector<float> members;

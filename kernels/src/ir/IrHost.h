@@ -34,11 +34,22 @@ std::uint32_t pathCount(const SolverOptions& options);
 std::uint32_t secondPassPaths(std::uint32_t paths, std::size_t found, std::uint32_t target,
   std::uint32_t slotsPerPath);
 
+/// What the set-up reads from the positions alone: their box, boundingDiagonal and
+/// rayEpsilon. A backend that keeps it from its geometry stage spares a light move the passes
+/// over the positions.
+struct SceneExtent
+{
+  Vec3f lo{ 0.f }, hi{ 0.f };
+  float diagonal = 0.f, eps = 0.f;
+};
+SceneExtent sceneExtent(const Scene& scene);
+
 /// Sources of `scene` (validated) and the view over its arrays and `faceNormals`
 /// (frontFaceNormals). Lights start paths only when bounces > 0 (their direct light is the
-/// light-link stage's). A scene with no source gets an empty table and no VPLs.
+/// light-link stage's). A scene with no source gets an empty table and no VPLs. `extent`:
+/// sceneExtent(scene) where the caller kept it (computed here otherwise).
 PathSetup buildPathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals,
-  const SolverOptions& options);
+  const SolverOptions& options, const SceneExtent* extent = nullptr);
 
 /// A VPL set: VPLs of subset r are [subsetOffsets[r], subsetOffsets[r + 1]), each subset a
 /// contiguous run of light paths (a run of the Halton sequence is itself well spread),
@@ -107,5 +118,5 @@ private:
     return std::uint64_t(c < float(resolution) ? c : float(resolution));
   }
 };
-ProxyGrid proxyGrid(const Scene& scene, std::uint32_t resolution);
+ProxyGrid proxyGrid(const SceneExtent& extent, std::uint32_t resolution);
 }

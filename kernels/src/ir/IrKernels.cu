@@ -28,11 +28,12 @@ __global__ void pathKernel(PathScene scene, BvhView bvh, Vpl* slots, Index* coun
 __global__ void gatherKernel(GatherLaunch p, cuda::Rgba* out, unsigned long long* rays)
 {
   const Index elements = p.twoSided ? 2 * p.vertexCount : p.vertexCount;
-  const Index e = blockIdx.x * blockDim.x + threadIdx.x;
-  if (e >= elements)
+  const Index i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= elements)
   {
     return;
   }
+  const Index e = p.order ? p.order[i] : i;
   const Index v = e < p.vertexCount ? e : e - p.vertexCount;
   const float sign = e < p.vertexCount ? 1.f : -1.f;
   const GatherParams& gp = p.params;
@@ -96,6 +97,17 @@ __global__ void subsetKernel(const Offset* pathOffsets, std::uint32_t paths, std
   if (r < subsets)
   {
     subsetScale[r] = float(paths) / float(subsetFirstPath(r + 1, subsets, paths) - subsetFirstPath(r, subsets, paths));
+  }
+}
+
+__global__ void subsetKeyKernel(Index vertexCount, Index elements, std::uint32_t subsets, std::uint32_t seed,
+  std::uint64_t* keys, Index* ids)
+{
+  const Index e = blockIdx.x * blockDim.x + threadIdx.x;
+  if (e < elements)
+  {
+    keys[e] = vertexSubset(e < vertexCount ? e : e - vertexCount, subsets, seed);
+    ids[e] = e;
   }
 }
 
@@ -295,5 +307,27 @@ void DeviceProxy::build(const ProxyGrid& grid, const Vec3f* vertexPositions, Ind
   LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
   positionCount = Index(counts[0]);
   triangleCount = Index(counts[1]);
+}
+
+void elementsBySubset(Index vertexCount, bool twoSided, std::uint32_t subsets, std::uint32_t seed,
+  cuda::GPUBuffer<std::uint64_t>& keys, cuda::GPUBuffer<Index>& ids, cuda::GPUBuffer<unsigned char>& temp,
+  cuda::GPUBuffer<Index>& order, cudaStream_t stream)
+{
+  const Index elements = twoSided ? 2 * vertexCount : vertexCount;
+  order.resize(std::max<Index>(elements, 1));
+  if (elements == 0)
+  {
+    return;
+  }
+  keys.resize(2 * std::size_t(elements));
+  ids.resize(elements);
+  subsetKeyKernel<<<blocks(elements), kThreads, 0, stream>>>(vertexCount, elements, subsets, seed, keys.data(), ids.data());
+  LINKGI_CUDA_CHECK_LAUNCH("subsetKeyKernel");
+  int bits = 1;
+  while (bits < 32 && (1u << bits) < subsets)
+  {
+    ++bits;
+  }
+  cuda::sortPairs(keys.data(), keys.data() + elements, ids.data(), order.data(), elements, bits, temp, stream);
 }
 }

@@ -59,7 +59,16 @@ struct GatherLaunch
   const std::uint32_t* subsetOffsets = nullptr; ///< subsets + 1
   const float* subsetScale = nullptr;
   GatherParams params; ///< params.subsets: the number of subsets
+  /// Thread i gathers element order[i] (elementsBySubset), so that a warp's threads walk the
+  /// same VPLs in step; nullptr: element i.
+  const Index* order = nullptr;
 };
+
+/// The elements (both sides when twoSided) sorted by their VPL subset (vertexSubset), in
+/// element order within a subset, into `order`; `keys`, `ids` and `temp` are scratch.
+void elementsBySubset(Index vertexCount, bool twoSided, std::uint32_t subsets, std::uint32_t seed,
+  cuda::GPUBuffer<std::uint64_t>& keys, cuda::GPUBuffer<Index>& ids, cuda::GPUBuffer<unsigned char>& temp,
+  cuda::GPUBuffer<Index>& order, cudaStream_t stream);
 /// out[e] = E_ind of element e from its VPL subset (gatherCpu's sum, same order); `rays`
 /// adds the shadow rays traced. One thread per element.
 void gatherVpls(const GatherLaunch& p, cuda::Rgba* out, unsigned long long* rays, cudaStream_t stream);
