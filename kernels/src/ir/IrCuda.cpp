@@ -36,22 +36,32 @@ struct DeviceMesh
   cuda::DeviceBvh bvh;
   Index vertexCount = 0, triangleCount = 0;
   SceneExtent extent; ///< of the positions uploaded
+  cuda::PinnedStaging staging;
 
-  /// Uploads what `changes` touched and queues the rest on `stream` (no wait).
+  /// Uploads what `changes` touched (through pinned memory) and queues the rest on `stream`
+  /// (no wait). The previous update's copies must have completed.
   void update(const Scene& s, Changes changes, cudaStream_t stream, SolverStats* stats)
   {
     vertexCount = Index(s.vertexCount());
     triangleCount = Index(s.triangleCount());
-    if (changes & kTopology)
+    const bool topologyChanged = (changes & kTopology) != 0;
+    const bool positionsChanged = (changes & (kTopology | kPositions)) != 0;
+    const bool normalsChanged = (changes & (kTopology | kNormals)) != 0 || normals.size() != s.normals.size();
+    staging.begin(cuda::PinnedStaging::room(topologyChanged ? s.triangles.size() * sizeof(Triangle) : 0) +
+      2 * cuda::PinnedStaging::room(s.positions.size() * sizeof(Vec3f)));
+    if (topologyChanged)
     {
-      triangles.upload(s.triangles, stream);
+      staging.upload(triangles, s.triangles, stream);
     }
-    if (changes & (kTopology | kPositions))
+    if (positionsChanged)
     {
-      positions.upload(s.positions, stream);
+      staging.upload(positions, s.positions, stream);
       extent = sceneExtent(s);
     }
-    normals.upload(s.normals, stream);
+    if (normalsChanged)
+    {
+      staging.upload(normals, s.normals, stream);
+    }
     if (changes & kTopology)
     {
       topology.build(triangles.data(), triangleCount, vertexCount, stream);
