@@ -1,4 +1,5 @@
 #include "linkgi/Links.h"
+#include "linkgi/Memory.h"
 
 #include "linkgi/Error.h"
 #include "linkgi/Sampling.h"
@@ -195,23 +196,35 @@ struct ScratchRow
   }
 };
 
-void assembleCsr(const std::vector<RowChunk>& chunks, std::size_t chunkRows,
-  const std::vector<Index>& rowCounts, bool environment, SparseMatrix& m)
+/// Moves the chunks' rows into `m`, freeing each chunk as soon as it is copied: the CSR's
+/// capacity is reserved (not yet touched, so not yet resident) and filled in order, so the
+/// peak is the links once plus a chunk, not the chunks and the CSR side by side.
+void assembleCsr(std::vector<RowChunk>& chunks, const std::vector<Index>& rowCounts,
+  bool environment, SparseMatrix& m)
 {
   const std::size_t rows = rowCounts.size();
   exclusiveOffsets(rowCounts, 0, m.rowOffsets);
-  m.columns.resize(m.rowOffsets[rows]);
-  m.weights.resize(m.rowOffsets[rows]);
-  parallelRanges(chunks.size(), 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c)
+  m.columns.clear();
+  m.weights.clear();
+  m.columns.reserve(m.rowOffsets[rows]);
+  m.weights.reserve(m.rowOffsets[rows]);
+  std::size_t freed = 0;
+  for (RowChunk& chunk : chunks)
+  {
+    auto& cols = environment ? chunk.envColumns : chunk.columns;
+    auto& ws = environment ? chunk.envWeights : chunk.weights;
+    m.columns.insert(m.columns.end(), cols.begin(), cols.end());
+    m.weights.insert(m.weights.end(), ws.begin(), ws.end());
+    freed += cols.capacity() * sizeof(Index) + ws.capacity() * sizeof(float);
+    std::vector<Index>().swap(cols);
+    std::vector<float>().swap(ws);
+    if (freed > (std::size_t(256) << 20))
     {
-      const auto& cols = environment ? chunks[c].envColumns : chunks[c].columns;
-      const auto& ws = environment ? chunks[c].envWeights : chunks[c].weights;
-      const Offset offset = m.rowOffsets[c * chunkRows];
-      std::copy(cols.begin(), cols.end(), m.columns.begin() + offset);
-      std::copy(ws.begin(), ws.end(), m.weights.begin() + offset);
+      returnFreedMemory();
+      freed = 0;
     }
-  });
+  }
+  returnFreedMemory();
 }
 
 /// Compresses every element's row from the hits `hitsOf(x, scratch)` gives (a pointer to
@@ -272,8 +285,8 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
           rowCounts[x] = Index(row.flush(chunk.columns, chunk.weights));
           envRowCounts[x] = Index(envRow.flush(chunk.envColumns, chunk.envWeights));
         }
-        // Grown by doubling, a chunk holds up to twice its links until the CSR copy: at
-        // their size, all chunks and the CSR together are twice the links, not three times.
+        // Grown by doubling, a chunk holds up to twice its links: at their size, all chunks
+        // hold the links once until assembleCsr moves them.
         chunk.columns.shrink_to_fit();
         chunk.weights.shrink_to_fit();
         chunk.envColumns.shrink_to_fit();
@@ -283,8 +296,9 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
     progress);
 
   LinkStructure out;
-  assembleCsr(chunks, kChunkRows, rowCounts, false, out.transport);
-  assembleCsr(chunks, kChunkRows, envRowCounts, true, out.environment);
+  returnFreedMemory(); // what the chunks' growth left behind
+  assembleCsr(chunks, rowCounts, false, out.transport);
+  assembleCsr(chunks, envRowCounts, true, out.environment);
   out.rays = std::uint64_t(rows) * n;
   for (const RowChunk& chunk : chunks)
   {

@@ -1,5 +1,9 @@
 #include "linkgi/Memory.h"
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -91,4 +95,11 @@ bool resetPeakResident()
   out.flush();
   return bool(out);
 }
+}
+
+void linkgi::returnFreedMemory()
+{
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
 }

@@ -52,6 +52,11 @@ std::uint64_t availableHostBytes();
 /// of it, at least 512 MiB. No limit (UINT64_MAX) where the available memory is unknown.
 std::uint64_t hostMemoryBudget(std::uint64_t requested);
 
+/// Hands the pages of freed heap memory back to the operating system (glibc's malloc_trim;
+/// nothing elsewhere). Freed blocks in the middle of the heap otherwise stay resident, so a
+/// stage that frees as it copies would not lower the process's peak.
+void returnFreedMemory();
+
 /// "1.50 GiB", "12.0 MiB", "640 B".
 std::string formatBytes(std::uint64_t bytes);
 
