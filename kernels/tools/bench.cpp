@@ -10,6 +10,7 @@
 #include "linkgi/Metrics.h"
 #include "linkgi/Parallel.h"
 #include "linkgi/Proxy.h"
+#include "linkgi/Refine.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 
@@ -45,6 +46,8 @@ struct Args
   bool bare = true, gather = true;
   std::size_t proxyVertices = 0; ///< also solve through a proxy of this many vertices (issue 15)
   bool proxyOnly = false; ///< only the proxy (a mesh too large for the full solve's budget)
+  /// also solve with refinement up to this many vertices (issue 15), default tolerance/rounds
+  std::size_t refineVertices = 0;
 };
 
 std::vector<std::string> split(const std::string& s)
@@ -100,6 +103,8 @@ Args parse(int argc, char** argv)
       a.proxyVertices = std::stoull(value());
     else if (arg == "--proxy-only")
       a.proxyOnly = true;
+    else if (arg == "--refine-vertices")
+      a.refineVertices = std::stoull(value());
     else if (arg == "--memory-budget")
       a.options.memoryBudget = std::stoull(value());
     else if (arg == "--bins")
@@ -134,7 +139,7 @@ Args parse(int argc, char** argv)
     else
     {
       throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method links|instant-radiosity|implicit-visibility] "
-                  "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--bins 12] [--proxy-vertices N [--proxy-only]] [--memory-budget BYTES] [--rays 256] [--bounces 3] [--repeat 3] "
+                  "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--bins 12] [--proxy-vertices N [--proxy-only]] [--refine-vertices N] [--memory-budget BYTES] [--rays 256] [--bounces 3] [--repeat 3] "
                   "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] [--bvh-build gpu|sah] "
                   "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather]; unknown argument " +
         arg + ".");
@@ -530,6 +535,35 @@ std::string proxyJson(const Scene& scene, const UpdateRuns* full, const Args& ar
   return out.str();
 }
 
+/// The same scene through a RefiningSolver (default tolerance and rounds, the vertex budget
+/// of --refine-vertices): fresh solvers, medians, and the peak per input vertex.
+std::string refineJson(const Scene& scene, const Args& args)
+{
+  std::vector<double> times;
+  std::size_t vertices = 0, rounds = 0;
+  malloc_trim(0);
+  const bool peakReset = resetPeakResident();
+  const std::uint64_t residentBefore = residentBytes();
+  RefinementOptions refinement;
+  refinement.maxVertices = args.refineVertices;
+  for (int r = 0; r < args.repeat; ++r)
+  {
+    RefiningSolver solver;
+    const auto t = std::chrono::steady_clock::now();
+    solver.update(scene, args.options, refinement);
+    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count());
+    vertices = solver.refined().scene.vertexCount();
+    rounds = solver.splitsPerRound().size();
+  }
+  const std::uint64_t peak = peakReset ? peakResidentBytes() - residentBefore : 0;
+  std::ostringstream out;
+  out << ",\"refined\":{\"max_vertices\":" << args.refineVertices << ",\"vertices\":" << vertices
+      << ",\"rounds\":" << rounds << ",\"median_ms\":" << median(times)
+      << ",\"host_peak_bytes_per_input_vertex\":" << double(peak) / double(std::max<std::size_t>(1, scene.vertexCount()))
+      << ",\"host_peak_bytes_per_refined_vertex\":" << double(peak) / double(std::max<std::size_t>(1, vertices)) << "}";
+  return out.str();
+}
+
 void benchScene(const std::string& name, const Args& args)
 {
   const Scene scene = bench::makeScene(name);
@@ -554,6 +588,10 @@ void benchScene(const std::string& name, const Args& args)
   if (args.proxyVertices > 0)
   {
     extra += proxyJson(scene, &runs, args);
+  }
+  if (args.refineVertices > 0)
+  {
+    extra += refineJson(scene, args);
   }
   printRecord(name, scene, runs, args, extra);
 }
