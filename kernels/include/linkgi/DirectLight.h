@@ -16,8 +16,18 @@ LINKGI_HOST_DEVICE inline Vec3f directionToLight(const Light& light, const Vec3f
   return light.type == LightType::Directional ? -normalize(light.direction) : light.position - p;
 }
 
+/// Bounds of a point or spot light's intensity / r^2 near its own position, where it grows
+/// without bound and overflowed single precision for a light within about 1e-19 of a vertex
+/// (issue 17). r is taken as at least kMinLightDistance (2^-40; validated scenes are rescaled
+/// to a diagonal of at least 2^-16, so this is below the float resolution of their
+/// positions), and the irradiance of one light is at most kMaxLightIrradiance, the bound
+/// validation puts on emission (the bounces carry it without overflow). A light exactly at
+/// the vertex (r^2 of 0, also when it underflows) gives nothing, as it always did.
+constexpr float kMinLightDistance = 9.094947e-13f; // 2^-40
+constexpr float kMaxLightIrradiance = 1e30f;
+
 /// Irradiance at p (unit normal n) from one light, without visibility; also returns the
-/// shadow ray direction `toLight` = directionToLight(light, p).
+/// shadow ray direction `toLight` = directionToLight(light, p). Bounded: see above.
 LINKGI_HOST_DEVICE inline Vec3f unshadowedIrradiance(const Light& light, const Vec3f& p, const Vec3f& n, Vec3f& toLight)
 {
   toLight = directionToLight(light, p);
@@ -46,7 +56,10 @@ LINKGI_HOST_DEVICE inline Vec3f unshadowedIrradiance(const Light& light, const V
     }
     spot = light.spotExponent > 0.f ? std::pow(fmaxf(cosAxis, 0.f), light.spotExponent) : 1.f;
   }
-  return light.intensity * (spot * cosSurface / r2);
+  const float falloff = spot * cosSurface / fmaxf(r2, kMinLightDistance * kMinLightDistance);
+  const Vec3f e = light.intensity * falloff;
+  return Vec3f(fminf(e.x, kMaxLightIrradiance), fminf(e.y, kMaxLightIrradiance),
+    fminf(e.z, kMaxLightIrradiance));
 }
 
 /// The shadow ray from `origin` towards a light, stopping just short of a point light.
