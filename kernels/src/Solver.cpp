@@ -3,6 +3,7 @@
 // It never knows a method's formulas (engine/Pipeline.h, Documentation/Engine.md).
 #include "linkgi/Solver.h"
 
+#include "engine/CudaFactory.h"
 #include "engine/MemoryBudget.h"
 #include "engine/Pipeline.h"
 
@@ -192,7 +193,7 @@ bool Solver::Impl::chooseCuda(const SolverOptions& opt, SolverStats& st)
     return true;
   }
   std::string why;
-  const std::size_t found = cuda::devices(&why).size();
+  const std::size_t found = engine::cudaFactory().devices(&why);
   if (found == 0)
   {
     if (opt.backend == Backend::Cuda)
@@ -220,7 +221,7 @@ void Solver::Impl::runStages(BackendSlot& slot, bool onCuda, const engine::Metho
   {
     slot.impl.reset(); // frees the old one's memory before the new one allocates
     slot.synced = false;
-    slot.impl = onCuda ? spec.createCuda(opt) : spec.createCpu(opt);
+    slot.impl = onCuda ? engine::cudaFactory().create(spec, opt) : spec.createCpu(opt);
     slot.method = opt.method;
     slot.cudaDevices = opt.cudaDevices;
   }

@@ -1,0 +1,33 @@
+#include "engine/CudaFactory.h"
+
+#include "linkgi/Cuda.h"
+
+namespace linkgi::engine
+{
+namespace
+{
+CudaFactory& current()
+{
+  static CudaFactory factory{
+    [](std::string* why) { return cuda::devices(why).size(); },
+    [](const MethodSpec& spec, const SolverOptions& options) { return spec.createCuda(options); }
+  };
+  return factory;
+}
+}
+
+const CudaFactory& cudaFactory()
+{
+  return current();
+}
+
+ScopedCudaFactory::ScopedCudaFactory(CudaFactory replacement) : previous(current())
+{
+  current() = std::move(replacement);
+}
+
+ScopedCudaFactory::~ScopedCudaFactory()
+{
+  current() = std::move(previous);
+}
+}
