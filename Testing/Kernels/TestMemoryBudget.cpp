@@ -162,7 +162,10 @@ TEST(TestMemoryBudget, EstimateBoundsTheMeasuredPeak)
   // A fresh solver's first update: its peak resident set above what the process held
   // before, against the estimate. The estimate is an upper bound (links per element at
   // their bound); the factor below is what it may overstate by on this mesh.
-  constexpr double kMostOver = 2.0; // 1.2 measured on the 2-core CI VM (25k vertices)
+  // Measured since the CSR is assembled in place (a6664d8): 1.2 on the 2-core CI VM (TBB,
+  // Embree), 2.02 on the 16-core GPU machine (our thread pool and BVH: 47.6 MiB measured,
+  // 96.0 estimated), whose links stay well under the bound of 3 per ray.
+  constexpr double kMostOver = 2.5;
   const Scene s = test::roomWithBlock(0.06f);
   SolverOptions o;
   o.backend = Backend::Cpu;

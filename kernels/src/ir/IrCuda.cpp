@@ -374,7 +374,8 @@ private:
     output.resize(3 * ne);
     cuda::finish(f, output.data(), stream);
     const std::size_t bytes = ne * sizeof(Vec3f);
-    staging.begin(3 * bytes);
+    // room(): a staged copy occupies a multiple of 256 bytes (a tiny mesh's 3 * bytes is less).
+    staging.begin(cuda::PinnedStaging::room(3 * bytes));
     const auto* at = static_cast<const unsigned char*>(staging.download(output.data(), 3 * bytes, stream));
     // The update's one wait for the device (besides the VPL count and the proxy's size).
     LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
