@@ -52,6 +52,16 @@ TEST(EdgeInputs, EveryRejectedInputNamesItsProblemAndKeepsThePreviousSolution)
        o.albedoPolicy = AlbedoPolicy::Reject;
      } },
     { "perfect square", [](Scene&, SolverOptions& o) { o.raysPerVertex = 200; } },
+    // Ray origins Embree rejects (its `ray.valid()`, beyond ~1.8e18): a light far out, which
+    // the SolverOptions fuzz target reached (Testing/Data/fuzz/SolverOptions/embree-ray-valid),
+    // and a room-sized scene far from the origin.
+    { "Light 0 is more than 2^60", [](Scene& s, SolverOptions&) { s.lights[0].position.x = 1e19f; } },
+    { "more than 2^60 scene units", [](Scene& s, SolverOptions&) {
+       for (Vec3f& p : s.positions)
+       {
+         p.x += 1e20f;
+       }
+     } },
   };
   const Scene good = test::roomWithBlock();
   Solver solver;

@@ -137,6 +137,14 @@ void checkLights(const std::vector<Light>& lights)
   }
 }
 
+/// Ray origins beyond 2^60 (1.15e18) are invalid for Embree (its limit is about 1.8e18) and
+/// lose all precision in ours: positions and point or spot lights must lie within.
+bool withinRayRange(const Vec3f& p)
+{
+  constexpr float kRayRange = 1.152921504606846976e18f; // 2^60
+  return std::abs(p.x) <= kRayRange && std::abs(p.y) <= kRayRange && std::abs(p.z) <= kRayRange;
+}
+
 /// Gives the lights unit directions (a direction of (1e20, 0, 0) would overflow at use),
 /// and multiplies point and spot positions by 2^-exponent and their intensities by
 /// 4^-exponent (see Scene::lengthExponent; a directional light has no position). Throws
@@ -161,6 +169,16 @@ void scaleLights(std::vector<Light>& lights, int exponent)
       fail("Light " + std::to_string(i) + " is so far from a scene this small that its "
         "position, in the scene's size, exceeds single precision; move it closer or scale "
         "the data up.");
+    }
+  }
+  for (std::size_t i = 0; i < lights.size(); ++i)
+  {
+    const Light& l = lights[i];
+    if (l.type != LightType::Directional && !withinRayRange(l.position))
+    {
+      fail("Light " + std::to_string(i) + " is more than 2^60 scene units from the origin "
+        "(after the scene's rescaling), beyond what ray tracing in single precision accepts "
+        "as a ray origin; move it closer, or use a directional light for a distant source.");
     }
     if (!isFinite(l.intensity))
     {
@@ -188,6 +206,21 @@ void normalizeLength(Scene& scene)
     for (int k = 0; k < 3; ++k)
     {
       p[k] = std::ldexp(p[k], -scene.lengthExponent);
+    }
+  }
+}
+
+/// After normalizeLength: a scene of ordinary size far from the origin (a metre-wide part at
+/// 1e20) keeps huge coordinates, which no ray can start from.
+void checkRayRange(const Scene& scene)
+{
+  for (std::size_t v = 0; v < scene.positions.size(); ++v)
+  {
+    if (!withinRayRange(scene.positions[v]))
+    {
+      fail("Vertex " + std::to_string(v) + " lies more than 2^60 scene units (after rescaling) from "
+        "the origin, beyond what ray tracing in single precision accepts; translate the data "
+        "towards the origin.");
     }
   }
 }
@@ -366,6 +399,7 @@ std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy)
   checkArray(scene.normals, "normal", notFinite, "a non-finite (NaN or Inf)");
   checkShading(scene);
   normalizeLength(scene);
+  checkRayRange(scene);
   scaleLights(scene.lights, scene.lengthExponent);
 
   if (const std::size_t removed = removeDegenerateTriangles(scene))
