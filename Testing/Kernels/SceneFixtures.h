@@ -1,10 +1,38 @@
-// Small scenes for the engine tests, built with MeshBuilder.
+// Small scenes for the engine tests, built with MeshBuilder, and the helpers several tests
+// share.
 #pragma once
 
+#include "linkgi/Error.h"
 #include "linkgi/MeshBuilder.h"
+#include "linkgi/SolverTypes.h"
+
+#include <functional>
+#include <string>
 
 namespace linkgi::test
 {
+/// Default options with 16 rays per vertex: quick solves for tests of behaviour, not accuracy.
+inline SolverOptions quickOptions()
+{
+  SolverOptions o;
+  o.raysPerVertex = 16;
+  return o;
+}
+
+/// The message of the linkgi::Error that `f` throws, or "" when it throws none.
+inline std::string errorOf(const std::function<void()>& f)
+{
+  try
+  {
+    f();
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
 /// Two unit squares, n x n cells each: `emitter` (Le = 1, rho = 0) and `receiver` (rho = 0).
 /// Parallel: facing each other at unit distance. Perpendicular: sharing an edge.
 /// Vertices [0, (n+1)^2) are the emitter, the rest the receiver.

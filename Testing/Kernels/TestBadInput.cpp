@@ -8,18 +8,12 @@
 #include <limits>
 
 using namespace linkgi;
+using test::quickOptions;
 
 namespace
 {
-SolverOptions fast()
-{
-  SolverOptions o;
-  o.raysPerVertex = 16;
-  return o;
-}
-
 /// Expects update() to throw linkgi::Error whose message contains `words`.
-void expectError(const Scene& s, const std::string& words, SolverOptions o = fast())
+void expectError(const Scene& s, const std::string& words, SolverOptions o = quickOptions())
 {
   Solver solver;
   try
@@ -75,7 +69,7 @@ TEST(TestBadInput, BadIndicesAndSizes)
 TEST(TestBadInput, DegenerateTrianglesAreRemoved)
 {
   Scene s = test::roomWithBlock();
-  const Solution clean = Solver().update(s, fast());
+  const Solution clean = Solver().update(s, quickOptions());
   s.triangles.push_back({ { 0, 0, 1 } });                 // repeated index
   s.positions.push_back(s.positions[3]);                  // zero-area sliver
   s.normals.push_back(s.normals[3]);
@@ -86,7 +80,7 @@ TEST(TestBadInput, DegenerateTrianglesAreRemoved)
   }
   s.triangles.push_back({ { 3, Index(s.vertexCount() - 1), 4 } });
   Solver solver;
-  const Solution& sol = solver.update(s, fast());
+  const Solution& sol = solver.update(s, quickOptions());
   ASSERT_EQ(solver.stats().warnings.size(), 1u);
   EXPECT_NE(solver.stats().warnings[0].find("2 degenerate"), std::string::npos);
   for (const Vec3f& r : sol.radiance)
@@ -111,7 +105,7 @@ TEST(TestBadInput, ZeroLights)
   Scene s = b.take();
   s.environment.color = Vec3f(0.5f);
   Solver solver;
-  const Solution& sol = solver.update(s, fast());
+  const Solution& sol = solver.update(s, quickOptions());
   for (std::size_t i = 0; i < sol.elementCount(); ++i)
   {
     EXPECT_EQ(sol.direct[i], Vec3f(0.f));
@@ -120,7 +114,7 @@ TEST(TestBadInput, ZeroLights)
   EXPECT_TRUE(solver.stats().warnings.empty());
   // Nothing at all: zeros and a warning, no error.
   s.environment.color = Vec3f(0.f);
-  const Solution& dark = solver.update(s, fast());
+  const Solution& dark = solver.update(s, quickOptions());
   for (const Vec3f& r : dark.radiance)
   {
     EXPECT_EQ(r, Vec3f(0.f));
@@ -139,14 +133,14 @@ TEST(TestBadInput, AlbedoAboveOneIsClampedOrRejected)
     clamped.albedo[i] = Vec3f(1.f, 0.5f, 1.f);
   }
   Solver solver;
-  const Solution sol = solver.update(s, fast());
+  const Solution sol = solver.update(s, quickOptions());
   EXPECT_NE(solver.stats().warnings.at(0).find("Clamped the albedo"), std::string::npos);
-  const Solution ref = Solver().update(clamped, fast());
+  const Solution ref = Solver().update(clamped, quickOptions());
   for (std::size_t i = 0; i < sol.elementCount(); ++i)
   {
     ASSERT_EQ(sol.radiance[i], ref.radiance[i]);
   }
-  SolverOptions reject = fast();
+  SolverOptions reject = quickOptions();
   reject.albedoPolicy = AlbedoPolicy::Reject;
   expectError(s, "albedo above 1", reject);
 }
@@ -155,9 +149,9 @@ TEST(TestBadInput, ErrorKeepsThePreviousSolution)
 {
   Scene s = test::roomWithBlock();
   Solver solver;
-  const Solution before = solver.update(s, fast());
+  const Solution before = solver.update(s, quickOptions());
   s.positions[0].x = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_THROW(solver.update(s, fast()), Error);
+  EXPECT_THROW(solver.update(s, quickOptions()), Error);
   ASSERT_EQ(solver.solution().elementCount(), before.elementCount());
   for (std::size_t i = 0; i < before.elementCount(); ++i)
   {
@@ -190,7 +184,7 @@ TEST(TestBadInput, SceneSizeDoesNotMatter)
   // overflowed) and one of size 1e-30 all of them; rays and 1/r^2 overflow or underflow in
   // single precision long before that. The solver rescales by a power of two internally.
   const Scene unit = sphereOverFloor();
-  SolverOptions o = fast();
+  SolverOptions o = quickOptions();
   o.backend = Backend::Cpu;
   const Solution reference = Solver().update(unit, o);
   for (const float scale : { 1e30f, 1e-30f, 1e12f })
@@ -227,7 +221,7 @@ TEST(TestBadInput, PointLightsFollowTheRescaledGeometry)
   Scene unit = sphereOverFloor();
   unit.lights[0].type = LightType::Point;
   unit.lights[0].position = { 0.5f, 3.f, 0.2f };
-  SolverOptions o = fast();
+  SolverOptions o = quickOptions();
   o.backend = Backend::Cpu;
   const Solution reference = Solver().update(unit, o);
   Scene big = unit;

@@ -13,16 +13,10 @@
 #include <limits>
 
 using namespace linkgi;
+using test::quickOptions;
 
 namespace
 {
-SolverOptions fast()
-{
-  SolverOptions o;
-  o.raysPerVertex = 16;
-  return o;
-}
-
 struct Case
 {
   const char* words; ///< in the error's message
@@ -65,12 +59,12 @@ TEST(EdgeInputs, EveryRejectedInputNamesItsProblemAndKeepsThePreviousSolution)
   };
   const Scene good = test::roomWithBlock();
   Solver solver;
-  const Solution before = solver.update(good, fast());
+  const Solution before = solver.update(good, quickOptions());
   for (const Case& c : cases)
   {
     SCOPED_TRACE(c.words);
     Scene s = good;
-    SolverOptions o = fast();
+    SolverOptions o = quickOptions();
     c.spoil(s, o);
     try
     {
@@ -87,6 +81,6 @@ TEST(EdgeInputs, EveryRejectedInputNamesItsProblemAndKeepsThePreviousSolution)
     EXPECT_EQ(std::memcmp(after.direct.data(), before.direct.data(), before.direct.size() * sizeof(Vec3f)), 0);
   }
   // And the solver still works: the good scene again gives the same bits.
-  const Solution& again = solver.update(good, fast());
+  const Solution& again = solver.update(good, quickOptions());
   EXPECT_EQ(std::memcmp(again.radiance.data(), before.radiance.data(), before.radiance.size() * sizeof(Vec3f)), 0);
 }

@@ -15,22 +15,10 @@
 #include <iostream>
 
 using namespace linkgi;
+using test::errorOf;
 
 namespace
 {
-std::string errorOf(const std::function<void()>& f)
-{
-  try
-  {
-    f();
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "";
-}
-
 Scene validated(Scene s)
 {
   validateScene(s);

@@ -1,6 +1,7 @@
 // Adaptive refinement (issue 15): the split keeps the input's vertices, surface and edges,
 // stops at the vertex budget, and brings a mesh of two triangles per wall to the accuracy of
-// a fine one against the path-traced reference.
+// a fine one against the path-traced reference. The scenes are test::roomWithBlock: cell
+// 10 gives two triangles per face (48 vertices).
 #include "SceneFixtures.h"
 
 #include "linkgi/Error.h"
@@ -18,37 +19,10 @@
 #include <numeric>
 
 using namespace linkgi;
+using test::errorOf;
 
 namespace
 {
-std::string errorOf(const std::function<void()>& f)
-{
-  try
-  {
-    f();
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "";
-}
-
-/// A 4 x 3 x 4 room with a block on the floor and a point light, faces at most `cell` wide:
-/// cell 10 gives two triangles per face (48 vertices).
-Scene room(float cell)
-{
-  MeshBuilder b;
-  b.addBox({ -2, 0, -2 }, { 2, 3, 2 }, cell, Vec3f(0.7f, 0.6f, 0.5f), true);
-  b.addBox({ -0.5f, 0, -0.5f }, { 0.5f, 1, 0.5f }, cell, Vec3f(0.2f, 0.7f, 0.3f));
-  Scene s = b.take();
-  Light l;
-  l.position = { 0.3f, 2.5f, 0.4f };
-  l.intensity = { 10.f, 9.f, 8.f };
-  s.lights.push_back(l);
-  return s;
-}
-
 double triangleArea(const Scene& s, const Triangle& t)
 {
   const Vec3f e1 = s.positions[t.v[1]] - s.positions[t.v[0]];
@@ -70,7 +44,7 @@ std::vector<Vec3f> total(const std::vector<Vec3f>& direct, const std::vector<Vec
 
 TEST(Refine, SplitKeepsInputVerticesSurfaceAndEdges)
 {
-  const Scene input = room(10.f);
+  const Scene input = test::roomWithBlock(10.f);
   RefinedScene r;
   r.scene = input;
   r.inputVertices = input.vertexCount();
@@ -135,7 +109,7 @@ TEST(Refine, SplitKeepsInputVerticesSurfaceAndEdges)
 TEST(Refine, TwoTrianglesPerWallReachTheFineMeshAccuracy)
 {
   // Reference on a fine grid of the same surfaces.
-  const Scene fine = room(0.25f);
+  const Scene fine = test::roomWithBlock(0.25f);
   ReferenceOptions ro;
   ro.pathsPerVertex = 1024;
   const ReferenceSolution reference = solveReference(fine, ro);
@@ -150,7 +124,7 @@ TEST(Refine, TwoTrianglesPerWallReachTheFineMeshAccuracy)
       .relRmseLuminance;
   };
 
-  const Scene coarse = room(10.f);
+  const Scene coarse = test::roomWithBlock(10.f);
   SolverOptions options;
   options.backend = Backend::Cpu;
   Solver plain;
@@ -173,7 +147,7 @@ TEST(Refine, TwoTrianglesPerWallReachTheFineMeshAccuracy)
 
 TEST(Refine, StopsAtTheVertexBudgetAndKeepsTheLastResultOnAbort)
 {
-  const Scene coarse = room(10.f);
+  const Scene coarse = test::roomWithBlock(10.f);
   SolverOptions options;
   options.backend = Backend::Cpu;
   options.raysPerVertex = 64;
@@ -198,7 +172,7 @@ TEST(Refine, StopsAtTheVertexBudgetAndKeepsTheLastResultOnAbort)
 
 TEST(Refine, BadSettingsAreNamed)
 {
-  const Scene coarse = room(10.f);
+  const Scene coarse = test::roomWithBlock(10.f);
   RefiningSolver refining;
   RefinementOptions r;
   r.tolerance = 0.f;

@@ -3,6 +3,7 @@
 // same rays (the engine's overhead as a ratio); on the GPU our bounce gather against
 // cuSPARSE on the same matrix. --dump / --compare store and check solutions across backends.
 #include "BenchScenes.h"
+#include "BenchSolutions.h"
 
 #include "linkgi/Cuda.h"
 #include "linkgi/Error.h"
@@ -146,60 +147,6 @@ Args parse(int argc, char** argv)
     }
   }
   return a;
-}
-
-void writeSolution(const std::string& path, const Solution& s)
-{
-  std::ofstream f(path, std::ios::binary);
-  const std::uint64_t n = s.elementCount();
-  f.write(reinterpret_cast<const char*>(&n), sizeof(n));
-  for (const auto* v : { &s.direct, &s.indirect, &s.radiance })
-  {
-    f.write(reinterpret_cast<const char*>(v->data()), std::streamsize(n * sizeof(Vec3f)));
-  }
-  if (!f)
-  {
-    throw Error("Could not write " + path + ".");
-  }
-}
-
-Solution readSolution(const std::string& path)
-{
-  std::ifstream f(path, std::ios::binary);
-  std::uint64_t n = 0;
-  f.read(reinterpret_cast<char*>(&n), sizeof(n));
-  Solution s;
-  for (auto* v : { &s.direct, &s.indirect, &s.radiance })
-  {
-    v->resize(n);
-    f.read(reinterpret_cast<char*>(v->data()), std::streamsize(n * sizeof(Vec3f)));
-  }
-  if (!f)
-  {
-    throw Error("Could not read " + path + ".");
-  }
-  return s;
-}
-
-/// Worst channel of the relative RMSE of each output against `reference`, area-weighted
-/// ("aw") and per vertex unweighted ("pv").
-std::string agreement(const Scene& scene, const Solution& a, const Solution& reference)
-{
-  const std::vector<float> areas = vertexAreas(scene), ones(areas.size(), 1.f);
-  std::ostringstream json;
-  json << "{";
-  const char* names[] = { "direct", "indirect", "radiance" };
-  const std::vector<Vec3f>* mine[] = { &a.direct, &a.indirect, &a.radiance };
-  const std::vector<Vec3f>* theirs[] = { &reference.direct, &reference.indirect, &reference.radiance };
-  for (int k = 0; k < 3; ++k)
-  {
-    const ErrorMetrics aw = relativeRmse(*mine[k], *theirs[k], areas);
-    const ErrorMetrics pv = relativeRmse(*mine[k], *theirs[k], ones);
-    json << (k ? "," : "") << "\"" << names[k] << "_aw\":" << maxComponent(aw.relRmse) << ",\""
-         << names[k] << "_pv\":" << maxComponent(pv.relRmse);
-  }
-  json << "}";
-  return json.str();
 }
 
 double peakHostMb()
@@ -578,11 +525,12 @@ void benchScene(const std::string& name, const Args& args)
     meanIndirectJson(scene, runs.solution) + memoryJson(scene, runs);
   if (!args.dump.empty())
   {
-    writeSolution(args.dump + "/" + name + ".bin", runs.solution);
+    bench::writeSolution(args.dump + "/" + name + ".bin", runs.solution);
   }
   if (!args.compare.empty() && std::ifstream(args.compare + "/" + name + ".bin"))
   {
-    extra += ",\"agreement\":" + agreement(scene, runs.solution, readSolution(args.compare + "/" + name + ".bin"));
+    const Solution reference = bench::readSolution(args.compare + "/" + name + ".bin");
+    extra += ",\"agreement\":" + bench::agreement(scene, runs.solution, reference);
   }
   extra += yardstickJson(scene, runs.full, args);
   if (args.proxyVertices > 0)
