@@ -39,13 +39,12 @@ bool sameScene(const Scene& a, const Scene& b)
     a.lengthExponent == b.lengthExponent;
 }
 
-float boundingDiagonal(const std::vector<Vec3f>& positions)
+namespace
 {
-  if (positions.empty())
-  {
-    return 0.f;
-  }
-  Vec3f lo = positions[0], hi = positions[0];
+/// The axis-aligned box of `positions` (lo = hi = 0 for none).
+void positionBounds(const std::vector<Vec3f>& positions, Vec3f& lo, Vec3f& hi)
+{
+  lo = hi = positions.empty() ? Vec3f(0.f) : positions[0];
   for (const Vec3f& p : positions)
   {
     for (int k = 0; k < 3; ++k)
@@ -54,6 +53,11 @@ float boundingDiagonal(const std::vector<Vec3f>& positions)
       hi[k] = std::max(hi[k], p[k]);
     }
   }
+}
+
+/// The box diagonal, in double so that coordinates near the float limit do not overflow.
+float diagonalOf(const Vec3f& lo, const Vec3f& hi)
+{
   double squared = 0.0;
   for (int k = 0; k < 3; ++k)
   {
@@ -61,6 +65,14 @@ float boundingDiagonal(const std::vector<Vec3f>& positions)
     squared += extent * extent;
   }
   return static_cast<float>(std::min(std::sqrt(squared), double(std::numeric_limits<float>::max())));
+}
+}
+
+float boundingDiagonal(const std::vector<Vec3f>& positions)
+{
+  Vec3f lo, hi;
+  positionBounds(positions, lo, hi);
+  return diagonalOf(lo, hi);
 }
 
 namespace
@@ -190,38 +202,34 @@ void scaleLights(std::vector<Light>& lights, int exponent)
 }
 
 /// Rescales a scene far from unit size by a power of two (Scene::lengthExponent): exact, so
-/// results do not change, and ray tests and 1/r^2 stay within single precision.
+/// results do not change, and ray tests and 1/r^2 stay within single precision. A scene of
+/// ordinary size far from the origin (a metre-wide part at 1e20) keeps huge coordinates,
+/// which no ray can start from: an error.
 void normalizeLength(Scene& scene)
 {
   constexpr int kFarExponent = 16;
-  const float diagonal = boundingDiagonal(scene.positions);
+  Vec3f lo, hi;
+  positionBounds(scene.positions, lo, hi);
+  const float diagonal = diagonalOf(lo, hi);
   const int exponent = diagonal > 0.f ? std::ilogb(diagonal) : 0;
   scene.lengthExponent = std::abs(exponent) > kFarExponent ? exponent : 0;
+  const auto scaled = [&](const Vec3f& p)
+  {
+    return Vec3f(std::ldexp(p.x, -scene.lengthExponent), std::ldexp(p.y, -scene.lengthExponent),
+      std::ldexp(p.z, -scene.lengthExponent));
+  };
+  if (!withinRayRange(scaled(lo)) || !withinRayRange(scaled(hi)))
+  {
+    fail("The scene lies more than 2^60 scene units (after rescaling) from the origin, beyond "
+         "what ray tracing in single precision accepts; translate the data towards the origin.");
+  }
   if (scene.lengthExponent == 0)
   {
     return;
   }
   for (Vec3f& p : scene.positions)
   {
-    for (int k = 0; k < 3; ++k)
-    {
-      p[k] = std::ldexp(p[k], -scene.lengthExponent);
-    }
-  }
-}
-
-/// After normalizeLength: a scene of ordinary size far from the origin (a metre-wide part at
-/// 1e20) keeps huge coordinates, which no ray can start from.
-void checkRayRange(const Scene& scene)
-{
-  for (std::size_t v = 0; v < scene.positions.size(); ++v)
-  {
-    if (!withinRayRange(scene.positions[v]))
-    {
-      fail("Vertex " + std::to_string(v) + " lies more than 2^60 scene units (after rescaling) from "
-        "the origin, beyond what ray tracing in single precision accepts; translate the data "
-        "towards the origin.");
-    }
+    p = scaled(p);
   }
 }
 
@@ -399,7 +407,6 @@ std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy)
   checkArray(scene.normals, "normal", notFinite, "a non-finite (NaN or Inf)");
   checkShading(scene);
   normalizeLength(scene);
-  checkRayRange(scene);
   scaleLights(scene.lights, scene.lengthExponent);
 
   if (const std::size_t removed = removeDegenerateTriangles(scene))
