@@ -18,43 +18,62 @@ double cornerSolidAngle(double x, double y)
   return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
 }
 
-/// sin and cos of each node's cone half angle, for canReceive.
-struct ConeTrig
+/// What the pair recursion reads of a node, in one 48-byte record: each visited pair reads
+/// two nodes at random, and the tree's separate arrays cost six cache lines per node.
+struct NodeBounds
 {
-  std::vector<float> sin, cos;
+  Vec3f position;
+  float radius;
+  Vec3f normal;
+  float planeDeviation;
+  float coneAngle, coneSin, coneCos;
+  Index firstChild; ///< left child, kInvalidIndex for a leaf
 };
 
-/// Whether some disc point of `a` can see some disc point of `b` in front of it (a can
-/// receive from b); conservative, from the nodes' bounds. d = p_b - p_a, r = |d|.
-bool canReceive(const ClusterTree& t, const ConeTrig& cone, Index a, Index b, const Vec3f& d,
-  float r, float eps)
+std::vector<NodeBounds> nodeBounds(const ClusterTree& t)
 {
-  const Vec3f& na = t.normal[a];
+  std::vector<NodeBounds> nodes(t.nodeCount());
+  parallelRanges(nodes.size(), 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      nodes[i] = { t.position[i], t.radius[i], t.normal[i], t.planeDeviation[i], t.coneAngle[i],
+        std::sin(t.coneAngle[i]), std::cos(t.coneAngle[i]),
+        t.isLeaf(Index(i)) ? kInvalidIndex : t.left[i - t.leafCount] };
+    }
+  });
+  return nodes;
+}
+
+/// Whether some disc point of `a` can see some disc point of `b` in front of it (a can
+/// receive from b); conservative, from the nodes' bounds. d = p_b - p_a, r2 = |d|^2.
+inline bool canReceive(const NodeBounds& a, const NodeBounds& b, const Vec3f& d, float r2, float eps)
+{
   // How far b's points rise above the plane through b's centre with a's normal.
-  const float along = std::abs(dot(na, t.normal[b]));
+  const float along = std::abs(dot(a.normal, b.normal));
   const float across = std::sqrt(std::max(0.f, 1.f - along * along));
-  const float rise = std::min(t.radius[b], along * t.planeDeviation[b] + across * t.radius[b]);
-  if (t.coneAngle[a] < kFlatCone)
+  const float rise = std::min(b.radius, along * b.planeDeviation + across * b.radius);
+  if (a.coneAngle < kFlatCone)
   {
     // Every receiving normal is n_a: q in b is in front of p in a when n_a.(q - p) > 0.
-    return dot(na, d) + rise + t.planeDeviation[a] > eps;
+    return dot(a.normal, d) + rise + a.planeDeviation > eps;
   }
-  const float reach = t.radius[a] + t.radius[b];
-  if (r <= reach || cone.cos[a] <= 0.f)
+  const float reach = a.radius + b.radius;
+  if (r2 <= reach * reach || a.coneCos <= 0.f)
   {
     return true;
   }
   // Some direction between the two lies within cone + asin(reach / r) of n_a's horizon:
   // cos(n_a, d) > -sin(cone + asin(reach / r)).
+  const float r = std::sqrt(r2);
   const float sinB = reach / r, cosB = std::sqrt(1.f - sinB * sinB);
-  const float cosSpread = cone.cos[a] * cosB - cone.sin[a] * sinB;
-  return cosSpread <= 0.f || dot(na, d) > -r * (cone.sin[a] * cosB + cone.cos[a] * sinB);
+  const float cosSpread = a.coneCos * cosB - a.coneSin * sinB;
+  return cosSpread <= 0.f || dot(a.normal, d) > -r * (a.coneSin * cosB + a.coneCos * sinB);
 }
 
 struct PairVisitor
 {
   const ClusterTree& t;
-  const ConeTrig& cone;
+  const std::vector<NodeBounds>& nodes;
   float binSolidAngle;
   const LinkCreationOptions& o;
 
@@ -63,9 +82,10 @@ struct PairVisitor
   template <typename Emit, typename Push>
   void operator()(Index a, Index b, Emit&& emit, Push&& push) const
   {
+    const NodeBounds& na = nodes[a];
     if (a == b)
     {
-      if (!t.isLeaf(a))
+      if (na.firstChild != kInvalidIndex)
       {
         const std::size_t i = a - t.leafCount;
         push(t.left[i], t.left[i]);
@@ -74,23 +94,24 @@ struct PairVisitor
       }
       return;
     }
-    const Vec3f d = t.position[b] - t.position[a];
-    const float r2 = dot(d, d), r = std::sqrt(r2);
-    const bool aReceives = canReceive(t, cone, a, b, d, r, o.planeEpsilon);
-    const bool bReceives = canReceive(t, cone, b, a, -d, r, o.planeEpsilon);
+    const NodeBounds& nb = nodes[b];
+    const Vec3f d = nb.position - na.position;
+    const float r2 = dot(d, d);
+    const bool aReceives = canReceive(na, nb, d, r2, o.planeEpsilon);
+    const bool bReceives = canReceive(nb, na, -d, r2, o.planeEpsilon);
     if (!aReceives && !bReceives)
     {
       return;
     }
     // pi R^2 / r^2 > bin solid angle: the node covers more than a bin from the other end.
     const float limit = binSolidAngle * r2 * (1.f / kPi);
-    const auto tooBig = [&](Index x) {
-      return !t.isLeaf(x) && (t.radius[x] * t.radius[x] > limit || t.coneAngle[x] > o.maxConeAngle);
+    const auto tooBig = [&](const NodeBounds& x) {
+      return x.firstChild != kInvalidIndex && (x.radius * x.radius > limit || x.coneAngle > o.maxConeAngle);
     };
-    const bool bigA = tooBig(a), bigB = tooBig(b);
+    const bool bigA = tooBig(na), bigB = tooBig(nb);
     if (bigA || bigB)
     {
-      const Index split = bigA && (!bigB || t.radius[a] >= t.radius[b]) ? a : b;
+      const Index split = bigA && (!bigB || na.radius >= nb.radius) ? a : b;
       const Index other = split == a ? b : a;
       const std::size_t i = split - t.leafCount;
       push(t.left[i], other);
@@ -198,10 +219,16 @@ void splatDisc(const ClusterTree& t, Index leaf, float r, float binAngle, Offer&
   {
     const float ringRadius = radius * float(i) / float(rings);
     const int points = std::min(64, std::max(6, int(std::ceil(2.f * kPi * ringRadius / step))));
+    // The ring's points by rotating one step at a time (one sincos per ring, not per point).
+    const float stepAngle = 2.f * kPi / float(points), phase = 0.5f * float(i % 2) * stepAngle;
+    const float cosStep = std::cos(stepAngle), sinStep = std::sin(stepAngle);
+    float c = std::cos(phase) * ringRadius, s = std::sin(phase) * ringRadius;
     for (int k = 0; k < points; ++k)
     {
-      const float phi = 2.f * kPi * (float(k) + 0.5f * float(i % 2)) / float(points);
-      offer(t.position[leaf] + f.toWorld(Vec3f(std::cos(phi) * ringRadius, std::sin(phi) * ringRadius, 0.f)));
+      offer(t.position[leaf] + f.toWorld(Vec3f(c, s, 0.f)));
+      const float next = c * cosStep - s * sinStep;
+      s = s * cosStep + c * sinStep;
+      c = next;
     }
   }
 }
@@ -349,15 +376,8 @@ CubeBins CubeBins::make(int n)
 NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
   const LinkCreationOptions& options, const ProgressCallback& progress)
 {
-  ConeTrig cone;
-  cone.sin.resize(tree.nodeCount());
-  cone.cos.resize(tree.nodeCount());
-  for (std::size_t i = 0; i < tree.nodeCount(); ++i)
-  {
-    cone.sin[i] = std::sin(tree.coneAngle[i]);
-    cone.cos[i] = std::cos(tree.coneAngle[i]);
-  }
-  const PairVisitor visit{ tree, cone, bins.meanSolidAngle(), options };
+  const std::vector<NodeBounds> nodes = nodeBounds(tree);
+  const PairVisitor visit{ tree, nodes, bins.meanSolidAngle(), options };
   NodeLinks out;
   // Breadth-first from (root, root) until there are enough independent pairs for every
   // core; the links found on the way are the first part.
@@ -384,6 +404,7 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
     for (std::size_t s = begin; s < end; ++s)
     {
       std::vector<Pair>& part = parts[1 + s];
+      std::uint64_t count = 0; // a local count: neighbouring slices' counters share a cache line
       for (std::size_t i = s * frontier.size() / slices; i < (s + 1) * frontier.size() / slices; ++i)
       {
         stack.push_back(frontier[i]);
@@ -391,11 +412,12 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
         {
           const Pair p = stack.back();
           stack.pop_back();
-          ++visited[s];
+          ++count;
           visit(p.first, p.second, [&](Index r, Index src) { part.emplace_back(r, src); },
             [&](Index a, Index b) { stack.emplace_back(a, b); });
         }
       }
+      visited[s] = count;
     }
   }, [&progress](const char*, double f) { return progressSays(progress, 0.8 * f); });
   for (std::uint64_t v : visited)
@@ -418,6 +440,24 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
   std::vector<std::uint64_t> occupied(sliceCount, 0), empty(sliceCount, 0);
   const SparseMatrix& m = links.byReceiver;
   const float binAngle = std::sqrt(bins.meanSolidAngle());
+  // A link keeps the bin it has at its receiving node (below), whichever leaf it is pushed
+  // to: one cube-bin lookup per link instead of one per link and leaf beneath it.
+  std::vector<Index> binTexel(nb); // the environment texel each bin's centre sees
+  for (std::size_t b = 0; b < nb; ++b)
+  {
+    binTexel[b] = environment.texelIndex(bins.center[b]);
+  }
+  std::vector<int> linkBin(m.nonZeros(), -1);
+  parallelRanges(m.rows(), 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t node = begin; node < end; ++node)
+    {
+      for (Offset e = m.rowOffsets[node]; e < m.rowOffsets[node + 1]; ++e)
+      {
+        const Vec3f d = tree.position[m.columns[e]] - tree.position[node];
+        linkBin[e] = dot(d, d) > 0.f ? cubeBin(d, bins.n) : -1;
+      }
+    }
+  });
   parallelFor("ImplicitLinks", sliceCount, 1, [&](std::size_t first, std::size_t last) {
     std::vector<float> bestDistance(nb);
     std::vector<Index> bestSource(nb, kInvalidIndex);
@@ -426,6 +466,8 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
     for (std::size_t s = first; s < last; ++s)
     {
       RowSlice& out = slices[s];
+      // Local counts: neighbouring slices' counters share a cache line.
+      std::uint64_t occupiedHere = 0, emptyHere = 0;
       for (std::size_t leaf = s * leaves / sliceCount; leaf < (s + 1) * leaves / sliceCount; ++leaf)
       {
         const Vec3f n = tree.normal[leaf];
@@ -435,7 +477,8 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
           for (Offset e = m.rowOffsets[node]; e < m.rowOffsets[node + 1]; ++e)
           {
             const Index src = m.columns[e];
-            const auto offer = [&](const Vec3f& q) {
+            // `bin` >= 0: the point's bin is known (the link's own at an ancestor node).
+            const auto offer = [&](const Vec3f& q, int bin) {
               const Vec3f d = q - p;
               const float d2 = dot(d, d);
               if (!(d2 > 0.f) || dot(n, d) <= 0.f)
@@ -445,26 +488,30 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
               // A link pushed down keeps the bin it has at its node (as in the paper): a
               // node's bins hold one link each, and re-binning from the leaf would leave
               // holes between them.
-              const Vec3f binned = node == leaf ? d : q - tree.position[node];
-              const int b = cubeBin(dot(binned, binned) > 0.f ? binned : d, bins.n);
-              if (bestSource[b] == kInvalidIndex || d2 < bestDistance[b] ||
-                (d2 == bestDistance[b] && src < bestSource[b]))
+              if (bin < 0)
               {
-                bestDistance[b] = d2;
-                bestSource[b] = src;
+                const Vec3f binned = node == leaf ? d : q - tree.position[node];
+                bin = cubeBin(dot(binned, binned) > 0.f ? binned : d, bins.n);
+              }
+              if (bestSource[bin] == kInvalidIndex || d2 < bestDistance[bin] ||
+                (d2 == bestDistance[bin] && src < bestSource[bin]))
+              {
+                bestDistance[bin] = d2;
+                bestSource[bin] = src;
               }
             };
-            offer(tree.position[src]);
+            offer(tree.position[src], node == leaf ? -1 : linkBin[e]);
             if (tree.isLeaf(src))
             {
-              const float r = length(tree.position[src] - p);
-              if (2.f * tree.radius[src] > r)
+              const Vec3f toSource = tree.position[src] - p;
+              const float r2 = dot(toSource, toSource), radius = tree.radius[src];
+              if (4.f * radius * radius > r2)
               {
                 nearDiscs.push_back(src); // a neighbour, or a disc across a contact
               }
-              else if (tree.radius[src] > 0.5f * binAngle * r)
+              else if (radius * radius > 0.25f * binAngle * binAngle * r2)
               {
-                splatDisc(tree, src, r, binAngle, offer);
+                splatDisc(tree, src, std::sqrt(r2), binAngle, [&](const Vec3f& q) { offer(q, -1); });
               }
             }
           }
@@ -485,11 +532,11 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
           hemisphere += w;
           if (src == kInvalidIndex)
           {
-            envRow.emplace_back(environment.texelIndex(bins.center[b]), w);
-            ++empty[s];
+            envRow.emplace_back(binTexel[b], w);
+            ++emptyHere;
             continue;
           }
-          ++occupied[s];
+          ++occupiedHere;
           if (dot(tree.normal[src], p - tree.position[src]) > 0.f)
           {
             row.emplace_back(src, w);
@@ -506,6 +553,8 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
         mergeRow(row, out.columns, out.weights, out.counts);
         mergeRow(envRow, out.envColumns, out.envWeights, out.envCounts);
       }
+      occupied[s] = occupiedHere;
+      empty[s] = emptyHere;
     }
   }, [&progress](const char*, double f) { return progressSays(progress, f); });
   LeafLinks result;

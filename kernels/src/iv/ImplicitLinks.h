@@ -40,8 +40,12 @@ LINKGI_HOST_DEVICE inline int cubeBin(const Vec3f& d, int n)
     u = d.x;
     v = d.y;
   }
-  const int col = static_cast<int>(fminf(fmaxf((u / m + 1.f) * 0.5f * n, 0.f), float(n - 1)));
-  const int row = static_cast<int>(fminf(fmaxf((v / m + 1.f) * 0.5f * n, 0.f), float(n - 1)));
+  // Clamped by comparisons (a NaN gives 0), not fminf/fmaxf: on the host those are libm
+  // calls, and this runs for every link.
+  const float last = float(n - 1);
+  const float x = (u / m + 1.f) * 0.5f * n, y = (v / m + 1.f) * 0.5f * n;
+  const int col = static_cast<int>(x > 0.f ? (x < last ? x : last) : 0.f);
+  const int row = static_cast<int>(y > 0.f ? (y < last ? y : last) : 0.f);
   return (face * n + row) * n + col;
 }
 
