@@ -4,6 +4,7 @@
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
+#include "vtkGlobalIlluminationGlobalCasters.h"
 #include "vtkGlobalIlluminationColors.h"
 #include "vtkGlobalIlluminationLights.h"
 #include "vtkGlobalIlluminationShading.h"
@@ -260,9 +261,49 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::MakeCasters(
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapperCore::Prepare(
-  vtkRenderer* renderer, vtkActor*, const ShadowMaps::Casters& casters)
+ShadowMaps::Casters vtkGlobalIlluminationMapperCore::AddGlobalCasters(
+  const ShadowMaps::Casters& own, vtkActor* actor) const
 {
+  vtkGlobalIlluminationGlobalCasters* global =
+    this->Shading ? this->Shading->GetGlobalCasters() : nullptr;
+  if (!global || global->GetNumberOfTriangles() == 0 || !own.Draw || !actor)
+  {
+    return own;
+  }
+  ShadowMaps::Casters casters = own;
+  casters.Remote = &global->GetPositions();
+  casters.RemoteVersion = static_cast<vtkMTimeType>(global->GetNumberOfGathers());
+  // The actor's matrix after the translation by the positions' origin.
+  vtkNew<vtkMatrix4x4> origin;
+  for (int k = 0; k < 3; ++k)
+  {
+    origin->SetElement(k, 3, global->GetOrigin()[k]);
+  }
+  vtkNew<vtkMatrix4x4> remoteToWorld;
+  vtkMatrix4x4::Multiply4x4(actor->GetMatrix(), origin, remoteToWorld);
+  std::copy(&remoteToWorld->Element[0][0], &remoteToWorld->Element[0][0] + 16,
+    casters.RemoteToWorld.begin());
+  // The maps' frusta cover both: the world bounds of the remote box's corners.
+  const double* b = global->GetBounds();
+  double* w = casters.WorldBounds.data();
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    double p[4] = { b[corner & 1], b[2 + ((corner >> 1) & 1)], b[4 + ((corner >> 2) & 1)], 1.0 };
+    actor->GetMatrix()->MultiplyPoint(p, p);
+    for (int k = 0; k < 3; ++k)
+    {
+      w[2 * k] = std::min(w[2 * k], p[k] / p[3]);
+      w[2 * k + 1] = std::max(w[2 * k + 1], p[k] / p[3]);
+    }
+  }
+  return casters;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::Prepare(
+  vtkRenderer* renderer, vtkActor* actor, const ShadowMaps::Casters& ownCasters)
+{
+  const ShadowMaps::Casters casters = this->AddGlobalCasters(ownCasters, actor);
   const double scale = this->Shading ? this->Shading->GetLightIntensityScale() : 1.0;
   const int maximum = vtkGlobalIlluminationShading::GetMaximumNumberOfLights();
   this->Lights.clear();

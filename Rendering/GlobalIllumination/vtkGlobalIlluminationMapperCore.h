@@ -115,7 +115,8 @@ public:
     vtkOpenGLVertexBufferObjectGroup* vbos, vtkOpenGLHelper* primitives, vtkActor* actor,
     vtkMTimeType version);
 
-  /// Takes the renderer's lights and brings the shadow maps up to date. Call before drawing.
+  /// Takes the renderer's lights and brings the shadow maps up to date, with the other
+  /// processes' triangles of the shading's GlobalCasters if it has any. Call before drawing.
   void Prepare(vtkRenderer* renderer, vtkActor* actor,
     const vtkGlobalIlluminationShadowMaps::Casters& casters);
 
@@ -135,6 +136,10 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
+  /// `own` plus the shading's GlobalCasters (drawn with the actor's matrix), if any.
+  vtkGlobalIlluminationShadowMaps::Casters AddGlobalCasters(
+    const vtkGlobalIlluminationShadowMaps::Casters& own, vtkActor* actor) const;
+
   /// The name of the back faces' indirect irradiance array.
   std::string BackName() const;
 

@@ -1,6 +1,7 @@
 #include "vtkGlobalIlluminationShading.h"
 
 #include "vtkDataArray.h"
+#include "vtkGlobalIlluminationGlobalCasters.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
 
@@ -24,7 +25,11 @@ vtkGlobalIlluminationShading::~vtkGlobalIlluminationShading()
   this->SetAlbedoArrayName(nullptr);
   this->SetIndirectIrradianceArrayName(nullptr);
   this->SetEmissionArrayName(nullptr);
+  this->SetGlobalCasters(nullptr);
 }
+
+//------------------------------------------------------------------------------
+vtkCxxSetObjectMacro(vtkGlobalIlluminationShading, GlobalCasters, vtkGlobalIlluminationGlobalCasters);
 
 //------------------------------------------------------------------------------
 const char* vtkGlobalIlluminationShading::GetDisplayModeAsString()
@@ -101,4 +106,5 @@ void vtkGlobalIlluminationShading::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Shadow Map Resolution: " << this->ShadowMapResolution << "\n";
   os << indent << "Shadow Filter Radius: " << this->ShadowFilterRadius << "\n";
   os << indent << "Shadow Bias: " << this->ShadowBias << "\n";
+  os << indent << "Global Casters: " << this->GlobalCasters << "\n";
 }

@@ -39,6 +39,7 @@
 #include "vtkObject.h"
 
 class vtkDataArray;
+class vtkGlobalIlluminationGlobalCasters;
 
 class LINKGIRENDERINGGLOBALILLUMINATION_EXPORT vtkGlobalIlluminationShading : public vtkObject
 {
@@ -211,6 +212,17 @@ public:
   vtkGetMacro(ShadowBias, double);
   ///@}
 
+  ///@{
+  /**
+   * The triangles of the other processes of a parallel run, which the mappers draw into
+   * their shadow maps besides their own (see vtkGlobalIlluminationGlobalCasters; its
+   * Gather() is the caller's, collectively). The default value is null: a mapper's shadow
+   * maps hold its own triangles only.
+   */
+  virtual void SetGlobalCasters(vtkGlobalIlluminationGlobalCasters* casters);
+  vtkGetObjectMacro(GlobalCasters, vtkGlobalIlluminationGlobalCasters);
+  ///@}
+
   /**
    * The most lights a mapper shades; further lights are ignored with a warning.
    */
@@ -232,6 +244,7 @@ protected:
   int ShadowMapResolution = 1024;
   double ShadowFilterRadius = 1.5;
   double ShadowBias = 1.0;
+  vtkGlobalIlluminationGlobalCasters* GlobalCasters = nullptr;
 
 private:
   vtkGlobalIlluminationShading(const vtkGlobalIlluminationShading&) = delete;

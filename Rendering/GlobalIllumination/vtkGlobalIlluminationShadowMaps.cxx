@@ -224,8 +224,14 @@ bool vtkGlobalIlluminationShadowMaps::Update(vtkOpenGLRenderWindow* window,
 {
   // Everything the depth images depend on; colours and intensities are not part of it, nor
   // is where a light at the eye is.
-  std::vector<double> signature{ shadows ? 1.0 : 0.0, double(resolution), double(casters.Version) };
+  const bool remote = casters.Remote && !casters.Remote->empty();
+  std::vector<double> signature{ shadows ? 1.0 : 0.0, double(resolution), double(casters.Version),
+    remote ? double(casters.RemoteVersion) : -1.0 };
   signature.insert(signature.end(), casters.ModelToWorld.begin(), casters.ModelToWorld.end());
+  if (remote)
+  {
+    signature.insert(signature.end(), casters.RemoteToWorld.begin(), casters.RemoteToWorld.end());
+  }
   signature.insert(signature.end(), casters.WorldBounds.begin(), casters.WorldBounds.end());
   for (std::size_t i = 0; i < lights.size(); ++i)
   {
@@ -329,11 +335,19 @@ void vtkGlobalIlluminationShadowMaps::Render(
     : window->GetShaderCache()->ReadyShaderProgram(
         vtkGlobalIlluminationShadowVS, vtkGlobalIlluminationShadowFS, "");
   vtkNew<vtkOpenGLVertexArrayObject> vao;
+  float modelToWorld[16], remoteToWorld[16];
+  ToColumnMajor(casters.ModelToWorld, modelToWorld);
+  ToColumnMajor(casters.RemoteToWorld, remoteToWorld);
+  const bool remote = program && casters.Remote && !casters.Remote->empty();
+  if (remote && this->RemoteUploaded != casters.RemoteVersion)
+  {
+    // Uploaded once per gather, not per render of the maps.
+    this->RemoteBuffer->Upload(*casters.Remote, vtkOpenGLBufferObject::ArrayBuffer);
+    this->RemoteUploaded = casters.RemoteVersion;
+    this->RemoteVertices = static_cast<int>(casters.Remote->size() / 3);
+  }
   if (program)
   {
-    float modelToWorld[16];
-    ToColumnMajor(casters.ModelToWorld, modelToWorld);
-    program->SetUniformMatrix4x4("giModelToWorld", modelToWorld);
     vao->Bind();
   }
   for (int layer = 0; layer < this->Layers; ++layer)
@@ -369,7 +383,15 @@ void vtkGlobalIlluminationShadowMaps::Render(
       program->SetUniformMatrix4x4("giWorldToClip", clip);
       glFramebufferTextureLayer(
         GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, this->TextureHandle, 0, map.Layer + face);
+      program->SetUniformMatrix4x4("giModelToWorld", modelToWorld);
       casters.Draw(program, vao);
+      if (remote)
+      {
+        program->SetUniformMatrix4x4("giModelToWorld", remoteToWorld);
+        vao->AddAttributeArray(
+          program, this->RemoteBuffer, "vertexMC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false);
+        glDrawArrays(GL_TRIANGLES, 0, this->RemoteVertices);
+      }
     }
   }
   if (program)
@@ -452,6 +474,12 @@ void vtkGlobalIlluminationShadowMaps::ReleaseGraphicsResources(vtkWindow* window
     glDeleteTextures(1, &this->TextureHandle);
     glDeleteFramebuffers(1, &this->Framebuffer);
   }
+  if (window && window == this->Context)
+  {
+    this->RemoteBuffer->ReleaseGraphicsResources();
+  }
+  this->RemoteUploaded = 0;
+  this->RemoteVertices = 0;
   this->TextureHandle = 0;
   this->Framebuffer = 0;
   this->Layers = 0;

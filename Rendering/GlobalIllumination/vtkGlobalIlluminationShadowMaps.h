@@ -23,6 +23,7 @@
 
 #include "vtkGlobalIlluminationLights.h" // for vtkGlobalIlluminationLights::Light
 #include "vtkNew.h"                      // for vtkNew
+#include "vtkOpenGLBufferObject.h"        // for vtkNew<vtkOpenGLBufferObject>
 #include "vtkType.h" // for vtkMTimeType
 
 #include <array>      // for std::array
@@ -55,6 +56,13 @@ public:
     /// Changes whenever the caster positions or triangles change; nothing else (new point
     /// colours or irradiance must not re-render the maps).
     vtkMTimeType Version = 0;
+    /// Triangles of other processes (vtkGlobalIlluminationGlobalCasters) drawn besides
+    /// Draw's: 9 floats (three corners) each, null or empty for none. WorldBounds covers
+    /// them too.
+    const std::vector<float>* Remote = nullptr;
+    std::array<double, 16> RemoteToWorld{}; ///< row-major, from the remote positions
+    /// Changes whenever the remote positions do.
+    vtkMTimeType RemoteVersion = 0;
   };
 
   vtkGlobalIlluminationShadowMaps();
@@ -114,6 +122,9 @@ private:
   std::vector<Map> Maps;
   std::vector<double> Signature;
   vtkNew<vtkTextureObject> Texture; // wraps the GL texture array for texture unit management
+  vtkNew<vtkOpenGLBufferObject> RemoteBuffer; // the remote casters' corners
+  vtkMTimeType RemoteUploaded = 0;             // their version in RemoteBuffer
+  int RemoteVertices = 0;
   vtkOpenGLRenderWindow* Context = nullptr;
   unsigned int TextureHandle = 0;
   unsigned int Framebuffer = 0;

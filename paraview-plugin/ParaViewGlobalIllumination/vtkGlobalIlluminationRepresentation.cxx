@@ -11,6 +11,7 @@
 #include "vtkGlobalIlluminationCompositeMapper.h"
 #include "vtkGlobalIlluminationDrawnAlbedo.h"
 #include "vtkGlobalIlluminationFilter.h"
+#include "vtkGlobalIlluminationGlobalCasters.h"
 #include "vtkGlobalIlluminationShading.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -98,6 +99,9 @@ struct vtkGlobalIlluminationRepresentation::vtkInternals
 
   vtkNew<vtkGlobalIlluminationDrawnAlbedo> DrawnAlbedo; // the albedo is what is drawn
 
+  // In a parallel run, the other processes' triangles for the shadow maps.
+  vtkNew<vtkGlobalIlluminationGlobalCasters> GlobalCasters;
+
   // What the mapper drew last (its block attributes are per block object).
   vtkDataObject* Drawn = nullptr;
   vtkMTimeType DrawnTime = 0;
@@ -126,6 +130,7 @@ vtkGlobalIlluminationRepresentation::vtkGlobalIlluminationRepresentation()
   this->SetArrayIdNames(nullptr, nullptr);
   this->SuppressLOD = true;
   this->SetupDefaults();
+  mapper->GetShading()->SetGlobalCasters(this->Internals->GlobalCasters);
 
   vtkGlobalIlluminationFilter* filter = this->Internals->Filter;
   // A render never waits for the solver unless WaitForSolution says so.
@@ -315,6 +320,9 @@ vtkDataObject* vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
 {
   vtkInternals& internals = *this->Internals;
   vtkGlobalIlluminationFilter* filter = internals.Filter;
+  // Collective, so before anything that returns early on some processes: every process
+  // renders the others' triangles into its shadow maps (exchanged when geometry changed).
+  internals.GlobalCasters->Gather(delivered);
   // The filter solves all blocks as one scene; this only says what the albedo is and
   // which lights shine.
   // The albedo is what the mapper draws (UpdateColoringParameters already ran in the
@@ -532,6 +540,25 @@ int vtkGlobalIlluminationRepresentation::GetSolvingRequest()
 int vtkGlobalIlluminationRepresentation::GetShadowMapRenders()
 {
   return static_cast<vtkGlobalIlluminationCompositeMapper*>(this->Mapper)->GetShadowMapRenderCount();
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationRepresentation::GetGlobalCasterTriangles()
+{
+  return static_cast<int>(this->Internals->GlobalCasters->GetNumberOfTriangles());
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationRepresentation::GetGlobalCasterGathers()
+{
+  return this->Internals->GlobalCasters->GetNumberOfGathers();
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationRepresentation::SetMaximumGlobalCasterTriangles(int triangles)
+{
+  this->Internals->GlobalCasters->SetMaximumTriangles(triangles);
+  this->Modified();
 }
 
 int vtkGlobalIlluminationRepresentation::GetNumberOfLights()

@@ -176,6 +176,23 @@ public:
   /// How many times the mapper rendered its shadow maps (for tests of the shadow cache).
   int GetShadowMapRenders();
 
+  ///@{
+  /**
+   * In a parallel run: the other processes' triangles that this process draws into its
+   * shadow maps, and how many times the processes exchanged them (once per change of
+   * anyone's geometry, see vtkGlobalIlluminationGlobalCasters).
+   */
+  int GetGlobalCasterTriangles();
+  int GetGlobalCasterGathers();
+  ///@}
+
+  /**
+   * The most triangles of other processes drawn into the shadow maps
+   * (vtkGlobalIlluminationGlobalCasters::SetMaximumTriangles); above it none are, with a
+   * warning.
+   */
+  void SetMaximumGlobalCasterTriangles(int triangles);
+
   /// The internal filter, for C++ callers.
   vtkGlobalIlluminationFilter* GetFilter();
 

@@ -1,0 +1,162 @@
+"""pvbatch --mpi: the Global Illumination representation with the scene split across ranks.
+
+Run as `mpirun -np N pvbatch --mpi TestGlobalIlluminationMPI.py ...` (registered for N = 1
+and N = 2 in CMakeLists.txt). The scene is a block floating over a floor under a point
+light; with 2 or more ranks the block is rank 0's partition and the floor rank 1's (ranks
+beyond have no points), so the block's shadow on the floor and the light between them
+cross the partition boundary.
+
+1. Direct light only: the block's shadow is on the floor (a shadowed floor pixel is far
+   darker than a lit one) and the picture matches the one baseline that the one-rank run
+   matches too. Without the other ranks' triangles in each rank's shadow maps
+   (vtkGlobalIlluminationGlobalCasters) rank 1 would draw a floor without the shadow.
+2. The representation's counters: on rank 0 the shadow maps hold the floor's triangles
+   (the other ranks'), exchanged once, not again on further renders or a light move.
+"""
+import os
+
+from paraview import servermanager
+from paraview.simple import *  # noqa: F401,F403 (the pvpython way)
+
+import linkgi_paraview_testing as t
+
+arguments = t.parse_arguments()
+t.load_plugin(arguments.plugin, globals())
+
+ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
+print("ranks: %d" % ranks)
+
+# The scene, made on every rank: piece 0 is the block, piece 1 the floor (one piece: both).
+SCENE = """
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+from vtkmodules.vtkFiltersCore import vtkAppendPolyData, vtkTriangleFilter
+from vtkmodules.vtkFiltersSources import vtkPlaneSource
+info = self.GetOutputInformation(0)
+piece = info.Get(sddp.UPDATE_PIECE_NUMBER())
+pieces = info.Get(sddp.UPDATE_NUMBER_OF_PIECES())
+def plane(origin, p1, p2, n):
+    s = vtkPlaneSource()
+    s.SetOrigin(origin); s.SetPoint1(p1); s.SetPoint2(p2)
+    s.SetResolution(n, n)
+    return s
+parts = []
+if piece == 0:  # the block: x, y in [-0.25, 0.25], z in [0.3, 0.8], faces outward
+    lo, hi, z0, z1 = -0.25, 0.25, 0.3, 0.8
+    parts += [plane((lo, lo, z0), (lo, hi, z0), (hi, lo, z0), 6),
+              plane((lo, lo, z1), (hi, lo, z1), (lo, hi, z1), 6),
+              plane((lo, lo, z0), (hi, lo, z0), (lo, lo, z1), 6),
+              plane((lo, hi, z0), (lo, hi, z1), (hi, hi, z0), 6),
+              plane((lo, lo, z0), (lo, lo, z1), (lo, hi, z0), 6),
+              plane((hi, lo, z0), (hi, hi, z0), (hi, lo, z1), 6)]
+if piece == (1 if pieces > 1 else 0):  # the floor, facing up
+    parts.append(plane((-1.5, -1.5, 0.0), (1.5, -1.5, 0.0), (-1.5, 1.5, 0.0), 40))
+append = vtkAppendPolyData()
+for p in parts:
+    append.AddInputConnection(p.GetOutputPort())
+if parts:
+    triangles = vtkTriangleFilter()
+    triangles.SetInputConnection(append.GetOutputPort())
+    triangles.Update()
+    self.GetOutput().ShallowCopy(triangles.GetOutput())
+"""
+source = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=SCENE)
+
+view = CreateView("RenderView")
+view.ViewSize = [320, 320]
+view.OrientationAxesVisibility = 0
+view.UseLight = 0
+view.UseColorPaletteForBackground = 0
+view.Background = [0.0, 0.0, 0.0]
+light = CreateLight()
+light.Coords = "Scene"
+light.Type = "Positional"
+light.Position = [0.5, 0.3, 2.0]
+light.ConeAngle = 180
+light.Intensity = 4.0
+view.AdditionalLights = [light]
+
+display = Show(source, view)
+display.Representation = "Global Illumination"
+display.DiffuseColor = [0.8, 0.8, 0.8]
+display.GlobalIlluminationRays = 64
+display.GlobalIlluminationBounces = 2
+display.GlobalIlluminationDisplayMode = "Direct"
+view.CameraPosition = [0.0, -3.0, 3.2]
+view.CameraFocalPoint = [0.0, 0.0, 0.2]
+view.CameraViewUp = [0.0, 0.0, 1.0]
+view.CameraViewAngle = 30
+
+Render(view)
+
+
+def counters():
+    proxy = display.SMProxy
+    proxy.UpdatePropertyInformation()
+    return {n: proxy.GetProperty("GlobalIllumination" + n).GetElement(0)
+            for n in ("GlobalCasterTriangles", "GlobalCasterGathers", "ShadowMapRenders")}
+
+
+def floor_pixel(world, image):
+    """The image's grey value at the world point `world` on the floor."""
+    renderer = view.GetRenderer()
+    renderer.SetWorldPoint(world[0], world[1], world[2], 1.0)
+    renderer.WorldToDisplay()
+    x, y, _ = renderer.GetDisplayPoint()
+    return image.GetScalarComponentAsDouble(int(round(x)), int(round(y)), 0, 0)
+
+
+def shadow_and_lit(name):
+    """The screenshot <name>.png's grey values in the block's shadow and in the open: the
+    light at (0.5, 0.3, 2) projects the block's centre (0, 0, 0.55) onto the floor at about
+    (-0.5, -0.3, 0); (1, 1, 0) is lit."""
+    from vtkmodules.vtkIOImage import vtkPNGReader
+
+    path = os.path.join(arguments.output_dir, name + ".png")
+    if not os.path.exists(path):
+        SaveScreenshot(path, view, ImageResolution=list(view.ViewSize), TransparentBackground=0)
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    values = (floor_pixel((-0.5, -0.3, 0.0), reader.GetOutput()),
+              floor_pixel((1.0, 1.0, 0.0), reader.GetOutput()))
+    print("%s: floor shadowed %.1f, lit %.1f" % ((name,) + values))
+    return values
+
+
+# 1. The shadow.
+t.compare_with_baseline(view, "TestGlobalIlluminationMPI", arguments)
+shadowed, lit = shadow_and_lit("TestGlobalIlluminationMPI")
+t.check(lit > 40.0 and shadowed < 0.25 * lit,
+        "the block's shadow is on the floor (%.1f against %.1f lit)" % (shadowed, lit))
+
+# 2. The other ranks' triangles: the floor's 2 * 40 * 40 on rank 0, exchanged once.
+c = counters()
+print("counters on rank 0: %s" % c)
+expected = 3200 if ranks > 1 else 0
+t.check(c["GlobalCasterTriangles"] == expected,
+        "rank 0's shadow maps hold the %d triangles of the other ranks" % expected)
+t.check(c["GlobalCasterGathers"] == (1 if ranks > 1 else 0), "the triangles were exchanged once")
+light.Position = [0.4, 0.3, 2.0]
+Render(view)
+view.CameraPosition = [0.1, -3.0, 3.2]
+Render(view)
+c2 = counters()
+t.check(c2["GlobalCasterGathers"] == c["GlobalCasterGathers"],
+        "a light move and a camera move exchange no triangles")
+t.check(c2["ShadowMapRenders"] == c["ShadowMapRenders"] + 1,
+        "the light move re-rendered the shadow maps once, the camera move not")
+
+# 3. The size limit: with none of the other ranks' triangles allowed, each rank's maps hold
+# its own partition only (a warning says so), and the floor of rank 1 loses the block's
+# shadow; one rank keeps it.
+display.GlobalIlluminationMaximumGlobalCasterTriangles = 0
+Render(view)
+if os.path.exists(os.path.join(arguments.output_dir, "TestGlobalIlluminationMPILimit.png")):
+    os.remove(os.path.join(arguments.output_dir, "TestGlobalIlluminationMPILimit.png"))
+shadowed, lit = shadow_and_lit("TestGlobalIlluminationMPILimit")
+c3 = counters()
+t.check(c3["GlobalCasterTriangles"] == 0, "past the limit no triangles are drawn")
+if ranks > 1:
+    t.check(shadowed > 0.5 * lit, "past the limit the shadow across the partitions is missing")
+else:
+    t.check(shadowed < 0.25 * lit, "one rank keeps its shadow past the limit")
