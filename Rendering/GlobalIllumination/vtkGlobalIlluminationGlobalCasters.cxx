@@ -195,23 +195,32 @@ bool vtkGlobalIlluminationGlobalCasters::Gather(vtkDataObject* local)
   {
     AppendTriangles(poly, this->Origin, mine);
   }
+  // Every process learns every length and limit, so all decide alike (a process that
+  // gave up alone would leave the others in the allgather).
   const vtkIdType myLength = static_cast<vtkIdType>(mine.size());
+  const vtkIdType mySizes[2] = { myLength, this->MaximumTriangles };
+  std::vector<vtkIdType> sizes(2 * processes, 0);
+  controller->AllGather(mySizes, sizes.data(), 2);
   std::vector<vtkIdType> lengths(processes, 0);
-  controller->AllGather(&myLength, lengths.data(), 1);
-  vtkIdType others = 0;
-  for (vtkIdType length : lengths)
+  vtkIdType total = 0, limit = VTK_ID_MAX;
+  for (int p = 0; p < processes; ++p)
   {
-    others += length;
+    lengths[p] = sizes[2 * p];
+    total += lengths[p];
+    limit = std::min(limit, sizes[2 * p + 1]);
   }
-  others -= myLength;
+  vtkIdType mostOthers = 0; // the most triangles any process would receive
+  for (int p = 0; p < processes; ++p)
+  {
+    mostOthers = std::max(mostOthers, (total - lengths[p]) / 9);
+  }
+  const vtkIdType others = total - myLength;
   const vtkIdType otherTriangles = others / 9;
-  // Every process sees the same counts, so all decide alike. MPI counts are ints.
-  const vtkIdType total = others + myLength;
-  const bool overLimit =
-    total > std::numeric_limits<int>::max() || otherTriangles > this->MaximumTriangles;
+  // MPI counts are ints.
+  const bool overLimit = total > std::numeric_limits<int>::max() || mostOthers > limit;
   ++this->NumberOfGathers;
   this->Positions.clear();
-  this->LastGatherBytes = static_cast<vtkIdType>(processes * sizeof(vtkIdType));
+  this->LastGatherBytes = static_cast<vtkIdType>(sizes.size() * sizeof(vtkIdType));
   for (int k = 0; k < 6; ++k)
   {
     this->Bounds[k] = (k % 2) ? -1.0 : 1.0; // empty
@@ -220,9 +229,10 @@ bool vtkGlobalIlluminationGlobalCasters::Gather(vtkDataObject* local)
   {
     if (!this->OverLimit)
     {
-      vtkWarningMacro(<< "The other processes hold " << otherTriangles
-                      << " triangles, more than MaximumTriangles (" << this->MaximumTriangles
-                      << "): their shadows are missing from this process's shadow maps.");
+      vtkWarningMacro(<< "The other processes hold " << otherTriangles << " triangles ("
+                      << mostOthers << " for the process that has the fewest itself), more than "
+                      << "MaximumTriangles (" << limit << ", the least over the processes): "
+                      << "their shadows are missing from the shadow maps.");
     }
     this->OverLimit = true;
     this->Modified();

@@ -20,7 +20,7 @@
  * The gathered positions are in data coordinates (drawn with the actor's matrix, which is
  * the same on every process), stored as floats relative to the centre of the global
  * bounds. Past MaximumTriangles triangles of other processes nothing is gathered (every
- * process decides alike, from the gathered counts), with a warning naming the counts: the
+ * process decides alike, from the gathered counts and limits), with a warning naming the counts: the
  * shadows of the other partitions are then missing.
  *
  * Cells marked as duplicates (ghost cells) are left out; polygons are fanned, strips split
@@ -55,9 +55,10 @@ public:
 
   ///@{
   /**
-   * The most triangles of other processes that are gathered. Above it, none are, with a
-   * warning. A change takes effect at the next Gather. The default value is 20 000 000
-   * (720 MB per process).
+   * The most triangles of other processes that are gathered. If any process would
+   * receive more (under the least limit over the processes), none are, on every process,
+   * with a warning. A change takes effect at the next Gather. The default value is
+   * 20 000 000 (720 MB per process).
    */
   vtkSetClampMacro(MaximumTriangles, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(MaximumTriangles, vtkIdType);
