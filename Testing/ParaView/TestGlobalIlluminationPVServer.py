@@ -1,0 +1,97 @@
+"""Client and parallel server: the Global Illumination representation rendered by
+`mpiexec -np 2 pvserver` and composited by IceT, as a ParaView GUI connected to a cluster
+sees it.
+
+Run with Python and ParaView's modules (as the pvbatch tests' PYTHONPATH). This process
+starts `<mpiexec> -np 2 [flags] pvserver` on a free port and runs itself again as the
+client (--port), which connects, loads the plugin on both sides, keeps the rendering on
+the server (Remote Render Threshold 0) and runs the checks of linkgi_mpi_scene.py against
+the same baseline as the pvbatch runs. The server exits when its client does.
+Arguments: --plugin, --baseline-dir, --output-dir as the pvbatch tests, and --mpiexec
+<path> [--mpiexec-flag <flag>]... --pvserver <path>.
+"""
+import argparse
+import os
+import socket
+import subprocess
+import sys
+import time
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--plugin", required=True)
+parser.add_argument("--baseline-dir", required=True)
+parser.add_argument("--output-dir", required=True)
+parser.add_argument("--mpiexec")
+parser.add_argument("--mpiexec-flag", action="append", default=[])
+parser.add_argument("--pvserver")
+parser.add_argument("--port", type=int, help="(internal) be the client of this port")
+arguments = parser.parse_args(sys.argv[1:])
+
+
+def client():
+    from paraview import servermanager
+    from paraview import simple
+
+    import linkgi_mpi_scene
+    import linkgi_paraview_testing as t
+
+    simple.Connect("localhost", arguments.port)
+    ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
+    t.check(ranks == 2, "the server has 2 ranks (has %d)" % ranks)
+    if not os.path.exists(arguments.plugin):
+        t.fail("the plugin %s was not built" % arguments.plugin)
+    simple.LoadPlugin(arguments.plugin, remote=True, ns=globals())
+    simple.LoadPlugin(arguments.plugin, remote=False, ns=globals())
+    # Render on the ranks (IceT), never on the client with the delivered geometry.
+    simple.GetSettingsProxy("RenderViewSettings").RemoteRenderThreshold = 0
+    linkgi_mpi_scene.run(arguments, ranks, counters_here=False)
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("localhost", 0))
+        return s.getsockname()[1]
+
+
+def manager():
+    port = free_port()
+    os.makedirs(arguments.output_dir, exist_ok=True)
+    log_path = os.path.join(arguments.output_dir, "pvserver.log")
+
+    def server_log():
+        with open(log_path) as f:
+            return f.read()
+
+    with open(log_path, "w") as log:
+        server = subprocess.Popen(
+            [arguments.mpiexec, "-np", "2"] + arguments.mpiexec_flag +
+            [arguments.pvserver, "--server-port=%d" % port],
+            stdout=log, stderr=subprocess.STDOUT)
+    code = 1
+    try:
+        deadline = time.time() + 120
+        while "Accepting connection" not in server_log():
+            if server.poll() is not None or time.time() > deadline:
+                print("FAILED: pvserver did not start:\n" + server_log())
+                return 1
+            time.sleep(0.2)
+        code = subprocess.call([sys.executable, os.path.abspath(__file__), "--port", str(port),
+                                "--plugin", arguments.plugin,
+                                "--baseline-dir", arguments.baseline_dir,
+                                "--output-dir", arguments.output_dir])
+        server.wait(60)  # it exits with its client
+    except subprocess.TimeoutExpired:
+        print("FAILED: pvserver did not exit after its client")
+        code = 1
+    finally:
+        if server.poll() is None:
+            server.kill()
+            server.wait()
+        print(server_log())  # the server's warnings
+    return code
+
+
+if arguments.port:
+    client()
+else:
+    sys.exit(manager())

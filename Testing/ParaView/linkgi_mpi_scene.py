@@ -1,0 +1,170 @@
+"""The scene and checks shared by the MPI tests (TestGlobalIlluminationMPI.py under
+`mpirun pvbatch --mpi`, TestGlobalIlluminationPVServer.py against `mpiexec pvserver`).
+
+A block floats over a floor under a point light; with 2 or more ranks the block is rank 0's
+partition and the floor rank 1's (ranks beyond have no points), so the block's shadow on
+the floor and the light between them cross the partition boundary.
+
+run() checks, after connecting and loading the plugin:
+1. Direct light only: the block's shadow is on the floor (a shadowed floor pixel is far
+   darker than a lit one) and the picture matches the one baseline that the one-rank run
+   matches too. Without the other ranks' triangles in each rank's shadow maps
+   (vtkGlobalIlluminationGlobalCasters) rank 1 would draw a floor without the shadow.
+2. The representation's counters (pvbatch only: a client reads its own copy): on rank 0
+   the shadow maps hold the floor's triangles (the other ranks'), exchanged once, not again
+   on further renders or a light move.
+3. The size limit: with none of the other ranks' triangles allowed, each rank's maps hold
+   its own partition only (a warning says so) and the floor of rank 1 loses the block's
+   shadow; one rank keeps it.
+"""
+import os
+
+from paraview.simple import (CreateLight, CreateView, ProgrammableSource, Render,
+                             SaveScreenshot, Show)
+
+import linkgi_paraview_testing as t
+
+# The scene, made on every rank: piece 0 is the block, piece 1 the floor (one piece: both).
+SCENE = """
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+from vtkmodules.vtkFiltersCore import vtkAppendPolyData, vtkTriangleFilter
+from vtkmodules.vtkFiltersSources import vtkPlaneSource
+info = self.GetOutputInformation(0)
+piece = info.Get(sddp.UPDATE_PIECE_NUMBER())
+pieces = info.Get(sddp.UPDATE_NUMBER_OF_PIECES())
+def plane(origin, p1, p2, n):
+    s = vtkPlaneSource()
+    s.SetOrigin(origin); s.SetPoint1(p1); s.SetPoint2(p2)
+    s.SetResolution(n, n)
+    return s
+parts = []
+if piece == 0:  # the block: x, y in [-0.25, 0.25], z in [0.3, 0.8], faces outward
+    lo, hi, z0, z1 = -0.25, 0.25, 0.3, 0.8
+    parts += [plane((lo, lo, z0), (lo, hi, z0), (hi, lo, z0), 6),
+              plane((lo, lo, z1), (hi, lo, z1), (lo, hi, z1), 6),
+              plane((lo, lo, z0), (hi, lo, z0), (lo, lo, z1), 6),
+              plane((lo, hi, z0), (lo, hi, z1), (hi, hi, z0), 6),
+              plane((lo, lo, z0), (lo, lo, z1), (lo, hi, z0), 6),
+              plane((hi, lo, z0), (hi, hi, z0), (hi, lo, z1), 6)]
+if piece == (1 if pieces > 1 else 0):  # the floor, facing up
+    parts.append(plane((-1.5, -1.5, 0.0), (1.5, -1.5, 0.0), (-1.5, 1.5, 0.0), 40))
+append = vtkAppendPolyData()
+for p in parts:
+    append.AddInputConnection(p.GetOutputPort())
+if parts:
+    triangles = vtkTriangleFilter()
+    triangles.SetInputConnection(append.GetOutputPort())
+    triangles.Update()
+    self.GetOutput().ShallowCopy(triangles.GetOutput())
+"""
+
+
+def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
+    """The checks; `counters_here` says whether the representation's information
+    properties are rank 0's (pvbatch), not a client's own copy (client-server: the
+    images and shadows are still checked)."""
+    source = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=SCENE)
+
+    view = CreateView("RenderView")
+    view.ViewSize = [320, 320]
+    view.OrientationAxesVisibility = 0
+    view.UseLight = 0
+    view.UseColorPaletteForBackground = 0
+    view.Background = [0.0, 0.0, 0.0]
+    light = CreateLight()
+    light.Coords = "Scene"
+    light.Type = "Positional"
+    light.Position = [0.5, 0.3, 2.0]
+    light.ConeAngle = 180
+    light.Intensity = 4.0
+    view.AdditionalLights = [light]
+
+    display = Show(source, view)
+    display.Representation = "Global Illumination"
+    display.DiffuseColor = [0.8, 0.8, 0.8]
+    display.GlobalIlluminationRays = 64
+    display.GlobalIlluminationBounces = 2
+    display.GlobalIlluminationDisplayMode = "Direct"
+    view.CameraPosition = [0.0, -3.0, 3.2]
+    view.CameraFocalPoint = [0.0, 0.0, 0.2]
+    view.CameraViewUp = [0.0, 0.0, 1.0]
+    view.CameraViewAngle = 30
+
+    Render(view)
+
+    def counters():
+        proxy = display.SMProxy
+        proxy.UpdatePropertyInformation()
+        return {n: proxy.GetProperty("GlobalIllumination" + n).GetElement(0)
+                for n in ("GlobalCasterTriangles", "GlobalCasterGathers", "ShadowMapRenders")}
+
+    def floor_pixel(world, image):
+        """The image's grey value at the world point `world` on the floor."""
+        renderer = view.GetRenderer()
+        renderer.SetWorldPoint(world[0], world[1], world[2], 1.0)
+        renderer.WorldToDisplay()
+        x, y, _ = renderer.GetDisplayPoint()
+        return image.GetScalarComponentAsDouble(int(round(x)), int(round(y)), 0, 0)
+
+    def shadow_and_lit(name):
+        """The screenshot <name>.png's grey values in the block's shadow and in the open: the
+        light at (0.4-0.5, 0.3, 2) casts the block's shadow over about x in [-0.7, 0.2], y in
+        [-0.6, 0.2] of the floor; (-0.5, -0.3, 0) lies in it, beside the block as the camera
+        sees it; (1, 1, 0) is lit."""
+        from vtkmodules.vtkIOImage import vtkPNGReader
+
+        path = os.path.join(arguments.output_dir, name + ".png")
+        if not os.path.exists(path):
+            SaveScreenshot(path, view, ImageResolution=list(view.ViewSize), TransparentBackground=0)
+        reader = vtkPNGReader()
+        reader.SetFileName(path)
+        reader.Update()
+        values = (floor_pixel((-0.5, -0.3, 0.0), reader.GetOutput()),
+                  floor_pixel((1.0, 1.0, 0.0), reader.GetOutput()))
+        print("%s: floor shadowed %.1f, lit %.1f" % ((name,) + values))
+        return values
+
+
+    # 1. The shadow.
+    t.compare_with_baseline(view, name, arguments)
+    shadowed, lit = shadow_and_lit(name)
+    t.check(lit > 40.0 and shadowed < 0.25 * lit,
+            "the block's shadow is on the floor (%.1f against %.1f lit)" % (shadowed, lit))
+
+    if counters_here:
+        # 2. The other ranks' triangles: the floor's 2 * 40 * 40 on rank 0, exchanged once.
+        c = counters()
+        print("counters on rank 0: %s" % c)
+        expected = 3200 if ranks > 1 else 0
+        t.check(c["GlobalCasterTriangles"] == expected,
+                "rank 0's shadow maps hold the %d triangles of the other ranks" % expected)
+        t.check(c["GlobalCasterGathers"] == (1 if ranks > 1 else 0), "the triangles were exchanged once")
+        light.Position = [0.4, 0.3, 2.0]
+        Render(view)
+        view.CameraPosition = [0.1, -3.0, 3.2]
+        Render(view)
+        c2 = counters()
+        t.check(c2["GlobalCasterGathers"] == c["GlobalCasterGathers"],
+                "a light move and a camera move exchange no triangles")
+        t.check(c2["ShadowMapRenders"] == c["ShadowMapRenders"] + 1,
+                "the light move re-rendered the shadow maps once, the camera move not")
+    else:
+        light.Position = [0.4, 0.3, 2.0]
+        Render(view)
+
+    # 3. The size limit: with none of the other ranks' triangles allowed, each rank's maps hold
+    # its own partition only (a warning says so), and the floor of rank 1 loses the block's
+    # shadow; one rank keeps it.
+    display.GlobalIlluminationMaximumGlobalCasterTriangles = 0
+    Render(view)
+    limit_image = os.path.join(arguments.output_dir, name + "Limit.png")
+    if os.path.exists(limit_image):
+        os.remove(limit_image)
+    shadowed, lit = shadow_and_lit(name + "Limit")
+    if counters_here:
+        c3 = counters()
+        t.check(c3["GlobalCasterTriangles"] == 0, "past the limit no triangles are drawn")
+    if ranks > 1:
+        t.check(shadowed > 0.5 * lit, "past the limit the shadow across the partitions is missing")
+    else:
+        t.check(shadowed < 0.25 * lit, "one rank keeps its shadow past the limit")
