@@ -2,6 +2,7 @@
 
 #include "vtkCamera.h"
 #include "vtkCommand.h"
+#include "vtkCommunicator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkCompositeRepresentation.h"
 #include "vtkCompositeDataDisplayAttributes.h"
@@ -16,6 +17,7 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix4x4.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLight.h"
 #include "vtkPVRenderView.h"
@@ -88,6 +90,20 @@ vtkSMProxy* FindProxy(vtkObject* object)
 }
 
 const char* const BackgroundText = "Global illumination (background)";
+
+/// `a` and `b`, each true if it is true on any process of the global controller.
+void AnyOverProcesses(bool& a, bool& b)
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (!controller || controller->GetNumberOfProcesses() <= 1)
+  {
+    return;
+  }
+  int local[2] = { a ? 1 : 0, b ? 1 : 0 }, global[2] = { 0, 0 };
+  controller->AllReduce(local, global, 2, vtkCommunicator::MAX_OP);
+  a = global[0] != 0;
+  b = global[1] != 0;
+}
 }
 
 //------------------------------------------------------------------------------
@@ -101,6 +117,7 @@ struct vtkGlobalIlluminationRepresentation::vtkInternals
 
   // In a parallel run, the other processes' triangles for the shadow maps.
   vtkNew<vtkGlobalIlluminationGlobalCasters> GlobalCasters;
+  vtkNew<vtkPolyData> EmptyPartition; // the filter's input where nothing was delivered
 
   // What the mapper drew last (its block attributes are per block object).
   vtkDataObject* Drawn = nullptr;
@@ -333,6 +350,11 @@ vtkDataObject* vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
   {
     emission = emission || leaf->GetPointData()->GetArray("Emission");
   }
+  bool points = input && input->GetNumberOfElements(vtkDataObject::POINT) > 0;
+  // In a parallel run both are the processes' together: every process takes the same
+  // branch below (the filter's parallel path is collective) and an emitting partition
+  // lights the others.
+  AnyOverProcesses(points, emission);
   filter->SetEmissionArrayName(emission ? "Emission" : nullptr);
   this->GatherLights(renderer);
 
@@ -340,9 +362,13 @@ vtkDataObject* vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
   filter->GetEnvironmentColor(sky);
   const bool dark = filter->GetNumberOfLights() == 0 && !emission && sky[0] <= 0.0 &&
     sky[1] <= 0.0 && sky[2] <= 0.0;
-  if (!input || input->GetNumberOfElements(vtkDataObject::POINT) == 0 || dark)
+  if (!points || dark)
   {
     return delivered; // nothing to solve: no indirect light (the mapper draws direct light)
+  }
+  if (!input)
+  {
+    input = internals.EmptyPartition; // this process's partition is empty, others' are not
   }
   if (filter->GetInputDataObject(0, 0) != input)
   {
