@@ -6,7 +6,9 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
+#include "vtkIdTypeArray.h"
 #include "vtkPolyData.h"
+#include "vtkQuadricClustering.h"
 #include "vtkUnsignedCharArray.h"
 
 #if VTK_MODULE_ENABLE_VTK_ParallelCore
@@ -17,6 +19,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <string>
 
 vtkStandardNewMacro(vtkGlobalIlluminationGlobalCasters);
 
@@ -117,6 +120,109 @@ void AppendTriangles(vtkPolyData* poly, const double origin[3], std::vector<floa
     }
   }
 }
+
+#if VTK_MODULE_ENABLE_VTK_ParallelCore
+/// What every process sends, learnt by all: the lengths (floats), their total, the least
+/// limit (triangles) and whether some process would receive more than that.
+struct Sizes
+{
+  std::vector<vtkIdType> Lengths;
+  vtkIdType Total = 0;
+  vtkIdType Limit = VTK_ID_MAX;
+  bool Over = false;
+  vtkIdType Bytes = 0; // received by this exchange
+  std::string LimitReason;
+};
+
+Sizes ExchangeSizes(vtkMultiProcessController* controller, vtkIdType length, vtkIdType maximum)
+{
+  const int processes = controller->GetNumberOfProcesses();
+  const vtkIdType mine[2] = { length, maximum };
+  std::vector<vtkIdType> all(2 * processes, 0);
+  controller->AllGather(mine, all.data(), 2);
+  Sizes sizes;
+  sizes.Lengths.resize(processes);
+  for (int p = 0; p < processes; ++p)
+  {
+    sizes.Lengths[p] = all[2 * p];
+    sizes.Total += all[2 * p];
+    sizes.Limit = std::min(sizes.Limit, all[2 * p + 1]);
+  }
+  vtkIdType most = 0; // the most triangles any process would receive
+  for (int p = 0; p < processes; ++p)
+  {
+    most = std::max(most, (sizes.Total - sizes.Lengths[p]) / 9);
+  }
+  // MPI counts are ints.
+  sizes.Over = sizes.Total > std::numeric_limits<int>::max() || most > sizes.Limit;
+  sizes.Bytes = static_cast<vtkIdType>(all.size() * sizeof(vtkIdType));
+  sizes.LimitReason = std::to_string(most) + " for the process that has the fewest itself";
+  return sizes;
+}
+
+/// At most `triangles` triangles that approximate the triangle soup `corners` (9 floats
+/// each): vertex clustering (vtkQuadricClustering) on a grid of cubic bins, coarsened until
+/// they fit. The grid has at most 128 bins along its longest side (the clustering holds a
+/// quadric per bin: 170 MB at most).
+std::vector<float> Decimate(const std::vector<float>& corners, vtkIdType triangles)
+{
+  const vtkIdType count = static_cast<vtkIdType>(corners.size() / 9);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  points->SetNumberOfPoints(3 * count);
+  std::copy(corners.begin(), corners.end(),
+    static_cast<float*>(points->GetData()->GetVoidPointer(0)));
+  vtkNew<vtkCellArray> cells;
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(count + 1);
+  connectivity->SetNumberOfValues(3 * count);
+  for (vtkIdType i = 0; i <= count; ++i)
+  {
+    offsets->SetValue(i, 3 * i);
+  }
+  for (vtkIdType i = 0; i < 3 * count; ++i)
+  {
+    connectivity->SetValue(i, i);
+  }
+  cells->SetData(offsets, connectivity);
+  vtkNew<vtkPolyData> soup;
+  soup->SetPoints(points);
+  soup->SetPolys(cells);
+  double bounds[6];
+  soup->GetBounds(bounds);
+  const double size =
+    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-30 });
+  // A surface crosses about (bins along a side)^2 bins, two triangles each.
+  double side = std::min(128.0, std::sqrt(std::max(1.0, 0.5 * double(triangles))));
+  std::vector<float> out;
+  for (;;)
+  {
+    vtkNew<vtkQuadricClustering> clustering;
+    clustering->SetInputData(soup);
+    clustering->AutoAdjustNumberOfDivisionsOff();
+    int divisions[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      divisions[k] = std::max(1, static_cast<int>(std::ceil(side * (bounds[2 * k + 1] - bounds[2 * k]) / size)));
+    }
+    clustering->SetNumberOfDivisions(divisions);
+    clustering->Update();
+    vtkPolyData* proxy = clustering->GetOutput();
+    const vtkIdType made = proxy->GetNumberOfPolys();
+    if (made <= triangles || side <= 1.0)
+    {
+      out.clear();
+      if (made <= triangles)
+      {
+        const double origin[3] = { 0.0, 0.0, 0.0 };
+        AppendTriangles(proxy, origin, out);
+      }
+      return out;
+    }
+    side = std::max(1.0, std::floor(side * std::min(0.9, 0.95 * std::sqrt(double(triangles) / made))));
+  }
+}
+#endif
 }
 
 //------------------------------------------------------------------------------
@@ -197,48 +303,48 @@ bool vtkGlobalIlluminationGlobalCasters::Gather(vtkDataObject* local)
   }
   // Every process learns every length and limit, so all decide alike (a process that
   // gave up alone would leave the others in the allgather).
-  const vtkIdType myLength = static_cast<vtkIdType>(mine.size());
-  const vtkIdType mySizes[2] = { myLength, this->MaximumTriangles };
-  std::vector<vtkIdType> sizes(2 * processes, 0);
-  controller->AllGather(mySizes, sizes.data(), 2);
-  std::vector<vtkIdType> lengths(processes, 0);
-  vtkIdType total = 0, limit = VTK_ID_MAX;
-  for (int p = 0; p < processes; ++p)
+  Sizes sizes = ExchangeSizes(controller, static_cast<vtkIdType>(mine.size()), this->MaximumTriangles);
+  this->LastGatherBytes = sizes.Bytes;
+  const vtkIdType fullTriangles = (sizes.Total - static_cast<vtkIdType>(mine.size())) / 9;
+  const std::string fullReason = sizes.LimitReason;
+  const bool overLimit = sizes.Over;
+  if (overLimit && sizes.Limit > 0)
   {
-    lengths[p] = sizes[2 * p];
-    total += lengths[p];
-    limit = std::min(limit, sizes[2 * p + 1]);
+    // Decimated proxies that fit: each process sends at most its share of the limit.
+    const vtkIdType share = sizes.Limit / (processes - 1);
+    if (static_cast<vtkIdType>(mine.size() / 9) > share)
+    {
+      mine = Decimate(mine, share);
+    }
+    sizes = ExchangeSizes(controller, static_cast<vtkIdType>(mine.size()), this->MaximumTriangles);
+    this->LastGatherBytes += sizes.Bytes;
   }
-  vtkIdType mostOthers = 0; // the most triangles any process would receive
-  for (int p = 0; p < processes; ++p)
-  {
-    mostOthers = std::max(mostOthers, (total - lengths[p]) / 9);
-  }
-  const vtkIdType others = total - myLength;
-  const vtkIdType otherTriangles = others / 9;
-  // MPI counts are ints.
-  const bool overLimit = total > std::numeric_limits<int>::max() || mostOthers > limit;
   ++this->NumberOfGathers;
   this->Positions.clear();
-  this->LastGatherBytes = static_cast<vtkIdType>(sizes.size() * sizeof(vtkIdType));
   for (int k = 0; k < 6; ++k)
   {
     this->Bounds[k] = (k % 2) ? -1.0 : 1.0; // empty
   }
-  if (overLimit)
+  this->Proxies = overLimit && !sizes.Over;
+  if (overLimit && (!this->OverLimit || this->Proxies != this->WarnedProxies))
   {
-    if (!this->OverLimit)
-    {
-      vtkWarningMacro(<< "The other processes hold " << otherTriangles << " triangles ("
-                      << mostOthers << " for the process that has the fewest itself), more than "
-                      << "MaximumTriangles (" << limit << ", the least over the processes): "
-                      << "their shadows are missing from the shadow maps.");
-    }
-    this->OverLimit = true;
+    vtkWarningMacro(<< "The other processes hold " << fullTriangles << " triangles ("
+                    << fullReason << "), more than MaximumTriangles (" << sizes.Limit
+                    << ", the least over the processes): "
+                    << (this->Proxies
+                           ? "their shadows come from decimated proxies (approximate)."
+                           : "their shadows are missing from the shadow maps."));
+    this->WarnedProxies = this->Proxies;
+  }
+  this->OverLimit = overLimit;
+  if (sizes.Over)
+  {
     this->Modified();
     return true;
   }
-  this->OverLimit = false;
+  std::vector<vtkIdType> lengths = sizes.Lengths;
+  const vtkIdType myLength = static_cast<vtkIdType>(mine.size());
+  const vtkIdType total = sizes.Total, others = total - myLength;
   std::vector<vtkIdType> offsets(processes, 0);
   for (int p = 1; p < processes; ++p)
   {

@@ -19,9 +19,12 @@
  *
  * The gathered positions are in data coordinates (drawn with the actor's matrix, which is
  * the same on every process), stored as floats relative to the centre of the global
- * bounds. Past MaximumTriangles triangles of other processes nothing is gathered (every
- * process decides alike, from the gathered counts and limits), with a warning naming the counts: the
- * shadows of the other partitions are then missing.
+ * bounds. Past MaximumTriangles triangles of other processes (every process decides alike,
+ * from the gathered counts and limits) each process sends a decimated proxy of its
+ * triangles instead, at most its share of the limit (vertex clustering,
+ * vtkQuadricClustering), with a warning: the shadows of the other partitions are then
+ * approximate. With MaximumTriangles 0, or where even the proxies do not fit, nothing is
+ * gathered and those shadows are missing.
  *
  * Cells marked as duplicates (ghost cells) are left out; polygons are fanned, strips split
  * into triangles; lines, vertices and non-polydata leaves cast nothing.
@@ -56,8 +59,8 @@ public:
   ///@{
   /**
    * The most triangles of other processes that are gathered. If any process would
-   * receive more (under the least limit over the processes), none are, on every process,
-   * with a warning. A change takes effect at the next Gather. The default value is
+   * receive more (under the least limit over the processes), every process sends a
+   * decimated proxy instead (none at 0), with a warning. A change takes effect at the next Gather. The default value is
    * 20 000 000 (720 MB per process).
    */
   vtkSetClampMacro(MaximumTriangles, vtkIdType, 0, VTK_ID_MAX);
@@ -90,8 +93,11 @@ public:
   /// Bytes this process received in the last exchange (positions and counts).
   vtkIdType GetLastGatherBytes() const { return this->LastGatherBytes; }
 
-  /// Whether the last exchange gave up because of MaximumTriangles.
+  /// Whether the full triangles were over MaximumTriangles at the last exchange.
   bool GetOverLimit() const { return this->OverLimit; }
+
+  /// Whether the last exchange sent decimated proxies (over the limit, with a limit above 0).
+  bool GetProxies() const { return this->Proxies; }
 
 protected:
   vtkGlobalIlluminationGlobalCasters();
@@ -111,6 +117,8 @@ private:
   int NumberOfGathers = 0;
   vtkIdType LastGatherBytes = 0;
   bool OverLimit = false;
+  bool Proxies = false;
+  bool WarnedProxies = false;
   bool Gathered = false;
   vtkIdType GatheredMaximum = 0; // MaximumTriangles at the last exchange
 };

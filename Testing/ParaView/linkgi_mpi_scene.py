@@ -16,6 +16,7 @@ run() checks, after connecting and loading the plugin:
 3. The size limit: with none of the other ranks' triangles allowed, each rank's maps hold
    its own partition only (a warning says so) and the floor of rank 1 loses the block's
    shadow; one rank keeps it.
+4. With a small limit the ranks exchange decimated proxies and the shadow is back.
 """
 import os
 
@@ -168,3 +169,22 @@ def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
         t.check(shadowed > 0.5 * lit, "past the limit the shadow across the partitions is missing")
     else:
         t.check(shadowed < 0.25 * lit, "one rank keeps its shadow past the limit")
+
+    # 4. Proxies: with a limit of 200 triangles, each rank sends a decimated proxy of its
+    # partition (the block's 432 triangles become at most 200 / (ranks - 1)); the floor of
+    # rank 1 gets the block's shadow back, approximately.
+    if ranks > 1:
+        display.GlobalIlluminationMaximumGlobalCasterTriangles = 200
+        Render(view)
+        proxy_image = os.path.join(arguments.output_dir, name + "Proxy.png")
+        if os.path.exists(proxy_image):
+            os.remove(proxy_image)
+        shadowed, lit = shadow_and_lit(name + "Proxy")
+        t.check(shadowed < 0.25 * lit,
+                "with proxies the shadow across the partitions is back (%.1f against %.1f lit)"
+                % (shadowed, lit))
+        if counters_here:
+            c4 = counters()
+            t.check(0 < c4["GlobalCasterTriangles"] <= 200,
+                    "rank 0 drew %d proxy triangles, at most the limit"
+                    % c4["GlobalCasterTriangles"])

@@ -2,7 +2,8 @@
 // triangles of the others and not its own, with their bounds; rank 2 has no data (null)
 // and rank 1 a composite dataset. Repeated gathers and new point data exchange nothing;
 // new points on one rank make every rank exchange again; past the least MaximumTriangles
-// of the ranks every rank gives up alike (no rank left waiting in the allgather).
+// of the ranks every rank sends a decimated proxy (nothing at 0), all alike (no rank left
+// waiting in the allgather).
 #include "vtkGlobalIlluminationGlobalCasters.h"
 
 #include "vtkFloatArray.h"
@@ -119,15 +120,43 @@ int main(int argc, char* argv[])
   ok = Check(rank, casters->Gather(local), "moved points on rank 0: every rank exchanges") && ok;
   ok = Check(rank, casters->GetNumberOfGathers() == 2, "two exchanges in all") && ok;
 
-  // The limit: the least over the ranks counts, and all ranks give up alike when any
-  // would receive more (rank 2 lowers it to 10; rank 0 would receive 26, rank 2 28).
+  // The limit: the least over the ranks counts, and all ranks act alike when any would
+  // receive more (rank 2 lowers it to 10; rank 0 would receive 26, rank 2 28): each rank
+  // sends a proxy of at most its share (10 / 2 = 5 triangles). Rank 0's 2 triangles go as
+  // they are; rank 1's squares are clustered, and the proxies stay on their planes.
+  if (rank == 0)
+  {
+    first->GetPoints()->SetPoint(0, 0.0, 0.0, 0.0); // flat again
+    first->GetPoints()->Modified();
+  }
   if (rank == 2)
   {
     casters->SetMaximumTriangles(10);
   }
   ok = Check(rank, casters->Gather(local), "a new limit on rank 2: every rank exchanges") && ok;
-  ok = Check(rank, casters->GetOverLimit(), "every rank is over the least limit") && ok;
-  ok = Check(rank, casters->GetNumberOfTriangles() == 0, "over the limit, nothing is kept") && ok;
+  ok = Check(rank, casters->GetOverLimit() && casters->GetProxies(),
+         "every rank is over the least limit and exchanged proxies") &&
+    ok;
+  ok = Check(rank, casters->GetNumberOfTriangles() <= 10,
+         "at most the limit received (" + std::to_string(casters->GetNumberOfTriangles()) + ")") &&
+    ok;
+  if (rank == 2)
+  {
+    ok = Check(rank, casters->GetNumberOfTriangles() >= 2, "rank 0's 2 triangles among them") && ok;
+  }
+  bool planar = true;
+  for (std::size_t i = 2; i < casters->GetPositions().size(); i += 3)
+  {
+    const double z = o[2] + casters->GetPositions()[i];
+    planar = planar && std::abs(z - std::round(z)) < 1e-5;
+  }
+  ok = Check(rank, planar, "the proxies lie on the squares' planes") && ok;
+  casters->SetMaximumTriangles(0);
+  ok = Check(rank, casters->Gather(local), "limit 0 everywhere: exchanges again") && ok;
+  ok = Check(rank, casters->GetOverLimit() && !casters->GetProxies() &&
+           casters->GetNumberOfTriangles() == 0,
+         "at limit 0 nothing is kept, not even proxies") &&
+    ok;
   casters->SetMaximumTriangles(28);
   ok = Check(rank, casters->Gather(local), "limit 28 everywhere: exchanges again") && ok;
   ok = Check(rank, !casters->GetOverLimit() && casters->GetNumberOfTriangles() == expected,

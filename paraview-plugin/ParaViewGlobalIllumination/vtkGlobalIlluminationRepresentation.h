@@ -188,8 +188,8 @@ public:
 
   /**
    * The most triangles of other processes drawn into the shadow maps
-   * (vtkGlobalIlluminationGlobalCasters::SetMaximumTriangles); above it none are, with a
-   * warning.
+   * (vtkGlobalIlluminationGlobalCasters::SetMaximumTriangles); above it the processes
+   * exchange decimated proxies, with a warning (at 0 nothing).
    */
   void SetMaximumGlobalCasterTriangles(int triangles);
 
