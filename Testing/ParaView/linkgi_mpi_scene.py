@@ -126,6 +126,15 @@ def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
         return values
 
 
+    def shadow_and_lit_at_limit(limit, image):
+        """shadow_and_lit of a new screenshot after setting the caster limit."""
+        display.GlobalIlluminationMaximumGlobalCasterTriangles = limit
+        Render(view)
+        path = os.path.join(arguments.output_dir, image + ".png")
+        if os.path.exists(path):
+            os.remove(path)
+        return shadow_and_lit(image)
+
     # 1. The shadow.
     t.compare_with_baseline(view, name, arguments)
     shadowed, lit = shadow_and_lit(name)
@@ -156,12 +165,7 @@ def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
     # 3. The size limit: with none of the other ranks' triangles allowed, each rank's maps hold
     # its own partition only (a warning says so), and the floor of rank 1 loses the block's
     # shadow; one rank keeps it.
-    display.GlobalIlluminationMaximumGlobalCasterTriangles = 0
-    Render(view)
-    limit_image = os.path.join(arguments.output_dir, name + "Limit.png")
-    if os.path.exists(limit_image):
-        os.remove(limit_image)
-    shadowed, lit = shadow_and_lit(name + "Limit")
+    shadowed, lit = shadow_and_lit_at_limit(0, name + "Limit")
     if counters_here:
         c3 = counters()
         t.check(c3["GlobalCasterTriangles"] == 0, "past the limit no triangles are drawn")
@@ -174,12 +178,7 @@ def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
     # partition (the block's 432 triangles become at most 200 / (ranks - 1)); the floor of
     # rank 1 gets the block's shadow back, approximately.
     if ranks > 1:
-        display.GlobalIlluminationMaximumGlobalCasterTriangles = 200
-        Render(view)
-        proxy_image = os.path.join(arguments.output_dir, name + "Proxy.png")
-        if os.path.exists(proxy_image):
-            os.remove(proxy_image)
-        shadowed, lit = shadow_and_lit(name + "Proxy")
+        shadowed, lit = shadow_and_lit_at_limit(200, name + "Proxy")
         t.check(shadowed < 0.25 * lit,
                 "with proxies the shadow across the partitions is back (%.1f against %.1f lit)"
                 % (shadowed, lit))
