@@ -1,12 +1,12 @@
 #include "vtkGlobalIlluminationGlobalCasters.h"
 
+#include "vtkAppendPolyData.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
-#include "vtkIdTypeArray.h"
 #include "vtkPolyData.h"
 #include "vtkQuadricClustering.h"
 #include "vtkUnsignedCharArray.h"
@@ -160,36 +160,32 @@ Sizes ExchangeSizes(vtkMultiProcessController* controller, vtkIdType length, vtk
   return sizes;
 }
 
-/// At most `triangles` triangles that approximate the triangle soup `corners` (9 floats
-/// each): vertex clustering (vtkQuadricClustering) on a grid of cubic bins, coarsened until
-/// they fit. The grid has at most 128 bins along its longest side (the clustering holds a
-/// quadric per bin: 170 MB at most).
-std::vector<float> Decimate(const std::vector<float>& corners, vtkIdType triangles)
+/// At most `triangles` triangles (9 floats each, relative to `origin`) that approximate
+/// the triangles of `leaves`: vertex clustering (vtkQuadricClustering) of their shared
+/// points on a grid of cubic bins, coarsened until they fit. The grid has at most 128 bins
+/// along its longest side (the clustering holds a quadric per bin: 170 MB at most).
+std::vector<float> Decimate(
+  const std::vector<vtkPolyData*>& leaves, const double origin[3], vtkIdType triangles)
 {
-  const vtkIdType count = static_cast<vtkIdType>(corners.size() / 9);
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  points->SetNumberOfPoints(3 * count);
-  std::copy(corners.begin(), corners.end(),
-    static_cast<float*>(points->GetData()->GetVoidPointer(0)));
-  vtkNew<vtkCellArray> cells;
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfValues(count + 1);
-  connectivity->SetNumberOfValues(3 * count);
-  for (vtkIdType i = 0; i <= count; ++i)
+  // The surfaces alone: the clustering would carry point data along. (Ghost cells are
+  // clustered too: a neighbour's copy of them only shadows what they shadow anyway.)
+  vtkNew<vtkAppendPolyData> append;
+  for (vtkPolyData* leaf : leaves)
   {
-    offsets->SetValue(i, 3 * i);
+    if (leaf->GetNumberOfPoints() == 0)
+    {
+      continue;
+    }
+    vtkNew<vtkPolyData> geometry;
+    geometry->SetPoints(leaf->GetPoints());
+    geometry->SetPolys(leaf->GetPolys());
+    geometry->SetStrips(leaf->GetStrips());
+    append->AddInputData(geometry);
   }
-  for (vtkIdType i = 0; i < 3 * count; ++i)
-  {
-    connectivity->SetValue(i, i);
-  }
-  cells->SetData(offsets, connectivity);
-  vtkNew<vtkPolyData> soup;
-  soup->SetPoints(points);
-  soup->SetPolys(cells);
+  append->Update();
+  vtkPolyData* surfaces = append->GetOutput();
   double bounds[6];
-  soup->GetBounds(bounds);
+  surfaces->GetBounds(bounds);
   const double size =
     std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-30 });
   // A surface crosses about (bins along a side)^2 bins, two triangles each.
@@ -198,12 +194,13 @@ std::vector<float> Decimate(const std::vector<float>& corners, vtkIdType triangl
   for (;;)
   {
     vtkNew<vtkQuadricClustering> clustering;
-    clustering->SetInputData(soup);
+    clustering->SetInputData(surfaces);
     clustering->AutoAdjustNumberOfDivisionsOff();
     int divisions[3];
     for (int k = 0; k < 3; ++k)
     {
-      divisions[k] = std::max(1, static_cast<int>(std::ceil(side * (bounds[2 * k + 1] - bounds[2 * k]) / size)));
+      const double extent = bounds[2 * k + 1] - bounds[2 * k];
+      divisions[k] = std::max(1, static_cast<int>(std::ceil(side * extent / size)));
     }
     clustering->SetNumberOfDivisions(divisions);
     clustering->Update();
@@ -214,12 +211,12 @@ std::vector<float> Decimate(const std::vector<float>& corners, vtkIdType triangl
       out.clear();
       if (made <= triangles)
       {
-        const double origin[3] = { 0.0, 0.0, 0.0 };
         AppendTriangles(proxy, origin, out);
       }
       return out;
     }
-    side = std::max(1.0, std::floor(side * std::min(0.9, 0.95 * std::sqrt(double(triangles) / made))));
+    const double shrink = std::min(0.9, 0.95 * std::sqrt(double(triangles) / made));
+    side = std::max(1.0, std::floor(side * shrink));
   }
 }
 #endif
@@ -314,7 +311,7 @@ bool vtkGlobalIlluminationGlobalCasters::Gather(vtkDataObject* local)
     const vtkIdType share = sizes.Limit / (processes - 1);
     if (static_cast<vtkIdType>(mine.size() / 9) > share)
     {
-      mine = Decimate(mine, share);
+      mine = Decimate(leaves, this->Origin, share);
     }
     sizes = ExchangeSizes(controller, static_cast<vtkIdType>(mine.size()), this->MaximumTriangles);
     this->LastGatherBytes += sizes.Bytes;
