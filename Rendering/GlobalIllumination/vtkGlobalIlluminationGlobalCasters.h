@@ -81,11 +81,11 @@ public:
   }
 
   /// The centre of the global bounds, to which the positions are relative.
-  const double* GetOrigin() const { return this->Origin; }
+  const double* GetOrigin() const VTK_SIZEHINT(3) { return this->Origin; }
 
   /// The bounds of the other processes' triangles (data coordinates); empty (min > max)
   /// when there are none.
-  const double* GetBounds() const { return this->Bounds; }
+  const double* GetBounds() const VTK_SIZEHINT(6) { return this->Bounds; }
 
   /// How many times Gather exchanged triangles; changes exactly when the positions do.
   int GetNumberOfGathers() const { return this->NumberOfGathers; }
