@@ -294,6 +294,13 @@ bool vtkGlobalIlluminationGlobalCasters::Gather(vtkDataObject* local)
   }
 
   std::vector<float> mine;
+  vtkIdType corners = 0; // at most 3 (n - 2) per cell of n points
+  for (vtkPolyData* poly : leaves)
+  {
+    corners += 3 * (poly->GetPolys()->GetNumberOfConnectivityIds() +
+                     poly->GetStrips()->GetNumberOfConnectivityIds());
+  }
+  mine.reserve(static_cast<std::size_t>(3 * corners));
   for (vtkPolyData* poly : leaves)
   {
     AppendTriangles(poly, this->Origin, mine);
@@ -347,13 +354,13 @@ bool vtkGlobalIlluminationGlobalCasters::Gather(vtkDataObject* local)
   {
     offsets[p] = offsets[p - 1] + lengths[p - 1];
   }
-  std::vector<float> all(static_cast<std::size_t>(total));
-  controller->AllGatherV(mine.data(), all.data(), myLength, lengths.data(), offsets.data());
+  // Received in place; this process's own segment is then cut out (one move of the rest).
+  this->Positions.resize(static_cast<std::size_t>(total));
+  controller->AllGatherV(
+    mine.data(), this->Positions.data(), myLength, lengths.data(), offsets.data());
   this->LastGatherBytes += static_cast<vtkIdType>(others * sizeof(float));
-  const int me = controller->GetLocalProcessId();
-  this->Positions.reserve(static_cast<std::size_t>(others));
-  this->Positions.insert(this->Positions.end(), all.begin(), all.begin() + offsets[me]);
-  this->Positions.insert(this->Positions.end(), all.begin() + offsets[me] + myLength, all.end());
+  const auto own = this->Positions.begin() + offsets[controller->GetLocalProcessId()];
+  this->Positions.erase(own, own + myLength);
   for (int k = 0; k < 3; ++k)
   {
     this->Bounds[2 * k] = VTK_DOUBLE_MAX;
