@@ -219,7 +219,74 @@ std::vector<float> Decimate(
     side = std::max(1.0, std::floor(side * shrink));
   }
 }
+
+/// The centre of the bounds of every process's `leaves`: the common origin of the positions.
+void GlobalCentre(
+  vtkMultiProcessController* controller, const std::vector<vtkPolyData*>& leaves, double centre[3])
+{
+  // min and -max, reduced together
+  double bounds[6] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+  for (vtkPolyData* poly : leaves)
+  {
+    if (poly->GetNumberOfPoints() == 0)
+    {
+      continue;
+    }
+    double b[6];
+    poly->GetBounds(b);
+    for (int k = 0; k < 3; ++k)
+    {
+      bounds[k] = std::min(bounds[k], b[2 * k]);
+      bounds[3 + k] = std::min(bounds[3 + k], -b[2 * k + 1]);
+    }
+  }
+  double global[6];
+  controller->AllReduce(bounds, global, 6, vtkCommunicator::MIN_OP);
+  const bool empty = global[0] > -global[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    centre[k] = empty ? 0.0 : 0.5 * (global[k] - global[3 + k]);
+  }
+}
+
+/// The triangles of `leaves`, 9 floats each, relative to `origin`.
+std::vector<float> OwnTriangles(const std::vector<vtkPolyData*>& leaves, const double origin[3])
+{
+  vtkIdType corners = 0; // at most 3 (n - 2) per cell of n points
+  for (vtkPolyData* poly : leaves)
+  {
+    corners += 3 * (poly->GetPolys()->GetNumberOfConnectivityIds() +
+                     poly->GetStrips()->GetNumberOfConnectivityIds());
+  }
+  std::vector<float> triangles;
+  triangles.reserve(static_cast<std::size_t>(3 * corners));
+  for (vtkPolyData* poly : leaves)
+  {
+    AppendTriangles(poly, origin, triangles);
+  }
+  return triangles;
+}
 #endif
+
+/// The bounds of `positions` (xyz relative to `origin`); empty (min > max) without any.
+void BoundsOf(const std::vector<float>& positions, const double origin[3], double bounds[6])
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    bounds[2 * k] = positions.empty() ? 1.0 : VTK_DOUBLE_MAX;
+    bounds[2 * k + 1] = positions.empty() ? -1.0 : -VTK_DOUBLE_MAX;
+  }
+  for (std::size_t i = 0; i < positions.size(); i += 3)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double x = origin[k] + positions[i + k];
+      bounds[2 * k] = std::min(bounds[2 * k], x);
+      bounds[2 * k + 1] = std::max(bounds[2 * k + 1], x);
+    }
+  }
+}
 }
 
 //------------------------------------------------------------------------------
@@ -268,43 +335,8 @@ bool vtkGlobalIlluminationGlobalCasters::Gather(vtkDataObject* local)
   this->Gathered = true;
   this->GatheredMaximum = this->MaximumTriangles;
 
-  // A common origin: the centre of the global bounds (min and -max reduced together).
-  double bounds[6] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
-    VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
-  for (vtkPolyData* poly : leaves)
-  {
-    if (poly->GetNumberOfPoints() == 0)
-    {
-      continue;
-    }
-    double b[6];
-    poly->GetBounds(b);
-    for (int k = 0; k < 3; ++k)
-    {
-      bounds[k] = std::min(bounds[k], b[2 * k]);
-      bounds[3 + k] = std::min(bounds[3 + k], -b[2 * k + 1]);
-    }
-  }
-  double global[6];
-  controller->AllReduce(bounds, global, 6, vtkCommunicator::MIN_OP);
-  const bool empty = global[0] > -global[3];
-  for (int k = 0; k < 3; ++k)
-  {
-    this->Origin[k] = empty ? 0.0 : 0.5 * (global[k] - global[3 + k]);
-  }
-
-  std::vector<float> mine;
-  vtkIdType corners = 0; // at most 3 (n - 2) per cell of n points
-  for (vtkPolyData* poly : leaves)
-  {
-    corners += 3 * (poly->GetPolys()->GetNumberOfConnectivityIds() +
-                     poly->GetStrips()->GetNumberOfConnectivityIds());
-  }
-  mine.reserve(static_cast<std::size_t>(3 * corners));
-  for (vtkPolyData* poly : leaves)
-  {
-    AppendTriangles(poly, this->Origin, mine);
-  }
+  GlobalCentre(controller, leaves, this->Origin);
+  std::vector<float> mine = OwnTriangles(leaves, this->Origin);
   // Every process learns every length and limit, so all decide alike (a process that
   // gave up alone would leave the others in the allgather).
   Sizes sizes = ExchangeSizes(controller, static_cast<vtkIdType>(mine.size()), this->MaximumTriangles);
@@ -325,10 +357,7 @@ bool vtkGlobalIlluminationGlobalCasters::Gather(vtkDataObject* local)
   }
   ++this->NumberOfGathers;
   this->Positions.clear();
-  for (int k = 0; k < 6; ++k)
-  {
-    this->Bounds[k] = (k % 2) ? -1.0 : 1.0; // empty
-  }
+  BoundsOf(this->Positions, this->Origin, this->Bounds);
   this->Proxies = overLimit && !sizes.Over;
   if (overLimit && (!this->OverLimit || this->Proxies != this->WarnedProxies))
   {
@@ -361,27 +390,7 @@ bool vtkGlobalIlluminationGlobalCasters::Gather(vtkDataObject* local)
   this->LastGatherBytes += static_cast<vtkIdType>(others * sizeof(float));
   const auto own = this->Positions.begin() + offsets[controller->GetLocalProcessId()];
   this->Positions.erase(own, own + myLength);
-  for (int k = 0; k < 3; ++k)
-  {
-    this->Bounds[2 * k] = VTK_DOUBLE_MAX;
-    this->Bounds[2 * k + 1] = -VTK_DOUBLE_MAX;
-  }
-  for (std::size_t i = 0; i < this->Positions.size(); i += 3)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const double x = this->Origin[k] + this->Positions[i + k];
-      this->Bounds[2 * k] = std::min(this->Bounds[2 * k], x);
-      this->Bounds[2 * k + 1] = std::max(this->Bounds[2 * k + 1], x);
-    }
-  }
-  if (this->Positions.empty())
-  {
-    for (int k = 0; k < 6; ++k)
-    {
-      this->Bounds[k] = (k % 2) ? -1.0 : 1.0;
-    }
-  }
+  BoundsOf(this->Positions, this->Origin, this->Bounds);
   this->Modified();
   return true;
 #else
