@@ -12,6 +12,7 @@
 #include "vtkInformationVector.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -117,17 +118,23 @@ vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
   , LightIntensityScale(1.0)
   , Asynchronous(0)
   , TemporalBlend(1.0)
+  , Controller(nullptr)
   , Internals(new vtkInternals)
 {
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
 //------------------------------------------------------------------------------
 vtkGlobalIlluminationFilter::~vtkGlobalIlluminationFilter()
 {
+  this->SetController(nullptr);
   this->SetAlbedoArrayName(nullptr);
   this->SetEmissionArrayName(nullptr);
   this->SetEnvironmentTexture(nullptr);
 }
+
+//------------------------------------------------------------------------------
+vtkCxxSetObjectMacro(vtkGlobalIlluminationFilter, Controller, vtkMultiProcessController);
 
 //------------------------------------------------------------------------------
 int vtkGlobalIlluminationFilter::FillInputPortInformation(int, vtkInformation* info)
@@ -193,25 +200,34 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
   try
   {
     vtkPolyData* surface = internals.Surface(this, input);
+    // Collective under MPI, so before any branch that one process alone could take.
+    vtkPolyData* solved = internals.Partitions.Gather(this->Controller, surface);
+    const bool distributed = internals.Partitions.Distributed();
     const bool merged = surface != input;
     vtkPolyData* lit = merged ? internals.Lit.Get() : vtkPolyData::SafeDownCast(output);
-    if (surface->GetNumberOfPoints() == 0 || surface->GetNumberOfCells() == 0)
+    if (solved->GetNumberOfPoints() == 0 || solved->GetNumberOfCells() == 0)
     {
       vtkWarningMacro("The input is empty; the output is empty too.");
       lit->ShallowCopy(surface);
     }
-    else if (this->Asynchronous)
+    else if (this->Asynchronous && !distributed)
     {
       internals.SolveAsynchronously(this, surface, lit);
     }
     else
     {
       internals.Async.reset();
-      const linkgi::Scene& scene = internals.UpdateScene(this, surface);
+      internals.CheckDistributed(this);
+      vtkPolyData* target = distributed ? internals.GlobalLit.Get() : lit;
+      const linkgi::Scene& scene = internals.UpdateScene(this, solved);
       internals.Update(this, scene);
-      internals.ShapeOutput(surface, lit);
+      internals.ShapeOutput(solved, target);
       const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
-      internals.AttachResults(this, lit, elapsed.count(), internals.Solution(), internals.Stats());
+      internals.AttachResults(this, target, elapsed.count(), internals.Solution(), internals.Stats());
+      if (distributed)
+      {
+        internals.Partitions.Scatter(target, surface, lit);
+      }
       for (const std::string& warning : internals.AllWarnings())
       {
         vtkWarningMacro(<< warning);
@@ -412,6 +428,7 @@ void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Memory Budget: " << this->MemoryBudget << " MiB\n";
   os << indent << "Proxy Vertices: " << this->ProxyVertices << "\n";
   os << indent << "Refinement: " << (this->Refinement ? "On" : "Off") << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "Refinement Tolerance: " << this->RefinementTolerance << "\n";
   os << indent << "Refinement Max Vertices: " << this->RefinementMaxVertices << "\n";
   os << indent << "Refinement Rounds: " << this->RefinementRounds << "\n";

@@ -75,6 +75,7 @@
 
 class vtkImageData;
 class vtkLight;
+class vtkMultiProcessController;
 class vtkRenderer;
 
 class LINKGIFILTERSGLOBALILLUMINATION_EXPORT vtkGlobalIlluminationFilter : public vtkPolyDataAlgorithm
@@ -456,6 +457,23 @@ public:
 
   ///@{
   /**
+   * The processes among which the surface is partitioned (MPI: pvbatch --mpi, pvserver).
+   * With more than one, RequestData is collective: every process gathers every partition's
+   * surface (without ghost cells), lights the whole, so that shadows and bounced light cross
+   * the partition boundaries, and outputs the light of its own points. The surfaces are
+   * exchanged again only when one of them changed: a light move re-runs only the light
+   * links and the bounces. LinkGI.Processes and LinkGI.PartitionBytesReceived in the field
+   * data say what happened. Refinement is not available with more than one process, and
+   * asynchronous updates run synchronously there (each with a warning). nullptr or one
+   * process: this process's input alone. The default value is the global controller
+   * (vtkMultiProcessController::GetGlobalController() when the filter is made).
+   */
+  virtual void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  ///@{
+  /**
    * Temporal stability in asynchronous mode: each new indirect irradiance is blended as
    * TemporalBlend * new + (1 - TemporalBlend) * previous, damping flicker of the sampled
    * indirect light under a moving light or mesh (direct light is exact and never blended).
@@ -545,6 +563,7 @@ protected:
   double LightIntensityScale;
   vtkTypeBool Asynchronous;
   double TemporalBlend;
+  vtkMultiProcessController* Controller;
 
 private:
   vtkGlobalIlluminationFilter(const vtkGlobalIlluminationFilter&) = delete;

@@ -410,3 +410,23 @@ void vtkGlobalIlluminationFilter::vtkInternals::ShapeOutput(vtkPolyData* input, 
   std::iota(this->RefinedMesh.ElementPoint.begin(), this->RefinedMesh.ElementPoint.end(), vtkIdType(0));
   this->RefinedMesh.InputPointCount = n;
 }
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::vtkInternals::CheckDistributed(vtkGlobalIlluminationFilter* self)
+{
+  if (!this->Partitions.Distributed())
+  {
+    return;
+  }
+  if (self->GetRefinement())
+  {
+    // A refined global surface has new points that no process owns.
+    throw linkgi::Error("Refinement is not available when the surface is partitioned among " +
+      std::to_string(this->Partitions.ProcessCount()) + " processes (MPI); turn it off or run on one process.");
+  }
+  if (self->GetAsynchronous())
+  {
+    this->Warnings.emplace_back("Asynchronous updates run synchronously when the surface is partitioned "
+                                "among processes (MPI): every process lights the same global surface.");
+  }
+}

@@ -7,6 +7,7 @@
 #include "vtkGlobalIlluminationFilter.h"
 
 #include "vtkGlobalIlluminationBlockMerger.h"
+#include "vtkGlobalIlluminationPartitions.h"
 #include "vtkGlobalIlluminationSceneBuilder.h"
 
 #include "vtkLight.h"
@@ -60,6 +61,13 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   vtkGlobalIlluminationBlockMerger Merger;
   vtkNew<vtkPolyData> Lit;
   vtkPolyData* Surface(vtkGlobalIlluminationFilter* self, vtkDataObject* input);
+
+  // Under MPI (issue 16): the global surface of every process's partition is lit as
+  // `GlobalLit`, and each process keeps the light of its own points.
+  vtkGlobalIlluminationPartitions Partitions;
+  vtkNew<vtkPolyData> GlobalLit;
+  /// Under MPI: refuses Refinement, and says that an asynchronous update ran synchronously.
+  void CheckDistributed(vtkGlobalIlluminationFilter* self);
 
   // The triangle mesh and what it was built from; rebuilt only when one of these changes,
   // so a light-only update costs no triangulation.

@@ -1,0 +1,127 @@
+#include "vtkGlobalIlluminationPartitions.h"
+
+#include "vtkAppendPolyData.h"
+#include "vtkCommunicator.h"
+#include "vtkFieldData.h"
+#include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedLongLongArray.h"
+
+#include "linkgi/Error.h"
+
+#include <string>
+
+//------------------------------------------------------------------------------
+vtkPolyData* vtkGlobalIlluminationPartitions::Gather(
+  vtkMultiProcessController* controller, vtkPolyData* local)
+{
+  this->Processes = controller ? controller->GetNumberOfProcesses() : 1;
+  this->Count = local->GetNumberOfPoints();
+  this->Received = 0;
+  if (this->Processes <= 1)
+  {
+    this->Global = nullptr;
+    this->Offset = 0;
+    return local;
+  }
+  // Every process takes the same branch: the exchange is collective.
+  const int changed = !this->Global || local != this->LocalInput || local->GetMTime() != this->LocalTime;
+  int anyChanged = 0;
+  controller->AllReduce(&changed, &anyChanged, 1, vtkCommunicator::MAX_OP);
+  if (!anyChanged)
+  {
+    return this->Global;
+  }
+
+  // Ghost cells are another process's cells: sent by their owner only. Their points stay,
+  // so that this process's point ids are its points' places in the global surface.
+  vtkSmartPointer<vtkPolyData> send = local;
+  if (local->GetCellGhostArray())
+  {
+    send = vtkSmartPointer<vtkPolyData>::New();
+    send->DeepCopy(local);
+    send->RemoveGhostCells();
+  }
+  std::vector<vtkSmartPointer<vtkDataObject>> all;
+  if (!controller->AllGather(send, all) || int(all.size()) != this->Processes)
+  {
+    throw linkgi::Error("The exchange of the partitions' surfaces between the " +
+      std::to_string(this->Processes) + " processes failed.");
+  }
+  vtkNew<vtkAppendPolyData> append;
+  this->Offset = 0;
+  const int me = controller->GetLocalProcessId();
+  for (int p = 0; p < this->Processes; ++p)
+  {
+    vtkPolyData* part = vtkPolyData::SafeDownCast(all[p]);
+    const vtkIdType points = part ? part->GetNumberOfPoints() : 0;
+    if (p < me)
+    {
+      this->Offset += points;
+    }
+    if (p != me && part)
+    {
+      this->Received += std::size_t(part->GetActualMemorySize()) * 1024;
+    }
+    // An empty partition may lack the others' arrays, which vtkAppendPolyData would then
+    // drop from the whole: it adds nothing anyway.
+    if (points > 0)
+    {
+      append->AddInputData(part);
+    }
+  }
+  this->Global = vtkSmartPointer<vtkPolyData>::New();
+  if (append->GetNumberOfInputConnections(0) > 0)
+  {
+    append->Update();
+    this->Global->ShallowCopy(append->GetOutput());
+  }
+  this->LocalInput = local;
+  this->LocalTime = local->GetMTime();
+  return this->Global;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationPartitions::Scatter(vtkPolyData* lit, vtkPolyData* local, vtkPolyData* output) const
+{
+  output->ShallowCopy(local);
+  vtkPointData* from = lit->GetPointData();
+  vtkPointData* to = output->GetPointData();
+  for (int i = 0; i < from->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* source = from->GetAbstractArray(i);
+    if (!source->GetName() || local->GetPointData()->HasArray(source->GetName()))
+    {
+      continue; // the input's own arrays are those of `local` already
+    }
+    vtkSmartPointer<vtkAbstractArray> mine = vtk::TakeSmartPointer(source->NewInstance());
+    mine->SetName(source->GetName());
+    mine->SetNumberOfComponents(source->GetNumberOfComponents());
+    mine->SetNumberOfTuples(this->Count);
+    if (this->Count > 0)
+    {
+      mine->InsertTuples(0, this->Count, this->Offset, source);
+    }
+    to->AddArray(mine);
+  }
+  // The results' field data (counters, timings, warnings), and where this process's part is.
+  vtkFieldData* fields = output->GetFieldData();
+  vtkNew<vtkFieldData> merged;
+  merged->ShallowCopy(fields);
+  for (int i = 0; i < lit->GetFieldData()->GetNumberOfArrays(); ++i)
+  {
+    merged->AddArray(lit->GetFieldData()->GetAbstractArray(i));
+  }
+  vtkNew<vtkIntArray> processes;
+  processes->SetName("LinkGI.Processes");
+  processes->InsertNextValue(this->Processes);
+  merged->AddArray(processes);
+  vtkNew<vtkUnsignedLongLongArray> received;
+  received->SetName("LinkGI.PartitionBytesReceived");
+  received->InsertNextValue(this->Received);
+  merged->AddArray(received);
+  output->SetFieldData(merged);
+}

@@ -1,0 +1,54 @@
+// The filter under MPI (issue 16): every process holds a partition of the surface, and the
+// light crosses partition boundaries (a shadow cast by one process's geometry onto
+// another's, light bounced between them). Gather() appends every process's surface, in
+// process order, into one global surface that each process lights; Scatter() hands each
+// process the light of its own points. Private to the module.
+#ifndef vtkGlobalIlluminationPartitions_h
+#define vtkGlobalIlluminationPartitions_h
+
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include <string>
+#include <vector>
+
+class vtkMultiProcessController;
+
+class vtkGlobalIlluminationPartitions
+{
+public:
+  /// The surface to light: `local` itself without a controller or with one process, else
+  /// the global surface (every process's surface without its ghost cells, appended in
+  /// process order). Collective: every process of `controller` must call it, those without
+  /// data with an empty surface. The global surface is exchanged again only when some
+  /// process's surface changed (one reduction per call otherwise), so a light move costs no
+  /// exchange and keeps the engine's links.
+  vtkPolyData* Gather(vtkMultiProcessController* controller, vtkPolyData* local);
+
+  /// Whether the last Gather lit a global surface of more than one process.
+  bool Distributed() const { return this->Processes > 1; }
+  int ProcessCount() const { return this->Processes; }
+  /// This process's points in the global surface: [Offset, Offset + Count).
+  vtkIdType PointOffset() const { return this->Offset; }
+  /// Bytes this process received in the last exchange (0 when nothing was exchanged).
+  std::size_t ReceivedBytes() const { return this->Received; }
+
+  /// `output` = `local` with every point array of `lit` (the lit global surface) that
+  /// `local` lacks, cut to this process's points, and `lit`'s field data. Ghost points that
+  /// no non-ghost cell of this process uses keep the values of their place in the global
+  /// surface, which are those of the owner's copy only where the partition shares no point.
+  void Scatter(vtkPolyData* lit, vtkPolyData* local, vtkPolyData* output) const;
+
+private:
+  vtkSmartPointer<vtkPolyData> Global;
+  const vtkPolyData* LocalInput = nullptr;
+  vtkMTimeType LocalTime = 0;
+  int Processes = 1;
+  vtkIdType Offset = 0;
+  vtkIdType Count = 0;
+  std::size_t Received = 0;
+};
+
+#endif
+// VTK-HeaderTest-Exclude: vtkGlobalIlluminationPartitions.h

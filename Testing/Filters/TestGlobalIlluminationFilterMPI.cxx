@@ -1,0 +1,179 @@
+// vtkGlobalIlluminationFilter under MPI (run with mpirun -np 2 or 3): rank 0 holds a block,
+// rank 1 the floor under it, rank 2 (if any) nothing. Each rank lights its partition with
+// the light of all of them: its arrays equal, point for point, those of one process lighting
+// the appended surface (block, then floor); the block's shadow falls on rank 1's floor, which
+// a rank lighting its partition alone does not see; a light move exchanges nothing and re-runs
+// only the light links and the bounces.
+#include "vtkGlobalIlluminationFilter.h"
+
+#include "vtkAppendPolyData.h"
+#include "vtkCubeSource.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkLight.h"
+#include "vtkMPIController.h"
+#include "vtkNew.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkTriangleFilter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace
+{
+vtkSmartPointer<vtkPolyData> Triangulated(vtkAlgorithm* source)
+{
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(source->GetOutputPort());
+  triangles->Update();
+  return triangles->GetOutput();
+}
+
+/// A 0.4-wide block standing on the floor's centre.
+vtkSmartPointer<vtkPolyData> Block()
+{
+  vtkNew<vtkCubeSource> cube;
+  cube->SetBounds(-0.2, 0.2, -0.2, 0.2, 0.0, 0.4);
+  return Triangulated(cube);
+}
+
+/// The floor: 2 x 2 at z = 0, 24 x 24 quads.
+vtkSmartPointer<vtkPolyData> Floor()
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-1, -1, 0);
+  plane->SetPoint1(1, -1, 0);
+  plane->SetPoint2(-1, 1, 0);
+  plane->SetResolution(24, 24);
+  return Triangulated(plane);
+}
+
+bool Check(int rank, bool condition, const std::string& what)
+{
+  std::printf("rank %d: %s: %s\n", rank, condition ? "ok" : "FAILED", what.c_str());
+  std::fflush(stdout);
+  return condition;
+}
+
+double Field(vtkPolyData* data, const char* name)
+{
+  vtkDataArray* a = vtkDataArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(name));
+  return a ? a->GetTuple1(0) : -1.0;
+}
+
+void Configure(vtkGlobalIlluminationFilter* filter, vtkLight* light)
+{
+  filter->SetRaysPerVertex(64);
+  filter->SetNumberOfBounces(2);
+  filter->AddLight(light);
+}
+
+/// Largest relative difference of `name` between `mine` and `reference`'s points from `offset`.
+double Difference(vtkPolyData* mine, vtkPolyData* reference, vtkIdType offset, const char* name)
+{
+  vtkDataArray* a = mine->GetPointData()->GetArray(name);
+  vtkDataArray* b = reference->GetPointData()->GetArray(name);
+  if (!a || !b)
+  {
+    return 1e30;
+  }
+  double worst = 0.0;
+  for (vtkIdType i = 0; i < mine->GetNumberOfPoints(); ++i)
+  {
+    for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+    {
+      const double x = a->GetComponent(i, c), y = b->GetComponent(offset + i, c);
+      worst = std::max(worst, std::abs(x - y) / std::max(1e-6, std::abs(y)));
+    }
+  }
+  return worst;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  vtkNew<vtkMPIController> controller;
+  controller->Initialize(&argc, &argv);
+  vtkMultiProcessController::SetGlobalController(controller);
+  const int rank = controller->GetLocalProcessId();
+  const int ranks = controller->GetNumberOfProcesses();
+  bool ok = Check(rank, ranks >= 2, "runs on 2 or more ranks");
+
+  const vtkSmartPointer<vtkPolyData> block = Block(), floor = Floor();
+  vtkNew<vtkPolyData> empty;
+  vtkPolyData* mine = rank == 0 ? block.Get() : rank == 1 ? floor.Get() : empty.Get();
+  const vtkIdType offset = rank == 0 ? 0 : block->GetNumberOfPoints();
+
+  vtkNew<vtkLight> light;
+  light->SetPositional(true);
+  light->SetConeAngle(90);
+  light->SetPosition(0.3, 0.1, 2.0);
+  light->SetFocalPoint(0, 0, 0);
+
+  // The partitioned solve (collective on every rank).
+  vtkNew<vtkGlobalIlluminationFilter> distributed;
+  ok &= Check(rank, distributed->GetController() == controller.Get(), "the global controller by default");
+  Configure(distributed, light);
+  distributed->SetInputData(mine);
+  distributed->Update();
+  vtkPolyData* out = distributed->GetOutput();
+  ok &= Check(rank, out->GetNumberOfPoints() == mine->GetNumberOfPoints(), "the output has this rank's points");
+  ok &= Check(rank, Field(out, "LinkGI.Processes") == ranks, "LinkGI.Processes is the number of ranks");
+  ok &= Check(rank, Field(out, "LinkGI.PartitionBytesReceived") > 0, "the partitions were exchanged");
+
+  // One process lighting the appended surface, in rank order: the same scene.
+  vtkNew<vtkAppendPolyData> append;
+  append->AddInputData(block);
+  append->AddInputData(floor);
+  append->Update();
+  vtkNew<vtkGlobalIlluminationFilter> whole;
+  whole->SetController(nullptr);
+  Configure(whole, light);
+  whole->SetInputData(append->GetOutput());
+  whole->Update();
+  if (mine->GetNumberOfPoints() > 0)
+  {
+    for (const char* name : { "DirectIrradiance", "IndirectIrradiance", "Radiance" })
+    {
+      const double d = Difference(out, whole->GetOutput(), offset, name);
+      ok &= Check(rank, d <= 1e-4, std::string(name) + " equals one process's within 1e-4 (" + std::to_string(d) + ")");
+    }
+  }
+
+  // The floor's shadow comes from rank 0's block: alone, rank 1 would light it.
+  if (rank == 1)
+  {
+    vtkNew<vtkGlobalIlluminationFilter> alone;
+    alone->SetController(nullptr);
+    Configure(alone, light);
+    alone->SetInputData(floor);
+    alone->Update();
+    vtkDataArray* shared = out->GetPointData()->GetArray("DirectIrradiance");
+    vtkDataArray* own = alone->GetOutput()->GetPointData()->GetArray("DirectIrradiance");
+    vtkIdType shadowed = 0;
+    for (vtkIdType i = 0; i < floor->GetNumberOfPoints(); ++i)
+    {
+      shadowed += shared->GetComponent(i, 0) == 0.0 && own->GetComponent(i, 0) > 0.0;
+    }
+    ok &= Check(rank, shadowed >= 4, "rank 0's block shadows " + std::to_string(shadowed) + " floor points");
+  }
+
+  // A light move: no exchange, no new links, new light links.
+  const double links = Field(out, "LinkGI.LinkBuilds"), lightLinks = Field(out, "LinkGI.LightLinkBuilds");
+  light->SetPosition(-0.3, 0.2, 2.0);
+  distributed->Modified();
+  distributed->Update();
+  out = distributed->GetOutput();
+  ok &= Check(rank, Field(out, "LinkGI.PartitionBytesReceived") == 0, "a light move exchanges no surface");
+  ok &= Check(rank, Field(out, "LinkGI.LinkBuilds") == links, "a light move builds no links");
+  ok &= Check(rank, Field(out, "LinkGI.LightLinkBuilds") == lightLinks + 1, "a light move re-runs the light links");
+
+  int all = ok ? 1 : 0, every = 0;
+  controller->AllReduce(&all, &every, 1, vtkCommunicator::MIN_OP);
+  controller->Finalize();
+  return every ? 0 : 1;
+}
