@@ -187,3 +187,50 @@ def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
             t.check(0 < c4["GlobalCasterTriangles"] <= 200,
                     "rank 0 drew %d proxy triangles, at most the limit"
                     % c4["GlobalCasterTriangles"])
+
+
+def check_arrays(arguments, ranks, plugin, write=None, reference=None):
+    """The Global Illumination filter proxy on the same partitioned scene (point light as
+    above, 64 rays, 2 bounces): writes its output's arrays (`write`, the one-rank run) or
+    compares them with those (`reference`): the same points in the same order (the block,
+    then the floor, as one rank appends them and Fetch merges the ranks' pieces), and every
+    array within 1e-4 of the one-rank value, relative to that array's largest value.
+    `plugin`: the namespace the plugin was loaded into."""
+    from paraview.simple import Delete
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter
+
+    source = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=SCENE)
+    gi = plugin["GlobalIllumination"](Input=source)
+    gi.LightType = "Point"
+    gi.LightPosition = [0.5, 0.3, 2.0]
+    gi.LightIntensity = 4.0
+    gi.RaysPerVertex = "64"
+    gi.NumberOfBounces = 2
+    gi.UpdatePipeline()
+    out = t.fetch(gi)
+    print("arrays on %d ranks: %d points" % (ranks, out.GetNumberOfPoints()))
+    if write:
+        writer = vtkXMLPolyDataWriter()
+        writer.SetFileName(write)
+        writer.SetInputData(out)
+        t.check(writer.Write() == 1, "one-rank arrays written to %s" % write)
+    if reference:
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(reference)
+        reader.Update()
+        ref = reader.GetOutput()
+        n = ref.GetNumberOfPoints()
+        t.check(n > 0 and out.GetNumberOfPoints() == n,
+                "%d points, as on one rank (%d)" % (out.GetNumberOfPoints(), n))
+        worst = max(max(abs(a - b) for a, b in zip(out.GetPoint(i), ref.GetPoint(i)))
+                    for i in range(n))
+        t.check(worst <= 1e-6, "the same points in the same order (worst %.2g)" % worst)
+        for name in ("DirectIrradiance", "IndirectIrradiance", "Radiance"):
+            mine, theirs = out.GetPointData().GetArray(name), ref.GetPointData().GetArray(name)
+            t.check(mine is not None and theirs is not None, "%s on both" % name)
+            scale = max(max(abs(v) for v in theirs.GetRange(c)) for c in range(3)) or 1.0
+            error = max(abs(mine.GetComponent(i, c) - theirs.GetComponent(i, c))
+                        for i in range(n) for c in range(3)) / scale
+            t.check(error <= 1e-4, "%s equals the one-rank array (%.2g relative)" % (name, error))
+    Delete(gi)
+    Delete(source)
