@@ -12,7 +12,8 @@ run() checks, after connecting and loading the plugin:
    (vtkGlobalIlluminationGlobalCasters) rank 1 would draw a floor without the shadow.
 2. The representation's counters (pvbatch only: a client reads its own copy): on rank 0
    the shadow maps hold the floor's triangles (the other ranks'), exchanged once, not again
-   on further renders or a light move.
+   on further renders or a light move; the light move re-runs the filter's light links and
+   bounces only, and the filter received the other ranks' partitions.
 3. The size limit: with none of the other ranks' triangles allowed, each rank's maps hold
    its own partition only (a warning says so) and the floor of rank 1 loses the block's
    shadow; one rank keeps it.
@@ -97,7 +98,8 @@ def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
         proxy = display.SMProxy
         proxy.UpdatePropertyInformation()
         return {n: proxy.GetProperty("GlobalIllumination" + n).GetElement(0)
-                for n in ("GlobalCasterTriangles", "GlobalCasterGathers", "ShadowMapRenders")}
+                for n in ("GlobalCasterTriangles", "GlobalCasterGathers", "ShadowMapRenders",
+                          "LinkBuilds", "LightLinkBuilds", "BounceRuns", "PartitionBytes")}
 
     def floor_pixel(world, image):
         """The image's grey value at the world point `world` on the floor."""
@@ -158,6 +160,14 @@ def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
                 "a light move and a camera move exchange no triangles")
         t.check(c2["ShadowMapRenders"] == c["ShadowMapRenders"] + 1,
                 "the light move re-rendered the shadow maps once, the camera move not")
+        print("counters after the moves: %s" % c2)
+        t.check(c2["LinkBuilds"] == c["LinkBuilds"] == 1
+                and c2["LightLinkBuilds"] == c["LightLinkBuilds"] + 1
+                and c2["BounceRuns"] == c["BounceRuns"] + 1,
+                "the light move re-ran light links and bounces only, the camera move nothing")
+        t.check((c["PartitionBytes"] > 0) == (ranks > 1),
+                "the filter received %d bytes of the other ranks' partitions (none on one rank)"
+                % c["PartitionBytes"])
     else:
         light.Position = [0.4, 0.3, 2.0]
         Render(view)

@@ -533,6 +533,15 @@ double vtkGlobalIlluminationRepresentation::GetTemporalBlend()
 }
 
 //------------------------------------------------------------------------------
+double vtkGlobalIlluminationRepresentation::GetPartitionBytesReceived()
+{
+  vtkDataObject* output = this->Internals->Filter->GetOutputDataObject(0);
+  vtkAbstractArray* array =
+    output ? output->GetFieldData()->GetAbstractArray("LinkGI.PartitionBytesReceived") : nullptr;
+  return array && array->GetNumberOfTuples() > 0 ? array->GetVariantValue(0).ToDouble() : 0.0;
+}
+
+//------------------------------------------------------------------------------
 int vtkGlobalIlluminationRepresentation::GetLinkBuilds()
 {
   return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.LinkBuilds");

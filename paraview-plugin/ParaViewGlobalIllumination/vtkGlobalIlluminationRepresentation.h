@@ -186,6 +186,10 @@ public:
   int GetGlobalCasterGathers();
   ///@}
 
+  /// In a parallel run, the bytes of the other processes' partitions that the filter
+  /// received at its last exchange (its LinkGI.PartitionBytesReceived; 0 on one process).
+  double GetPartitionBytesReceived();
+
   /**
    * The most triangles of other processes drawn into the shadow maps
    * (vtkGlobalIlluminationGlobalCasters::SetMaximumTriangles); above it the processes

@@ -93,7 +93,8 @@ def child(arguments):
     def counter(name):
         if arguments.representation != "Global Illumination":
             return 0
-        return proxy.GetProperty("GlobalIllumination" + name).GetElement(0)
+        prop = proxy.GetProperty("GlobalIllumination" + name)
+        return prop.GetElement(0) if prop is not None else None  # older plugins lack some
 
     result = {
         "ranks": ranks,
@@ -107,6 +108,8 @@ def child(arguments):
         "link_builds": counter("LinkBuilds"),
         "light_link_builds": counter("LightLinkBuilds"),
         "bounce_runs": counter("BounceRuns"),
+        # The filter's exchange of the partitions (rank 0 received), once per geometry change.
+        "rank0_partition_bytes": counter("PartitionBytes"),
     }
     print("LINKGI_RESULT " + json.dumps(result))
     sys.stdout.flush()
@@ -161,7 +164,7 @@ def driver(arguments):
         row["sum_maxrss_mb"] = summary([sum(r["maxrss_mb"]) for r in results])
         last = results[-1]
         for key in ("points", "triangles", "rank0_remote_triangles", "caster_gathers",
-                    "link_builds", "light_link_builds", "bounce_runs"):
+                    "link_builds", "light_link_builds", "bounce_runs", "rank0_partition_bytes"):
             row[key] = last[key]
         # What rank 0 receives: the others' triangles once per geometry change (36 B each),
         # and, once the filter exchanges radiance between ranks, 16 B per element of the
