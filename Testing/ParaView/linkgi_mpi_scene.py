@@ -99,7 +99,8 @@ def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
         proxy.UpdatePropertyInformation()
         return {n: proxy.GetProperty("GlobalIllumination" + n).GetElement(0)
                 for n in ("GlobalCasterTriangles", "GlobalCasterGathers", "ShadowMapRenders",
-                          "LinkBuilds", "LightLinkBuilds", "BounceRuns", "PartitionBytes")}
+                          "LinkBuilds", "LightLinkBuilds", "BounceRuns", "PartitionBytes",
+                          "Updates")}
 
     def floor_pixel(world, image):
         """The image's grey value at the world point `world` on the floor."""
@@ -165,6 +166,9 @@ def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
                 and c2["LightLinkBuilds"] == c["LightLinkBuilds"] + 1
                 and c2["BounceRuns"] == c["BounceRuns"] + 1,
                 "the light move re-ran light links and bounces only, the camera move nothing")
+        t.check(c["Updates"] == 1 and c2["Updates"] == 2,
+                "two solutions drawn: the first and the light move's (%d, %d)"
+                % (c["Updates"], c2["Updates"]))
         t.check((c["PartitionBytes"] > 0) == (ranks > 1),
                 "the filter received %d bytes of the other ranks' partitions (none on one rank)"
                 % c["PartitionBytes"])

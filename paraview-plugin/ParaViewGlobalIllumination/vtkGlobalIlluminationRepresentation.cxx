@@ -124,6 +124,7 @@ struct vtkGlobalIlluminationRepresentation::vtkInternals
   vtkMTimeType DrawnTime = 0;
 
   int ShownRequest = 0; // the worker's request whose solution is drawn
+  vtkMTimeType SolvedTime = 0; // the drawn solution's, where the filter is synchronous
 
   // Where renders do not wait, on the process with the view's interactor (the GUI's
   // client): polls the representation proxy, this object or its copy on the server.
@@ -150,8 +151,11 @@ vtkGlobalIlluminationRepresentation::vtkGlobalIlluminationRepresentation()
   mapper->GetShading()->SetGlobalCasters(this->Internals->GlobalCasters);
 
   vtkGlobalIlluminationFilter* filter = this->Internals->Filter;
-  // A render never waits for the solver unless WaitForSolution says so.
-  filter->SetAsynchronous(true);
+  // A render never waits for the solver unless WaitForSolution says so. Partitioned among
+  // processes the filter is collective and solves synchronously (it would say so at
+  // every update): there every render waits.
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  filter->SetAsynchronous(!controller || controller->GetNumberOfProcesses() <= 1);
   filter->AddObserver(vtkCommand::WarningEvent, this, &vtkGlobalIlluminationRepresentation::OnFilterEvent);
   this->Internals->Watcher->SetInterval(100);
   this->Internals->Watcher->SetPollFunction([this] { return this->PollForSolution(); });
@@ -387,7 +391,16 @@ vtkDataObject* vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
   }
   vtkDataObject* output = filter->GetOutputDataObject(0);
   const int shown = FieldInt(output, "LinkGI.ShownRequest");
-  if (shown != 0 && shown != internals.ShownRequest)
+  if (!filter->GetAsynchronous())
+  {
+    // Synchronous (partitioned among processes): every execution is a new solution.
+    if (output && output->GetMTime() != internals.SolvedTime)
+    {
+      internals.SolvedTime = output->GetMTime();
+      ++this->NumberOfUpdates;
+    }
+  }
+  else if (shown != 0 && shown != internals.ShownRequest)
   {
     internals.ShownRequest = shown;
     ++this->NumberOfUpdates;
