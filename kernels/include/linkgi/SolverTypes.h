@@ -15,9 +15,34 @@ enum class Method
 {
   Links, ///< the link structure of Schmitz, Tavenrath & Kobbelt 2008 (default)
   InstantRadiosity, ///< virtual point lights (Marques & Santos 2010): nothing precomputed
-  ImplicitVisibility ///< hierarchical links, visibility implied by the shortest link per
-                     ///< direction bin (Dong, Kautz, Theobalt & Seidel 2007): no link rays
+  ImplicitVisibility, ///< hierarchical links, visibility implied by the shortest link per
+                      ///< direction bin (Dong, Kautz, Theobalt & Seidel 2007): no link rays
+  PhotonMapping ///< photons from the lights, final gather at clustered sample vertices
+                ///< (Wang, Wang, Zhou & Guo 2009)
 };
+
+/// Options of Method::PhotonMapping; the other methods ignore them.
+struct PhotonMappingOptions
+{
+  /// Photons stored (about: light paths are traced until about this many diffuse hits).
+  /// 1 to 2^24. Default 262144.
+  std::uint32_t photons = 262144;
+  /// Clusters of vertices; one sample vertex per cluster gathers. 1 to 2^20 (at most the
+  /// vertex count is used). Default 4096.
+  std::uint32_t clusters = 4096;
+  /// Final-gather rays per sample vertex: a perfect square. Default 256.
+  std::uint32_t gatherRays = 256;
+  /// Photons per radiance estimate (k nearest). 2 to 1024. Default 64.
+  std::uint32_t estimatePhotons = 64;
+  /// The clustering metric's weight of distance (in bounding-box diagonals) against normal
+  /// change; the paper uses 0.1 to 0.5. Default 0.3.
+  float alpha = 0.3f;
+};
+bool operator==(const PhotonMappingOptions& a, const PhotonMappingOptions& b);
+inline bool operator!=(const PhotonMappingOptions& a, const PhotonMappingOptions& b)
+{
+  return !(a == b);
+}
 
 /// Options of Method::ImplicitVisibility; the other methods ignore them.
 struct ImplicitVisibilityOptions
@@ -128,6 +153,8 @@ struct SolverOptions
   InstantRadiosityOptions instantRadiosity;
   /// Method::ImplicitVisibility's own options.
   ImplicitVisibilityOptions implicitVisibility;
+  /// Method::PhotonMapping's own options.
+  PhotonMappingOptions photonMapping;
   /// Host memory an update may use, in bytes; an update estimated to need more is refused
   /// with an error that says what would fit, before anything is allocated. 0 (default):
   /// what the machine has available, less a margin (linkgi/Memory.h).
@@ -192,6 +219,9 @@ struct SolverStats
                 lightRays = 0;
   /// Virtual point lights of the last VPL set (Method::InstantRadiosity; 0 for the others).
   std::uint64_t vpls = 0;
+  /// Method::PhotonMapping: photons in the photon map, and vertex clusters (sample vertices).
+  std::uint64_t photons = 0;
+  std::uint64_t clusters = 0;
   /// The whole last update in milliseconds.
   double msTotal = 0;
   /// Of msTotal: copying and validating the scene and finding what changed (host).

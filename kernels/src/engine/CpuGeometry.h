@@ -20,4 +20,10 @@ struct CpuGeometry
   /// the BVH counters. The tracer references the scene's arrays (RayTracer::build).
   void update(const StageContext& context);
 };
+
+/// The last stage of the CPU methods that gather E_ind per element (instant radiosity,
+/// photon mapping): feature-aware smoothing when the options ask for it (the part
+/// "Smoothing"), then the solution: E_d, E_ind and the outgoing radiance.
+void finishSolution(const StageContext& context, const Topology& topology, std::vector<Vec3f> indirect,
+  const std::vector<Vec3f>& direct);
 }

@@ -18,6 +18,10 @@ namespace iv
 {
 const engine::MethodSpec& implicitVisibilityMethod();
 }
+namespace pm
+{
+const engine::MethodSpec& photonMappingMethod();
+}
 
 namespace engine
 {
@@ -31,6 +35,8 @@ const MethodSpec& methodSpec(Method method)
       return ir::instantRadiosityMethod();
     case Method::ImplicitVisibility:
       return iv::implicitVisibilityMethod();
+    case Method::PhotonMapping:
+      return pm::photonMappingMethod();
   }
   throw Error("Unknown solution method " + std::to_string(int(method)) + ".");
 }

@@ -17,7 +17,13 @@ bool operator==(const SolverOptions& a, const SolverOptions& b)
     a.backend == b.backend && a.cudaDevices == b.cudaDevices &&
     a.cudaBvhUpdate == b.cudaBvhUpdate && a.cudaBvhBuild == b.cudaBvhBuild &&
     a.instantRadiosity == b.instantRadiosity && a.implicitVisibility == b.implicitVisibility &&
-    a.memoryBudget == b.memoryBudget;
+    a.photonMapping == b.photonMapping && a.memoryBudget == b.memoryBudget;
+}
+
+bool operator==(const PhotonMappingOptions& a, const PhotonMappingOptions& b)
+{
+  return a.photons == b.photons && a.clusters == b.clusters && a.gatherRays == b.gatherRays &&
+    a.estimatePhotons == b.estimatePhotons && a.alpha == b.alpha;
 }
 
 bool operator==(const ImplicitVisibilityOptions& a, const ImplicitVisibilityOptions& b)
@@ -78,6 +84,32 @@ void validateOptions(const SolverOptions& options)
     throw Error("Implicit visibility: the bins per side of a cube-map face must be between 2 "
                 "and 32 (the paper uses 8, 12, 16); got " +
       std::to_string(options.implicitVisibility.binsPerSide) + ".");
+  }
+  const PhotonMappingOptions& pm = options.photonMapping;
+  if (pm.photons < 1 || pm.photons > (1u << 24))
+  {
+    throw Error("Photon mapping: the number of photons must be between 1 and 16777216; got " +
+      std::to_string(pm.photons) + ".");
+  }
+  if (pm.clusters < 1 || pm.clusters > (1u << 20))
+  {
+    throw Error("Photon mapping: the number of clusters must be between 1 and 1048576; got " +
+      std::to_string(pm.clusters) + ".");
+  }
+  if (!isPerfectSquare(pm.gatherRays) || pm.gatherRays > 65536)
+  {
+    throw Error("Photon mapping: the final-gather rays per sample must be a perfect square up to "
+                "65536 (e.g. 64, 256, 1024); got " + std::to_string(pm.gatherRays) + ".");
+  }
+  if (pm.estimatePhotons < 2 || pm.estimatePhotons > 1024)
+  {
+    throw Error("Photon mapping: the photons per radiance estimate must be between 2 and 1024; got " +
+      std::to_string(pm.estimatePhotons) + ".");
+  }
+  if (!(pm.alpha >= 0.f && pm.alpha <= 1000.f))
+  {
+    throw Error("Photon mapping: the clustering's distance weight alpha must be in [0, 1000]; got " +
+      std::to_string(pm.alpha) + ".");
   }
   if (options.method == Method::ImplicitVisibility && options.twoSided)
   {
@@ -152,7 +184,7 @@ Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& be
   differs(kBackendSetup, o.cudaBvhBuild != b.cudaBvhBuild);
   differs(kPlacement, o.backend != b.backend || o.cudaDevices != b.cudaDevices);
   differs(kMethodOptions, o.instantRadiosity != b.instantRadiosity ||
-    o.implicitVisibility != b.implicitVisibility);
+    o.implicitVisibility != b.implicitVisibility || o.photonMapping != b.photonMapping);
   if (o.method != b.method)
   {
     c = kEverything;

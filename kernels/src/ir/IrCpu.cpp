@@ -230,27 +230,8 @@ private:
 
   void finish(const StageContext& c)
   {
-    const Scene& s = c.scene;
-    const SolverOptions& o = c.options;
-    const Elements elements{ s.vertexCount(), o.twoSided };
-    std::vector<Vec3f> indirect = gatherStaged ? nextGathered : gathered;
-    if (o.smoothing)
-    {
-      const auto t = std::chrono::steady_clock::now();
-      const float cosFeature = std::cos(o.featureAngleDegrees * (kPi / 180.f));
-      indirect = smoothFeatureAware(indirect, geometry.topology, s.normals, elements, cosFeature);
-      c.part("Smoothing", msSince(t));
-    }
-    Solution& sol = c.solution;
-    sol.direct = directStaged ? nextDirect.irradiance : direct.irradiance;
-    sol.radiance.resize(elements.count());
-    for (std::size_t e = 0; e < elements.count(); ++e)
-    {
-      const Index v = elements.vertexOf(e);
-      const Vec3f le = (e < s.vertexCount() && !s.emission.empty()) ? s.emission[e] : Vec3f(0.f);
-      sol.radiance[e] = outgoingRadiance(s.albedo[v], sol.direct[e], indirect[e], le);
-    }
-    sol.indirect = std::move(indirect);
+    finishSolution(c, geometry.topology, gatherStaged ? nextGathered : gathered,
+      directStaged ? nextDirect.irradiance : direct.irradiance);
   }
 
   CpuGeometry geometry;

@@ -1,0 +1,88 @@
+// Photon mapping with clustered final gather (Wang, Wang, Zhou & Guo 2009), per vertex: the
+// pieces the CPU backend (PmCpu.cpp) runs, testable on their own. Photons are instant
+// radiosity's light paths (ir/IrMath.h traceLightPath): each stores the flux it reflects at a
+// diffuse hit. The vertices are clustered (adaptive seeding + k-means with the paper's
+// metric); only each cluster's sample vertex gathers (final gather against radiance
+// estimates of the photon map); every vertex interpolates its neighbours' samples with
+// irradiance-caching weights. See Documentation/Methods.md, "Photon mapping".
+#pragma once
+
+#include "pm/PointTree.h"
+
+#include "linkgi/Parallel.h"
+#include "linkgi/RayTracer.h"
+#include "linkgi/Scene.h"
+
+#include <vector>
+
+namespace linkgi::pm
+{
+/// The global photon map: photons, and outgoing radiance estimates at every `siteStride`-th
+/// photon (Christensen's precomputed estimates, which stand in for the paper's illumination
+/// cut: a gather ray reads the nearest estimate instead of searching photons).
+struct PhotonMap
+{
+  std::vector<Vec3f> positions, normals; ///< photon i: where, and the side it arrived on
+  std::vector<Vec3f> flux;               ///< the flux it reflects (W), albedo applied
+  std::vector<Vec3f> sitePositions, siteNormals;
+  /// L = sum of the k nearest photons' flux on the same side / (pi r_k^2) / pi: the radiance
+  /// a diffuse surface reflects there.
+  std::vector<Vec3f> siteRadiance;
+  PointTree sites;
+
+  std::size_t count() const { return positions.size(); }
+  /// Total reflected flux (W): what conservation tests check.
+  Vec3f totalFlux() const;
+  /// The outgoing radiance seen at surface point y (unit normal n): the nearest estimate
+  /// whose normal is within 60 degrees of n, zero when there is none.
+  Vec3f radiance(const Vec3f& y, const Vec3f& n, std::vector<std::pair<float, Index>>& scratch) const;
+};
+
+/// Builds the map's estimates from photons already in positions/normals/flux: k nearest
+/// photons within 37 degrees of the site's normal, at every `siteStride`-th photon.
+void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride,
+  const ProgressCallback& progress = {});
+
+/// The clusters of the vertices, and what interpolation needs from them.
+struct Clusters
+{
+  std::vector<Index> sample;     ///< per cluster: the vertex that gathers for it
+  std::vector<Index> assignment; ///< per vertex: its cluster
+  /// Per vertex, up to kInterpolants clusters whose samples it interpolates (its own first),
+  /// kInvalidIndex where there are fewer.
+  static constexpr int kInterpolants = 6;
+  std::vector<Index> neighbours;
+  std::size_t count() const { return sample.size(); }
+};
+
+/// The paper's metric between a point (x, n) and a centre (c, m): alpha |x - c| +
+/// sqrt(2 - 2 n.m), with |x - c| in units of the scene's bounding-box diagonal.
+float clusterMetric(const Vec3f& x, const Vec3f& n, const Vec3f& c, const Vec3f& m, float alphaOverDiagonal);
+
+/// Adaptive seeding (seeds split among halves of a Morton-ordered vertex range in
+/// proportion to each half's geometric variation under clusterMetric) and `iterations`
+/// rounds of k-means; `k` clusters (at most the vertex count). Each cluster's sample is its
+/// member closest to its centre.
+Clusters clusterVertices(const Scene& scene, std::uint32_t k, float alpha, int iterations,
+  const ProgressCallback& progress = {});
+
+/// What the final gather at the samples gives.
+struct SampleIrradiance
+{
+  std::vector<Vec3f> irradiance;      ///< per cluster: E at its sample (photon map + sky)
+  std::vector<float> harmonicDistance; ///< per cluster: R_j, the harmonic mean hit distance
+  std::uint64_t rays = 0;
+};
+
+/// Final gather: `directions` (a cosine-weighted set, makeDirectionSet) from the `side`
+/// (+1 front, -1 back) of each sample vertex, twisted per element by `seed`; a hit reads the
+/// photon map's radiance, a miss the environment, the back of a one-sided surface is black.
+SampleIrradiance finalGather(const Scene& scene, const std::vector<Vec3f>& shifts,
+  const std::vector<Vec3f>& faceNormals, const RayTracer& tracer, const PhotonMap& map,
+  const Clusters& clusters, const std::vector<Vec3f>& directions, std::uint32_t seed, float side,
+  bool twoSided, const ProgressCallback& progress = {});
+
+/// Every vertex's irradiance from its neighbours' samples, weighted as in irradiance
+/// caching: w = 1 / (|x - s| / R + sqrt(2 - 2 n.n_s)) over samples facing the same way.
+std::vector<Vec3f> interpolate(const Scene& scene, const Clusters& clusters, const SampleIrradiance& samples);
+}

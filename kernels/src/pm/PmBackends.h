@@ -1,0 +1,22 @@
+// The photon-mapping method's stages and backends, as its MethodSpec creates them
+// (PmMethod.cpp).
+#pragma once
+
+#include "engine/Pipeline.h"
+
+namespace linkgi::pm
+{
+/// The stages, in the order of PmMethod.cpp's table.
+enum Stage : std::size_t
+{
+  kGeometryStage,  ///< topology, ray-origin shifts, face normals, acceleration structure
+  kPhotonStage,    ///< light paths from every source: the photon map and its estimates
+  kClusterStage,   ///< the vertices' clusters, their samples and interpolants
+  kLightLinkStage, ///< shadow rays to the point, spot and directional lights: E_d
+  kGatherStage,    ///< final gather at the samples, interpolated to every vertex
+  kFinishStage     ///< feature-aware smoothing, outgoing radiance, the output
+};
+
+/// Embree (or our BVH) and all cores (PmCpu.cpp).
+std::unique_ptr<engine::MethodBackend> createCpuBackend(const SolverOptions& options);
+}

@@ -1,0 +1,178 @@
+// Photon mapping on the CPU: light paths and final-gather rays through the RayTracer
+// interface (Embree or our BVH), loops on the engine's thread pool; the direct light is the
+// shared light-link stage.
+#include "pm/PmBackends.h"
+
+#include "pm/PhotonMapping.h"
+
+#include "engine/CpuGeometry.h"
+#include "ir/IrBackends.h"
+
+#include "linkgi/DirectLight.h"
+#include "linkgi/Sampling.h"
+
+namespace linkgi::pm
+{
+namespace
+{
+using namespace engine;
+
+/// Radiance estimates at every 4th photon (Christensen's precomputed estimates).
+constexpr std::uint32_t kSiteStride = 4;
+/// Lloyd iterations of the clustering.
+constexpr int kMeansIterations = 4;
+
+/// The light paths of instant radiosity, asked for `photons` stored hits, with Russian
+/// roulette by albedo (a photon map's paths end by absorption, not at a fixed length).
+ir::PathSetup photonPaths(const Scene& scene, const std::vector<Vec3f>& faceNormals, const SolverOptions& o)
+{
+  SolverOptions paths = o;
+  paths.instantRadiosity.vplCount = o.photonMapping.photons;
+  paths.instantRadiosity.russianRoulette = true;
+  return ir::buildPathSetup(scene, faceNormals, paths);
+}
+
+class PmCpu final : public MethodBackend
+{
+public:
+  void run(std::size_t stage, const StageContext& c) override
+  {
+    switch (stage)
+    {
+      case kGeometryStage:
+        geometryTouched = true;
+        return geometry.update(c);
+      case kPhotonStage:
+        return tracePhotons(c);
+      case kClusterStage:
+        nextClusters = clusterVertices(c.scene, c.options.photonMapping.clusters,
+          c.options.photonMapping.alpha, kMeansIterations, c.progress);
+        clustersStaged = true;
+        return;
+      case kLightLinkStage:
+        nextDirect = computeDirectLight(c.scene, geometry.topology, geometry.shifts,
+          *geometry.tracer, c.options.twoSided, c.options.lightOversampling, c.progress);
+        directStaged = true;
+        return;
+      case kGatherStage:
+        return gather(c);
+      case kFinishStage:
+        return finishSolution(c, geometry.topology, gatherStaged ? nextGathered : gathered,
+          directStaged ? nextDirect.irradiance : direct.irradiance);
+    }
+  }
+
+  void commit() override
+  {
+    if (mapStaged)
+    {
+      std::swap(map, nextMap);
+    }
+    if (clustersStaged)
+    {
+      std::swap(clusters, nextClusters);
+    }
+    if (directStaged)
+    {
+      std::swap(direct, nextDirect);
+    }
+    if (gatherStaged)
+    {
+      std::swap(gathered, nextGathered);
+      gatherRays = nextGatherRays;
+    }
+    mapStaged = clustersStaged = directStaged = gatherStaged = geometryTouched = false;
+  }
+
+  bool discard() override
+  {
+    mapStaged = clustersStaged = directStaged = gatherStaged = false;
+    // The tracer and the host geometry are updated in place (see LinksCpu).
+    const bool whole = !geometryTouched;
+    geometryTouched = false;
+    return whole;
+  }
+
+  void describe(SolverStats& st) const override
+  {
+    st.backend = "cpu";
+    st.device = geometry.tracer ? geometry.tracer->name() : "";
+    st.devices = 0;
+    st.linkedPerDevice.clear();
+    st.batchesPerDevice.clear();
+    st.msTracePerDevice.clear();
+    st.msCompressPerDevice.clear();
+    st.msWallPerDevice.clear();
+    st.gpuBytesAllocated = 0;
+    st.rays = gatherRays;
+    st.linksRaw = st.linksCompressed = st.linkBytes = 0;
+    st.lightRays = direct.shadowRays;
+    st.photons = map.count();
+    st.clusters = clusters.count();
+  }
+
+private:
+  void tracePhotons(const StageContext& c)
+  {
+    const ir::PathSetup setup = photonPaths(c.scene, geometry.faceNormals, c.options);
+    const auto half = [&c](double lo) -> ProgressCallback {
+      return [&c, lo](const char*, double f) { return !c.progress || c.progress("Photons", lo + 0.5 * f); };
+    };
+    const ir::VplSet paths = ir::traceVplsCpu(setup, *geometry.tracer, 1, half(0.0));
+    PhotonMap& m = nextMap;
+    m.positions.clear();
+    m.normals.clear();
+    m.flux.clear();
+    for (const ir::Vpl& vpl : paths.vpls)
+    {
+      if (!vpl.sky) // the sky is what a gather ray that leaves the scene sees
+      {
+        m.positions.push_back(vpl.position);
+        m.normals.push_back(vpl.normal);
+        m.flux.push_back(vpl.flux);
+      }
+    }
+    estimateRadiance(m, c.options.photonMapping.estimatePhotons, kSiteStride, half(0.5));
+    mapStaged = true;
+  }
+
+  void gather(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    const SolverOptions& o = c.options;
+    const PhotonMap& photons = mapStaged ? nextMap : map;
+    const Clusters& groups = clustersStaged ? nextClusters : clusters;
+    const std::vector<Vec3f> directions = makeDirectionSet(o.photonMapping.gatherRays);
+    nextGathered.clear();
+    nextGatherRays = 0;
+    for (const float side : { 1.f, -1.f })
+    {
+      if (side < 0.f && !o.twoSided)
+      {
+        break;
+      }
+      const SampleIrradiance samples = finalGather(s, geometry.shifts, geometry.faceNormals,
+        *geometry.tracer, photons, groups, directions, o.seed, side, o.twoSided, c.progress);
+      const std::vector<Vec3f> e = interpolate(s, groups, samples);
+      nextGathered.insert(nextGathered.end(), e.begin(), e.end());
+      nextGatherRays += samples.rays;
+    }
+    gatherStaged = true;
+  }
+
+  CpuGeometry geometry;
+  bool geometryTouched = false;
+  PhotonMap map, nextMap;
+  Clusters clusters, nextClusters;
+  DirectLightResult direct, nextDirect;
+  std::vector<Vec3f> gathered, nextGathered;
+  std::uint64_t gatherRays = 0, nextGatherRays = 0;
+  bool mapStaged = false, clustersStaged = false, directStaged = false, gatherStaged = false;
+};
+}
+
+std::unique_ptr<MethodBackend> createCpuBackend(const SolverOptions&)
+{
+  return std::make_unique<PmCpu>();
+}
+}
