@@ -1,5 +1,7 @@
 #include "pm/PhotonMapping.h"
 
+#include "ir/IrBackends.h"
+
 #include "linkgi/Links.h"
 #include "linkgi/Sampling.h"
 
@@ -49,12 +51,15 @@ Vec3f unitOr(const Vec3f& v, const Vec3f& fallback)
 
 Vec3f PhotonMap::totalFlux() const
 {
-  Vec3f sum(0.f);
+  double sum[3] = { 0.0, 0.0, 0.0 };
   for (const Vec3f& f : flux)
   {
-    sum += f;
+    for (int c = 0; c < 3; ++c)
+    {
+      sum[c] += f[c];
+    }
   }
-  return sum;
+  return Vec3f(float(sum[0]), float(sum[1]), float(sum[2]));
 }
 
 Vec3f PhotonMap::radiance(const Vec3f& y, const Vec3f& n, std::vector<std::pair<float, Index>>& scratch) const
@@ -65,6 +70,28 @@ Vec3f PhotonMap::radiance(const Vec3f& y, const Vec3f& n, std::vector<std::pair<
   }
   const auto facing = [&](Index i) { return dot(siteNormals[i], n) > kLookupCos; };
   return sites.nearest(y, 1, kInfinity, facing, scratch) ? siteRadiance[scratch[0].second] : Vec3f(0.f);
+}
+
+void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, const RayTracer& tracer,
+  const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress)
+{
+  SolverOptions paths = options;
+  paths.instantRadiosity.vplCount = options.photonMapping.photons;
+  paths.instantRadiosity.russianRoulette = true;
+  const ir::PathSetup setup = ir::buildPathSetup(scene, faceNormals, paths);
+  const ir::VplSet hits = ir::traceVplsCpu(setup, tracer, 1, progress);
+  map.positions.clear();
+  map.normals.clear();
+  map.flux.clear();
+  for (const ir::Vpl& vpl : hits.vpls)
+  {
+    if (!vpl.sky) // the sky is what a gather ray that leaves the scene sees
+    {
+      map.positions.push_back(vpl.position);
+      map.normals.push_back(vpl.normal);
+      map.flux.push_back(vpl.flux);
+    }
+  }
 }
 
 void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride, const ProgressCallback& progress)

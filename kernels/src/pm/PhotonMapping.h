@@ -12,6 +12,7 @@
 #include "linkgi/Parallel.h"
 #include "linkgi/RayTracer.h"
 #include "linkgi/Scene.h"
+#include "linkgi/SolverTypes.h"
 
 #include <vector>
 
@@ -37,6 +38,12 @@ struct PhotonMap
   /// whose normal is within 60 degrees of n, zero when there is none.
   Vec3f radiance(const Vec3f& y, const Vec3f& n, std::vector<std::pair<float, Index>>& scratch) const;
 };
+
+/// The photons of `options` (PhotonMappingOptions::photons, bounces, seed, sides): instant
+/// radiosity's light paths from every source, with Russian roulette by albedo, into `map`'s
+/// positions, normals and flux (its estimates are estimateRadiance's).
+void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, const RayTracer& tracer,
+  const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress = {});
 
 /// Builds the map's estimates from photons already in positions/normals/flux: k nearest
 /// photons within 37 degrees of the site's normal, at every `siteStride`-th photon.

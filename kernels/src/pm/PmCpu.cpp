@@ -6,7 +6,6 @@
 #include "pm/PhotonMapping.h"
 
 #include "engine/CpuGeometry.h"
-#include "ir/IrBackends.h"
 
 #include "linkgi/DirectLight.h"
 #include "linkgi/Sampling.h"
@@ -21,16 +20,6 @@ using namespace engine;
 constexpr std::uint32_t kSiteStride = 4;
 /// Lloyd iterations of the clustering.
 constexpr int kMeansIterations = 4;
-
-/// The light paths of instant radiosity, asked for `photons` stored hits, with Russian
-/// roulette by albedo (a photon map's paths end by absorption, not at a fixed length).
-ir::PathSetup photonPaths(const Scene& scene, const std::vector<Vec3f>& faceNormals, const SolverOptions& o)
-{
-  SolverOptions paths = o;
-  paths.instantRadiosity.vplCount = o.photonMapping.photons;
-  paths.instantRadiosity.russianRoulette = true;
-  return ir::buildPathSetup(scene, faceNormals, paths);
-}
 
 class PmCpu final : public MethodBackend
 {
@@ -114,25 +103,11 @@ public:
 private:
   void tracePhotons(const StageContext& c)
   {
-    const ir::PathSetup setup = photonPaths(c.scene, geometry.faceNormals, c.options);
     const auto half = [&c](double lo) -> ProgressCallback {
       return [&c, lo](const char*, double f) { return !c.progress || c.progress("Photons", lo + 0.5 * f); };
     };
-    const ir::VplSet paths = ir::traceVplsCpu(setup, *geometry.tracer, 1, half(0.0));
-    PhotonMap& m = nextMap;
-    m.positions.clear();
-    m.normals.clear();
-    m.flux.clear();
-    for (const ir::Vpl& vpl : paths.vpls)
-    {
-      if (!vpl.sky) // the sky is what a gather ray that leaves the scene sees
-      {
-        m.positions.push_back(vpl.position);
-        m.normals.push_back(vpl.normal);
-        m.flux.push_back(vpl.flux);
-      }
-    }
-    estimateRadiance(m, c.options.photonMapping.estimatePhotons, kSiteStride, half(0.5));
+    linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, *geometry.tracer, c.options, nextMap, half(0.0));
+    estimateRadiance(nextMap, c.options.photonMapping.estimatePhotons, kSiteStride, half(0.5));
     mapStaged = true;
   }
 

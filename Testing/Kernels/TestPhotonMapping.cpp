@@ -1,0 +1,252 @@
+// Photon mapping (Method::PhotonMapping): the photons carry the lights' power, the
+// clustering's metric and coverage, agreement with the reference and the furnace, and what
+// each change re-runs.
+#include "SceneFixtures.h"
+
+#include "pm/PhotonMapping.h"
+
+#include "linkgi/Links.h"
+#include "linkgi/Metrics.h"
+#include "linkgi/RayTracer.h"
+#include "linkgi/Reference.h"
+#include "linkgi/Scenes.h"
+#include "linkgi/Solver.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace linkgi;
+
+namespace
+{
+SolverOptions photonMapping()
+{
+  SolverOptions o;
+  o.method = Method::PhotonMapping;
+  o.backend = Backend::Cpu;
+  return o;
+}
+
+/// A closed cube of side 2 about the origin, faces inward, albedo rho, a point light inside.
+Scene closedBox(float rho, int n = 8)
+{
+  Scene s;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (float side : { -1.f, 1.f })
+    {
+      const Index base = Index(s.positions.size());
+      for (int i = 0; i <= n; ++i)
+      {
+        for (int j = 0; j <= n; ++j)
+        {
+          Vec3f p(0.f);
+          p[axis] = side;
+          p[(axis + 1) % 3] = -1.f + 2.f * float(i) / float(n);
+          p[(axis + 2) % 3] = -1.f + 2.f * float(j) / float(n);
+          Vec3f normal(0.f);
+          normal[axis] = -side;
+          s.positions.push_back(p);
+          s.normals.push_back(normal);
+          s.albedo.push_back(Vec3f(rho));
+        }
+      }
+      for (int i = 0; i < n; ++i)
+      {
+        for (int j = 0; j < n; ++j)
+        {
+          const Index a = base + Index(i * (n + 1) + j), b = a + Index(n + 1);
+          s.triangles.push_back({ { a, b, Index(b + 1) } });
+          s.triangles.push_back({ { a, Index(b + 1), Index(a + 1) } });
+        }
+      }
+    }
+  }
+  Light l;
+  l.position = Vec3f(0.2f, -0.1f, 0.3f);
+  l.intensity = Vec3f(2.f, 1.f, 0.5f);
+  s.lights.push_back(l);
+  return s;
+}
+
+std::vector<Vec3f> total(const Solution& s)
+{
+  std::vector<Vec3f> t(s.direct.size());
+  for (std::size_t i = 0; i < t.size(); ++i)
+  {
+    t[i] = s.direct[i] + s.indirect[i];
+  }
+  return t;
+}
+}
+
+TEST(TestPhotonMapping, PhotonsInAClosedBoxCarryTheLightsPower)
+{
+  // One bounce: every photon is a first hit, and reflects rho times what the light sent its
+  // way; the light's 4 pi I all lands on the box.
+  Scene s = closedBox(0.6f);
+  validateScene(s);
+  const std::unique_ptr<RayTracer> tracer = createCpuRayTracer();
+  tracer->build(s.positions, s.triangles);
+  SolverOptions o = photonMapping();
+  o.bounces = 1;
+  o.photonMapping.photons = 20000;
+  pm::PhotonMap map;
+  pm::tracePhotons(s, frontFaceNormals(s), *tracer, o, map);
+  ASSERT_GT(map.count(), 19000u);
+  const Vec3f sum = map.totalFlux(), expected = s.lights[0].intensity * (4.f * kPi * 0.6f);
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(sum[c] / expected[c], 1.0, 1e-4) << "channel " << c;
+  }
+  // Three bounces with Russian roulette: rho + rho^2 + rho^3 of it, within the sampling noise.
+  o.bounces = 3;
+  pm::tracePhotons(s, frontFaceNormals(s), *tracer, o, map);
+  const double series = 0.6 + 0.36 + 0.216;
+  EXPECT_NEAR(map.totalFlux().x / (expected.x / 0.6 * series), 1.0, 0.03);
+}
+
+TEST(TestPhotonMapping, ClusterMetricIsThePapers)
+{
+  const Vec3f up(0, 0, 1), down(0, 0, -1), side(1, 0, 0);
+  EXPECT_FLOAT_EQ(pm::clusterMetric(Vec3f(1, 2, 3), up, Vec3f(1, 2, 3), up, 0.3f), 0.f);
+  EXPECT_NEAR(pm::clusterMetric(Vec3f(0.f), up, Vec3f(0.f), down, 0.3f), 2.f, 1e-6);
+  EXPECT_NEAR(pm::clusterMetric(Vec3f(0.f), up, Vec3f(0.f), side, 0.3f), std::sqrt(2.f), 1e-6);
+  // alpha |x - c|: alpha is per unit of distance here (the caller divides by the diagonal).
+  EXPECT_NEAR(pm::clusterMetric(Vec3f(0.f), up, Vec3f(2, 0, 0), up, 0.25f), 0.5f, 1e-6);
+}
+
+TEST(TestPhotonMapping, ClustersCoverEveryVertexOnce)
+{
+  const Scene s = makeStandardScene("cornell");
+  for (std::uint32_t k : { 1u, 37u, 1024u, 1u << 20 })
+  {
+    const pm::Clusters c = pm::clusterVertices(s, k, 0.3f, 4);
+    ASSERT_GE(c.count(), 1u);
+    EXPECT_LE(c.count(), std::min<std::size_t>(k, s.vertexCount()));
+    ASSERT_EQ(c.assignment.size(), s.vertexCount());
+    std::vector<int> members(c.count(), 0);
+    for (std::size_t v = 0; v < s.vertexCount(); ++v)
+    {
+      ASSERT_LT(c.assignment[v], c.count());
+      ++members[c.assignment[v]];
+      EXPECT_EQ(c.neighbours[v * pm::Clusters::kInterpolants], c.assignment[v]) << "own cluster first";
+    }
+    for (std::size_t j = 0; j < c.count(); ++j)
+    {
+      EXPECT_GT(members[j], 0) << "cluster " << j << " of " << k;
+      EXPECT_EQ(c.assignment[c.sample[j]], Index(j)) << "a sample belongs to its cluster";
+    }
+    if (k == 1024u)
+    {
+      // The box's walls meet at right angles: no cluster spans two of them.
+      for (std::size_t v = 0; v < s.vertexCount(); ++v)
+      {
+        EXPECT_GT(dot(s.normals[v], s.normals[c.sample[c.assignment[v]]]), 0.5f);
+      }
+    }
+  }
+}
+
+TEST(TestPhotonMapping, FurnaceConvergesToLeOverOneMinusRho)
+{
+  // Closed sphere, rho = 0.5, Le = 1: L = 2 (12 bounces leave 1.2e-4 of it out).
+  const Scene s = makeStandardScene("furnace");
+  SolverOptions o = photonMapping();
+  o.bounces = 12;
+  Solver solver;
+  const Solution& sol = solver.update(s, o);
+  double worst = 0;
+  for (std::size_t v = 0; v < s.vertexCount(); ++v)
+  {
+    worst = std::max(worst, std::abs(sol.radiance[v].x * (1.0 - s.albedo[v].x) / s.emission[v].x - 1.0));
+  }
+  EXPECT_LT(worst, 0.03);
+}
+
+TEST(TestPhotonMapping, AgreesWithReference)
+{
+  // The room with a block: total irradiance against per-vertex path tracing (2048 paths, the
+  // same 3 bounces); the bound is 8%.
+  const Scene s = test::roomWithBlock(0.25f);
+  ReferenceOptions ro;
+  ro.pathsPerVertex = 2048;
+  ro.bounces = 3;
+  const ReferenceSolution ref = solveReference(s, ro);
+  std::vector<Vec3f> reference(ref.direct.size());
+  for (std::size_t i = 0; i < reference.size(); ++i)
+  {
+    reference[i] = ref.direct[i] + ref.indirect[i];
+  }
+  Solver solver;
+  const ErrorMetrics err = relativeRmse(total(solver.update(s, photonMapping())), reference, vertexAreas(s));
+  std::printf("room: relative RMSE luminance %.4f (worst channel %.4f)\n", err.relRmseLuminance, maxComponent(err.relRmse));
+  EXPECT_LE(err.relRmseLuminance, 0.08f);
+}
+
+TEST(TestPhotonMapping, StagesRerunOnlyWhatChanged)
+{
+  const Scene s = test::roomWithBlock(0.5f);
+  SolverOptions o = photonMapping();
+  o.photonMapping.photons = 20000;
+  Solver solver;
+  solver.update(s, o);
+  const SolverStats& st = solver.stats();
+  EXPECT_EQ(st.method, "photon-mapping");
+  EXPECT_GT(st.photons, 0u);
+  EXPECT_GT(st.clusters, 0u);
+  for (const char* stage : { "Geometry", "Photons", "Clusters", "LightLinks", "Gather", "Finish" })
+  {
+    EXPECT_TRUE(st.ran(stage)) << stage;
+  }
+
+  Scene lit = s; // a light move: photons, direct light, gather; not the clusters
+  lit.lights[0].position.x += 0.2f;
+  solver.update(lit, o);
+  EXPECT_FALSE(st.ran("Geometry") || st.ran("Clusters"));
+  EXPECT_TRUE(st.ran("Photons") && st.ran("LightLinks") && st.ran("Gather"));
+  EXPECT_EQ(st.runs("ClusterBuilds"), 1u);
+  EXPECT_EQ(st.runs("PhotonTraces"), 2u);
+
+  Scene moved = lit; // a deformation: everything
+  for (Vec3f& p : moved.positions)
+  {
+    p.y *= 1.02f;
+  }
+  solver.update(moved, o);
+  EXPECT_TRUE(st.ran("Geometry") && st.ran("Clusters") && st.ran("Photons") && st.ran("Gather"));
+
+  o.smoothing = false; // only the finish
+  solver.update(moved, o);
+  EXPECT_FALSE(st.ran("Photons") || st.ran("Gather") || st.ran("Clusters"));
+  EXPECT_TRUE(st.ran("Finish"));
+}
+
+TEST(TestPhotonMapping, DeterministicForASeedOnAnyThreadCount)
+{
+  const Scene s = test::roomWithBlock(0.5f);
+  SolverOptions o = photonMapping();
+  o.photonMapping.photons = 20000;
+  Solver a, b;
+  const Solution first = a.update(s, o);
+  Solution single;
+  runWithConcurrency(1, [&] { single = b.update(s, o); });
+  EXPECT_TRUE(sameBits(first.indirect, single.indirect));
+}
+
+TEST(TestPhotonMapping, BadOptionsAreNamed)
+{
+  SolverOptions o = photonMapping();
+  o.photonMapping.gatherRays = 200;
+  EXPECT_NE(test::errorOf([&] { validateOptions(o); }).find("final-gather rays"), std::string::npos);
+  o = photonMapping();
+  o.photonMapping.photons = 0;
+  EXPECT_NE(test::errorOf([&] { validateOptions(o); }).find("photons"), std::string::npos);
+  o = photonMapping();
+  o.photonMapping.estimatePhotons = 1;
+  EXPECT_NE(test::errorOf([&] { validateOptions(o); }).find("radiance estimate"), std::string::npos);
+  o = photonMapping();
+  o.photonMapping.alpha = std::nanf("");
+  EXPECT_NE(test::errorOf([&] { validateOptions(o); }).find("alpha"), std::string::npos);
+}
