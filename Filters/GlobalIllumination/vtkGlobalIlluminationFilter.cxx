@@ -93,6 +93,9 @@ vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
   , ProxyVisibility(0)
   , ProxyResolution(32)
   , ImplicitVisibilityBins(12)
+  , NumberOfPhotons(262144)
+  , NumberOfClusters(4096)
+  , FinalGatherRays(256)
   , MemoryBudget(0.0)
   , ProxyVertices(0)
   , Refinement(0)
@@ -305,6 +308,8 @@ const char* vtkGlobalIlluminationFilter::GetMethodAsString()
       return "InstantRadiosity";
     case IMPLICIT_VISIBILITY:
       return "ImplicitVisibility";
+    case PHOTON_MAPPING:
+      return "PhotonMapping";
     default:
       return "Links";
   }
@@ -425,6 +430,9 @@ void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Proxy Visibility: " << (this->ProxyVisibility ? "On" : "Off") << "\n";
   os << indent << "Proxy Resolution: " << this->ProxyResolution << "\n";
   os << indent << "Implicit Visibility Bins: " << this->ImplicitVisibilityBins << "\n";
+  os << indent << "Number Of Photons: " << this->NumberOfPhotons << "\n";
+  os << indent << "Number Of Clusters: " << this->NumberOfClusters << "\n";
+  os << indent << "Final Gather Rays: " << this->FinalGatherRays << "\n";
   os << indent << "Memory Budget: " << this->MemoryBudget << " MiB\n";
   os << indent << "Proxy Vertices: " << this->ProxyVertices << "\n";
   os << indent << "Refinement: " << (this->Refinement ? "On" : "Off") << "\n";

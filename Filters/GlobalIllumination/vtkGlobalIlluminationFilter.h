@@ -98,7 +98,8 @@ public:
   {
     LINKS = 0,             ///< the link structure (Schmitz, Tavenrath & Kobbelt 2008)
     INSTANT_RADIOSITY = 1, ///< virtual point lights (Marques & Santos 2010)
-    IMPLICIT_VISIBILITY = 2 ///< hierarchical links, visibility implied (Dong et al. 2007)
+    IMPLICIT_VISIBILITY = 2, ///< hierarchical links, visibility implied (Dong et al. 2007)
+    PHOTON_MAPPING = 3       ///< photons, clustered final gather (Wang et al. 2009)
   };
 
   ///@{
@@ -112,14 +113,20 @@ public:
    * IMPLICIT_VISIBILITY links clusters of vertices whose direction bins keep only their
    * shortest link (visibility implied, no rays for the bounced light), rebuilt on every
    * deformation; one-sided elements only (TwoSided is an error with it).
+   * PHOTON_MAPPING traces photons from the lights, emissive surfaces and environment,
+   * clusters the vertices and final-gathers only at one sample vertex per cluster, against
+   * radiance estimates of the photons, then interpolates to every vertex (a light move keeps
+   * the clusters).
    * RaysPerVertex applies to LINKS, the VPL properties below to INSTANT_RADIOSITY,
-   * ImplicitVisibilityBins to IMPLICIT_VISIBILITY. The default value is LINKS.
+   * ImplicitVisibilityBins to IMPLICIT_VISIBILITY, the photon properties to PHOTON_MAPPING.
+   * The default value is LINKS.
    */
-  vtkSetClampMacro(Method, int, LINKS, IMPLICIT_VISIBILITY);
+  vtkSetClampMacro(Method, int, LINKS, PHOTON_MAPPING);
   vtkGetMacro(Method, int);
   void SetMethodToLinks() { this->SetMethod(LINKS); }
   void SetMethodToInstantRadiosity() { this->SetMethod(INSTANT_RADIOSITY); }
   void SetMethodToImplicitVisibility() { this->SetMethod(IMPLICIT_VISIBILITY); }
+  void SetMethodToPhotonMapping() { this->SetMethod(PHOTON_MAPPING); }
   const char* GetMethodAsString();
   ///@}
 
@@ -175,6 +182,33 @@ public:
    */
   vtkSetClampMacro(ImplicitVisibilityBins, int, 2, 32);
   vtkGetMacro(ImplicitVisibilityBins, int);
+  ///@}
+
+  ///@{
+  /**
+   * PHOTON_MAPPING: about how many photons each light update stores (one per diffuse hit of
+   * a light path), from 1 to 16777216. The default value is 262144.
+   */
+  vtkSetClampMacro(NumberOfPhotons, int, 1, 16777216);
+  vtkGetMacro(NumberOfPhotons, int);
+  ///@}
+
+  ///@{
+  /**
+   * PHOTON_MAPPING: clusters of vertices; only one sample vertex per cluster final-gathers,
+   * the others interpolate. At most the vertex count is used. The default value is 4096.
+   */
+  vtkSetClampMacro(NumberOfClusters, int, 1, 1048576);
+  vtkGetMacro(NumberOfClusters, int);
+  ///@}
+
+  ///@{
+  /**
+   * PHOTON_MAPPING: final-gather rays per sample vertex, a perfect square (64, 256, 1024;
+   * any other value is an error naming it). The default value is 256.
+   */
+  vtkSetClampMacro(FinalGatherRays, int, 1, 65536);
+  vtkGetMacro(FinalGatherRays, int);
   ///@}
 
   ///@{
@@ -538,6 +572,9 @@ protected:
   vtkTypeBool ProxyVisibility;
   int ProxyResolution;
   int ImplicitVisibilityBins;
+  int NumberOfPhotons;
+  int NumberOfClusters;
+  int FinalGatherRays;
   double MemoryBudget;
   vtkIdType ProxyVertices;
   vtkTypeBool Refinement;

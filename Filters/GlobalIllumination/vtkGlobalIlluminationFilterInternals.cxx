@@ -215,7 +215,12 @@ linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
     ? linkgi::Method::InstantRadiosity
     : self->Method == vtkGlobalIlluminationFilter::IMPLICIT_VISIBILITY
     ? linkgi::Method::ImplicitVisibility
+    : self->Method == vtkGlobalIlluminationFilter::PHOTON_MAPPING
+    ? linkgi::Method::PhotonMapping
     : linkgi::Method::Links;
+  options.photonMapping.photons = static_cast<std::uint32_t>(self->NumberOfPhotons);
+  options.photonMapping.clusters = static_cast<std::uint32_t>(self->NumberOfClusters);
+  options.photonMapping.gatherRays = static_cast<std::uint32_t>(self->FinalGatherRays);
   options.implicitVisibility.binsPerSide = static_cast<std::uint32_t>(self->ImplicitVisibilityBins);
   options.memoryBudget = static_cast<std::uint64_t>(self->MemoryBudget * 1024.0 * 1024.0);
   options.instantRadiosity.vplCount = static_cast<std::uint32_t>(self->NumberOfVPLs);

@@ -451,7 +451,7 @@ void vtkGlobalIlluminationSceneBuilder::AddStatistics(vtkFieldData* fd,
     { "BvhRefits", s.bvhRefits }, { "Elements", s.elements }, { "Rays", s.rays },
     { "LightRays", s.lightRays }, { "LinksRaw", s.linksRaw },
     { "LinksCompressed", s.linksCompressed }, { "LinkBytes", s.linkBytes },
-    { "Vpls", s.vpls } };
+    { "Vpls", s.vpls }, { "Photons", s.photons }, { "Clusters", s.clusters } };
   for (const auto& c : counters)
   {
     AddFieldValue(fd, c.first, c.second);

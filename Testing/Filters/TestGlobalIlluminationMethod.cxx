@@ -106,3 +106,36 @@ TEST(TestGlobalIlluminationMethod, SwitchingMethodsGivesTheSameArraysAndSimilarL
   filter->Update();
   EXPECT_EQ(Method(filter->GetOutput()), "links");
 }
+
+TEST(TestGlobalIlluminationMethod, PhotonMappingLightsLikeTheLinksAndKeepsItsClustersOnALightMove)
+{
+  auto filter = SphereOnFloorFilter();
+  filter->Update();
+  vtkNew<vtkPolyData> links;
+  links->DeepCopy(filter->GetOutput());
+
+  filter->SetMethodToPhotonMapping();
+  EXPECT_STREQ(filter->GetMethodAsString(), "PhotonMapping");
+  filter->SetNumberOfPhotons(65536);
+  filter->SetNumberOfClusters(512);
+  filter->Update();
+  vtkPolyData* pm = filter->GetOutput();
+  EXPECT_EQ(Method(pm), "photon-mapping");
+  EXPECT_EQ(Stat(pm, "PhotonTraces"), 1.0);
+  EXPECT_GT(Stat(pm, "Photons"), 10000.0);
+  EXPECT_GT(Stat(pm, "Clusters"), 100.0);
+  EXPECT_LE(Stat(pm, "Clusters"), 512.0);
+  EXPECT_NEAR(Mean(pm, "DirectIrradiance"), Mean(links, "DirectIrradiance"), 1e-6 * Mean(links, "DirectIrradiance"));
+  EXPECT_NEAR(Mean(pm, "IndirectIrradiance") / Mean(links, "IndirectIrradiance"), 1.0, 0.10);
+
+  // A light move: new photons and gather, the same clusters.
+  filter->GetLight(0)->SetPosition(-0.5, 0.3, 2.0);
+  filter->Update();
+  EXPECT_EQ(Stat(filter->GetOutput(), "PhotonTraces"), 2.0);
+  EXPECT_EQ(Stat(filter->GetOutput(), "ClusterBuilds"), 1.0);
+
+  filter->SetFinalGatherRays(200); // not a perfect square: an error that names it, output kept
+  filter->Update();
+  EXPECT_EQ(Method(filter->GetOutput()), "photon-mapping");
+}
+

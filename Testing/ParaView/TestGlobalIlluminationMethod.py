@@ -59,6 +59,18 @@ t.check(direct < 1e-5, "the same direct light (the shared stage): %.2g" % direct
 ratio = mean(ir, "IndirectIrradiance") / mean(links, "IndirectIrradiance")
 t.check(abs(ratio - 1) < 0.15, "indirect light within 15%% of the links': ratio %.3f" % ratio)
 
+gi.Method = "Photon Mapping"
+gi.NumberOfPhotons = 65536
+gi.NumberOfClusters = 512
+gi.UpdatePipeline()
+pm = t.fetch(gi)
+t.check(text_field(pm, "LinkGI.Method") == "photon-mapping", "Photon Mapping ran that method")
+t.check(pm.GetFieldData().GetArray("LinkGI.PhotonTraces") is not None
+        and pm.GetFieldData().GetArray("LinkGI.ClusterBuilds") is not None,
+        "its photon and cluster stages are in the field data")
+ratio = mean(pm, "IndirectIrradiance") / mean(links, "IndirectIrradiance")
+t.check(abs(ratio - 1) < 0.15, "photon mapping's indirect light within 15%% of the links': ratio %.3f" % ratio)
+
 # 2. The representation.
 view = CreateView("RenderView")
 view.ViewSize = [200, 200]
