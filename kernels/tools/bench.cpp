@@ -110,6 +110,12 @@ Args parse(int argc, char** argv)
       a.options.memoryBudget = std::stoull(value());
     else if (arg == "--bins")
       a.options.implicitVisibility.binsPerSide = std::stoul(value());
+    else if (arg == "--photons")
+      a.options.photonMapping.photons = std::stoul(value());
+    else if (arg == "--clusters")
+      a.options.photonMapping.clusters = std::stoul(value());
+    else if (arg == "--gather-rays")
+      a.options.photonMapping.gatherRays = std::stoul(value());
     else if (arg == "--rays")
       a.options.raysPerVertex = std::stoul(value());
     else if (arg == "--bounces")
@@ -139,8 +145,8 @@ Args parse(int argc, char** argv)
       a.gather = false;
     else
     {
-      throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method links|instant-radiosity|implicit-visibility] "
-                  "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--bins 12] [--proxy-vertices N [--proxy-only]] [--refine-vertices N] [--memory-budget BYTES] [--rays 256] [--bounces 3] [--repeat 3] "
+      throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method links|instant-radiosity|implicit-visibility|photon-mapping] "
+                  "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--bins 12] [--photons 262144] [--clusters 4096] [--gather-rays 256] [--proxy-vertices N [--proxy-only]] [--refine-vertices N] [--memory-budget BYTES] [--rays 256] [--bounces 3] [--repeat 3] "
                   "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] [--bvh-build gpu|sah] "
                   "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather]; unknown argument " +
         arg + ".");
@@ -394,7 +400,7 @@ void printRecord(const std::string& name, const Scene& scene, const UpdateRuns& 
               "\"ms_compress\":%.3f,\"ms_link_generation\":%.3f,\"ms_light_links\":%.3f,"
               "\"ms_bounces\":%.3f,\"ms_smoothing\":%.3f,\"ms_full_update\":%.3f,"
               "\"ms_full_update_cold\":%.3f,\"ms_light_update\":%.3f,\"gpu_bytes_allocated\":%llu,"
-              "\"host_peak_mb\":%.1f,\"vpls\":%llu,\"linked_per_device\":[%s],\"stages_ms\":{%s}%s,\"note\":\"%s\"}\n",
+              "\"host_peak_mb\":%.1f,\"vpls\":%llu,\"photons\":%llu,\"clusters\":%llu,\"linked_per_device\":[%s],\"stages_ms\":{%s}%s,\"note\":\"%s\"}\n",
     name.c_str(), full.method.c_str(), full.backend.c_str(), full.device.c_str(), full.devices,
     workerCount(), scene.vertexCount(), scene.triangleCount(), args.options.raysPerVertex,
     args.options.bounces, (unsigned long long)full.rays, raysPerSecond(full.rays, msLinks),
@@ -403,7 +409,8 @@ void printRecord(const std::string& name, const Scene& scene, const UpdateRuns& 
     full.ms("Geometry") + full.ms("Topology"), msLinks, msCompress, msLinks + msCompress,
     full.ms("LightLinks"), full.ms("Bounces"), full.ms("Smoothing"), full.msTotal,
     runs.cold.msTotal, runs.light.msTotal, (unsigned long long)full.gpuBytesAllocated,
-    peakHostMb(), (unsigned long long)full.vpls, perDevice.str().c_str(), stagesJson(full).c_str(), extra.c_str(),
+    peakHostMb(), (unsigned long long)full.vpls, (unsigned long long)full.photons,
+    (unsigned long long)full.clusters, perDevice.str().c_str(), stagesJson(full).c_str(), extra.c_str(),
     full.backendNote.c_str());
   for (const std::string& w : full.warnings)
   {

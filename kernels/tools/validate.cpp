@@ -42,9 +42,9 @@ Args parse(int argc, char** argv)
     const std::string arg = argv[i];
     if (i + 1 >= argc)
     {
-      throw Error("Usage: linkgi-validate [--scenes a,b] [--method links|instant-radiosity|implicit-visibility] "
+      throw Error("Usage: linkgi-validate [--scenes a,b] [--method links|instant-radiosity|implicit-visibility|photon-mapping] "
                   "[--rays 256] [--bounces 3] [--smoothing 1] [--oversampling 1] "
-                  "[--reference-factor 16] [--vpls 1024] [--clamp 0.02] [--interleave 1] "
+                  "[--reference-factor 16] [--vpls 1024] [--clamp 0.02] [--interleave 1] [--photons 262144] [--clusters 4096] [--gather-rays 256] "
                   "[--proxy 0|N] [--bins 12] [--seed 0] [--refine-from CELL] [--refine-tolerance 0.1] "
                   "[--refine-vertices N] [--refine-rounds 3]; " + arg +
         " needs a value.");
@@ -83,6 +83,12 @@ Args parse(int argc, char** argv)
     }
     else if (arg == "--bins")
       a.options.implicitVisibility.binsPerSide = std::stoul(value);
+    else if (arg == "--photons")
+      a.options.photonMapping.photons = std::stoul(value);
+    else if (arg == "--clusters")
+      a.options.photonMapping.clusters = std::stoul(value);
+    else if (arg == "--gather-rays")
+      a.options.photonMapping.gatherRays = std::stoul(value);
     else if (arg == "--seed")
       a.options.seed = std::stoul(value);
     else if (arg == "--rays")
@@ -138,6 +144,13 @@ std::vector<SolverOptions> runs(const Args& args)
 /// Instant radiosity's options as JSON fields (empty for the other methods).
 std::string methodJson(const SolverOptions& o)
 {
+  if (o.method == Method::PhotonMapping)
+  {
+    const PhotonMappingOptions& pm = o.photonMapping;
+    return ",\"photons_asked\":" + std::to_string(pm.photons) + ",\"clusters_asked\":" +
+      std::to_string(pm.clusters) + ",\"gather_rays\":" + std::to_string(pm.gatherRays) +
+      ",\"estimate_photons\":" + std::to_string(pm.estimatePhotons);
+  }
   if (o.method != Method::InstantRadiosity)
   {
     return "";
