@@ -272,7 +272,7 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::AddGlobalCasters(
   }
   ShadowMaps::Casters casters = own;
   casters.Remote = &global->GetPositions();
-  casters.RemoteVersion = static_cast<vtkMTimeType>(global->GetNumberOfGathers());
+  casters.RemoteVersion = global->GetMTime(); // changes with every exchange, unique per object
   // The actor's matrix after the translation by the positions' origin.
   vtkNew<vtkMatrix4x4> origin;
   for (int k = 0; k < 3; ++k)
