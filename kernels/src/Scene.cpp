@@ -33,7 +33,8 @@ bool sameScene(const Scene& a, const Scene& b)
 {
   return sameBits(a.positions, b.positions) && sameBits(a.normals, b.normals) &&
     sameBits(a.albedo, b.albedo) && sameBits(a.emission, b.emission) &&
-    sameBits(a.triangles, b.triangles) && sameBits(a.lights, b.lights) &&
+    sameBits(a.triangles, b.triangles) && sameBits(a.triangleMaterials, b.triangleMaterials) &&
+    sameBits(a.triangleIor, b.triangleIor) && sameBits(a.lights, b.lights) &&
     a.environment.color == b.environment.color && a.environment.width == b.environment.width &&
     a.environment.height == b.environment.height && sameBits(a.environment.texels, b.environment.texels) &&
     a.lengthExponent == b.lengthExponent;
@@ -233,7 +234,8 @@ void normalizeLength(Scene& scene)
   }
 }
 
-/// Removes triangles with repeated indices or zero area; returns how many were removed.
+/// Removes triangles with repeated indices or zero area, and their materials and indices of
+/// refraction; returns how many were removed.
 std::size_t removeDegenerateTriangles(Scene& scene)
 {
   const std::size_t before = scene.triangles.size();
@@ -246,9 +248,66 @@ std::size_t removeDegenerateTriangles(Scene& scene)
     const Vec3f n = cross(scene.positions[t.v[1]] - a, scene.positions[t.v[2]] - a);
     return !(dot(n, n) > 0.f);
   };
-  scene.triangles.erase(
-    std::remove_if(scene.triangles.begin(), scene.triangles.end(), degenerate), scene.triangles.end());
-  return before - scene.triangles.size();
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < before; ++i)
+  {
+    if (degenerate(scene.triangles[i]))
+    {
+      continue;
+    }
+    scene.triangles[kept] = scene.triangles[i];
+    if (!scene.triangleMaterials.empty())
+    {
+      scene.triangleMaterials[kept] = scene.triangleMaterials[i];
+    }
+    if (!scene.triangleIor.empty())
+    {
+      scene.triangleIor[kept] = scene.triangleIor[i];
+    }
+    ++kept;
+  }
+  scene.triangles.resize(kept);
+  if (!scene.triangleMaterials.empty())
+  {
+    scene.triangleMaterials.resize(kept);
+  }
+  if (!scene.triangleIor.empty())
+  {
+    scene.triangleIor.resize(kept);
+  }
+  return before - kept;
+}
+
+/// Materials and indices of refraction: one per triangle, known types, IOR > 0 and finite.
+void checkMaterials(const Scene& scene)
+{
+  const std::size_t t = scene.triangles.size();
+  if (!scene.triangleMaterials.empty() && scene.triangleMaterials.size() != t)
+  {
+    fail("The scene has " + std::to_string(scene.triangleMaterials.size()) + " triangle materials for " +
+      std::to_string(t) + " triangles; give one per triangle (or none: all diffuse).");
+  }
+  if (!scene.triangleIor.empty() && scene.triangleIor.size() != t)
+  {
+    fail("The scene has " + std::to_string(scene.triangleIor.size()) + " indices of refraction for " +
+      std::to_string(t) + " triangles; give one per triangle (or none: 1.5).");
+  }
+  for (std::size_t i = 0; i < scene.triangleMaterials.size(); ++i)
+  {
+    if (std::uint8_t(scene.triangleMaterials[i]) > std::uint8_t(MaterialType::Glass))
+    {
+      fail("Triangle " + std::to_string(i) + " has material " + std::to_string(int(scene.triangleMaterials[i])) +
+        "; the materials are 0 (diffuse), 1 (mirror) and 2 (glass).");
+    }
+  }
+  for (std::size_t i = 0; i < scene.triangleIor.size(); ++i)
+  {
+    if (!(scene.triangleIor[i] > 0.f) || !std::isfinite(scene.triangleIor[i]))
+    {
+      fail("Triangle " + std::to_string(i) + " has index of refraction " + std::to_string(scene.triangleIor[i]) +
+        "; an index of refraction is a finite number above 0 (glass: about 1.5).");
+    }
+  }
 }
 
 /// Replaces zero-length normals by the area-weighted normal of the adjacent triangles (+Z
@@ -406,6 +465,7 @@ std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy)
   checkArray(scene.positions, "position", notFinite, "a non-finite (NaN or Inf)");
   checkArray(scene.normals, "normal", notFinite, "a non-finite (NaN or Inf)");
   checkShading(scene);
+  checkMaterials(scene);
   normalizeLength(scene);
   scaleLights(scene.lights, scene.lengthExponent);
 
@@ -432,8 +492,15 @@ std::vector<std::string> validateShading(
   std::vector<std::string> warnings;
   checkShadingSizes(scene);
   checkShading(scene, albedoValidated, emissionValidated);
+  checkMaterials(scene);
   scaleLights(scene.lights, scene.lengthExponent); // the lent geometry's scale
   repairShading(scene, policy, warnings, albedoValidated);
   return warnings;
+}
+
+bool Scene::hasSpecular() const
+{
+  return std::any_of(triangleMaterials.begin(), triangleMaterials.end(),
+    [](MaterialType m) { return m != MaterialType::Diffuse; });
 }
 }

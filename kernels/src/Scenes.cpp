@@ -396,6 +396,50 @@ Scene makeTorso(float deformation)
   return scene;
 }
 
+/// Every triangle from `first` on gets `material` (the ones before stay diffuse).
+void setMaterial(Scene& scene, std::size_t first, MaterialType material, float ior = 1.5f)
+{
+  scene.triangleMaterials.resize(scene.triangles.size(), MaterialType::Diffuse);
+  scene.triangleIor.resize(scene.triangles.size(), 1.5f);
+  for (std::size_t t = first; t < scene.triangles.size(); ++t)
+  {
+    scene.triangleMaterials[t] = material;
+    scene.triangleIor[t] = ior;
+  }
+}
+
+/// Caustics: a glass ball (radius 0.35, index 1.5) 0.6 above a finely tessellated white
+/// floor (2 x 2, 100 x 100 cells, 2 cm apart), a point light 1.4 above the ball's centre: the
+/// ball focuses the light into a bright spot under it, inside its shadow, and a mirror band
+/// around it throws a second, ring-shaped caustic onto the floor inside it.
+Scene makeCaustics()
+{
+  MeshBuilder b;
+  b.addQuadGrid(Vec3f(-1.f, 0.f, -1.f), Vec3f(0.f, 0.f, 2.f), Vec3f(2.f, 0.f, 0.f), 100, 100, Vec3f(0.8f));
+  const std::size_t ball = b.scene().triangles.size();
+  b.addIcosphere(Vec3f(0.f, 0.6f, 0.f), 0.35f, 4, Vec3f(0.8f));
+  const std::size_t ring = b.scene().triangles.size();
+  // A mirror band: the inside of a cylinder of radius 0.55 about the ball, 0.15 high.
+  b.addCylinder(Vec3f(0.f, 0.f, 0.f), Vec3f(0.f, 0.15f, 0.f), 0.55f, 48, 2, false, Vec3f(0.8f), Vec3f(), true);
+  Scene scene = b.take();
+  setMaterial(scene, ball, MaterialType::Glass, 1.5f);
+  setMaterial(scene, ring, MaterialType::Mirror);
+  scene.lights.push_back(pointLight(Vec3f(0.f, 2.0f, 0.f), Vec3f(3.f)));
+  return scene;
+}
+
+/// The Cornell box with a glass ball (radius 8 cm) on the short block.
+Scene makeCornellGlass(const SceneParams& params)
+{
+  Scene scene = makeCornell(params);
+  const std::size_t ball = scene.triangles.size();
+  MeshBuilder b(std::move(scene));
+  b.addIcosphere(Vec3f(0.186f, 0.165f + 0.08f, 0.169f), 0.08f, 3, Vec3f(0.8f));
+  scene = b.take();
+  setMaterial(scene, ball, MaterialType::Glass, 1.5f);
+  return scene;
+}
+
 struct Entry
 {
   const char* name;
@@ -410,6 +454,8 @@ const Entry kScenes[] = {
   { "tearoom", [](const SceneParams&) { return makeTearoom(); } },
   { "iphi", [](const SceneParams&) { return makeIphi(); } },
   { "conference", [](const SceneParams&) { return makeConference(); } },
+  { "caustics", [](const SceneParams&) { return makeCaustics(); } },
+  { "cornell-glass", [](const SceneParams& p) { return makeCornellGlass(p); } },
 };
 }
 

@@ -313,6 +313,8 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
     }
     s.lights = input.lights;
     s.environment = input.environment;
+    s.triangleMaterials = input.triangleMaterials;
+    s.triangleIor = input.triangleIor;
     st.warnings = validateShading(s, opt.albedoPolicy, lendAlbedo, lendEmission);
   }
   else
@@ -337,8 +339,14 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
   // New results go into `sol` and the backend's staging, and replace the cached ones only
   // when the whole update succeeded, so an abort or error leaves the previous solution.
   const engine::MethodSpec& spec = engine::methodSpec(opt.method);
+  if (!spec.carriesSpecular() && s.hasSpecular())
+  {
+    st.warnings.push_back(std::string("The ") + spec.name() + " method lights mirror and glass "
+      "triangles as diffuse surfaces; photon-mapping carries light through them.");
+  }
   Solution sol = std::move(spare); // same sizes as a rule: no allocation, no page faults
   spare = Solution();
+  sol.caustics.clear(); // only a method that makes caustics fills it
   bool ran = false;
   if (chooseCuda(opt, st))
   {

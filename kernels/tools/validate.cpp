@@ -32,6 +32,8 @@ struct Args
   /// Refinement runs: the coarse input's cell size (0: none), and the refinement options.
   float refineFrom = 0.f;
   RefinementOptions refinement;
+  /// Scenes with mirrors or glass: light paths of the caustic reference.
+  std::uint32_t causticPaths = 1u << 24;
 };
 
 Args parse(int argc, char** argv)
@@ -44,7 +46,7 @@ Args parse(int argc, char** argv)
     {
       throw Error("Usage: linkgi-validate [--scenes a,b] [--method links|instant-radiosity|implicit-visibility|photon-mapping] "
                   "[--rays 256] [--bounces 3] [--smoothing 1] [--oversampling 1] "
-                  "[--reference-factor 16] [--vpls 1024] [--clamp 0.02] [--interleave 1] [--photons 262144] [--clusters 4096] [--gather-rays 256] "
+                  "[--reference-factor 16] [--vpls 1024] [--clamp 0.02] [--interleave 1] [--photons 262144] [--clusters 4096] [--gather-rays 256] [--caustic-paths 16777216] "
                   "[--proxy 0|N] [--bins 12] [--seed 0] [--refine-from CELL] [--refine-tolerance 0.1] "
                   "[--refine-vertices N] [--refine-rounds 3]; " + arg +
         " needs a value.");
@@ -85,6 +87,8 @@ Args parse(int argc, char** argv)
       a.options.implicitVisibility.binsPerSide = std::stoul(value);
     else if (arg == "--photons")
       a.options.photonMapping.photons = std::stoul(value);
+    else if (arg == "--caustic-paths")
+      a.causticPaths = std::stoul(value);
     else if (arg == "--clusters")
       a.options.photonMapping.clusters = std::stoul(value);
     else if (arg == "--gather-rays")
@@ -234,6 +238,64 @@ void validateRefinement(const std::string& name, const Args& args)
   std::fflush(stdout);
 }
 
+/// Caustics (a scene with mirrors or glass, photon mapping): Solution::caustics against light
+/// tracing splatted into the vertices (solveCausticReference): where the brightest vertex
+/// is, in units of the reference peak's longest adjacent edge, and the caustic power.
+void validateCaustics(const std::string& name, const Args& args)
+{
+  const Scene scene = makeStandardScene(name);
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<Vec3f> ref = solveCausticReference(scene, args.causticPaths, 1);
+  const double msReference =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  Scene checked = scene; // the solver's vertices
+  linkgi::validateScene(checked);
+  const std::vector<float> area = vertexAreas(checked);
+  const auto luminance = [](const Vec3f& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
+  const auto peakAndPower = [&](const std::vector<Vec3f>& e, std::size_t& peak) {
+    double power = 0.0, best = -1.0;
+    for (std::size_t v = 0; v < e.size() && v < checked.vertexCount(); ++v)
+    {
+      power += luminance(e[v]) * area[v];
+      if (luminance(e[v]) > best)
+      {
+        best = luminance(e[v]);
+        peak = v;
+      }
+    }
+    return power;
+  };
+  std::size_t refPeak = 0;
+  const double refPower = peakAndPower(ref, refPeak);
+  double spacing = 0.0;
+  for (const Triangle& t : checked.triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      if (t.v[k] == refPeak)
+      {
+        spacing = std::max({ spacing, double(length(checked.positions[t.v[(k + 1) % 3]] - checked.positions[refPeak])),
+          double(length(checked.positions[t.v[(k + 2) % 3]] - checked.positions[refPeak])) });
+      }
+    }
+  }
+  for (const SolverOptions& options : runs(args))
+  {
+    Solver solver;
+    const Solution& sol = solver.update(scene, options);
+    std::size_t peak = 0;
+    const double power = sol.caustics.empty() ? 0.0 : peakAndPower(sol.caustics, peak);
+    const double offset = sol.caustics.empty() ? -1.0 : double(length(checked.positions[peak] - checked.positions[refPeak])) / std::max(spacing, 1e-30);
+    std::printf("{\"scene\":\"%s\",\"method\":\"%s\",\"vertices\":%zu,\"caustic_photons_paths\":%u,"
+                "\"photons\":%llu,\"caustic_peak_offset_spacings\":%.3f,\"caustic_power_ratio\":%.4f,"
+                "\"reference_caustic_power\":%.5g,\"ms_solver\":%.1f,\"ms_reference\":%.1f%s}\n",
+      name.c_str(), solver.stats().method.c_str(), checked.vertexCount(), args.causticPaths,
+      (unsigned long long)solver.stats().photons, offset, refPower > 0.0 ? power / refPower : 0.0, refPower,
+      solver.stats().msTotal, msReference, methodJson(options).c_str());
+    std::fflush(stdout);
+  }
+}
+
 void validateFurnace(const Args& args)
 {
   const Scene scene = makeStandardScene("furnace");
@@ -277,6 +339,11 @@ int main(int argc, char** argv)
     validateFurnace(args);
     for (const std::string& name : args.scenes)
     {
+      if (name == "caustics" || name == "cornell-glass")
+      {
+        validateCaustics(name, args);
+        continue;
+      }
       validateScene(name, args);
     }
   }

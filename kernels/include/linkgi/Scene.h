@@ -67,6 +67,15 @@ struct Environment
   Vec3f radiance(const Vec3f& d) const;
 };
 
+/// How a triangle scatters light. Only Method::PhotonMapping and the reference carry light
+/// through mirrors and glass; the other methods light them as diffuse surfaces (warned).
+enum class MaterialType : std::uint8_t
+{
+  Diffuse = 0, ///< Lambertian, the vertices' albedo
+  Mirror = 1,  ///< perfect specular reflection
+  Glass = 2    ///< smooth dielectric: Fresnel reflection and refraction (Scene::triangleIor)
+};
+
 /// A triangle mesh with per-vertex shading data and lights.
 /// Vertices are the elements of the solution: a vertex shared by triangles with different
 /// normals (a sharp edge) must be split by the caller into one vertex per side.
@@ -77,6 +86,10 @@ struct Scene
   std::vector<Vec3f> albedo;   ///< diffuse reflectance rho per vertex, each channel in [0,1]
   std::vector<Vec3f> emission; ///< emitted radiance Le per vertex (empty = none)
   std::vector<Triangle> triangles;
+  /// One per triangle, or empty for all diffuse.
+  std::vector<MaterialType> triangleMaterials;
+  /// Glass: index of refraction per triangle (> 0, finite), or empty for 1.5.
+  std::vector<float> triangleIor;
   std::vector<Light> lights;
   Environment environment;
   /// 0 in an input. validateScene sets it for a scene far from unit size (outside 2^-16 to
@@ -87,6 +100,13 @@ struct Scene
   int lengthExponent = 0;
 
   std::size_t vertexCount() const { return positions.size(); }
+  /// Whether any triangle is a mirror or glass.
+  bool hasSpecular() const;
+  MaterialType material(std::size_t triangle) const
+  {
+    return triangleMaterials.empty() ? MaterialType::Diffuse : triangleMaterials[triangle];
+  }
+  float ior(std::size_t triangle) const { return triangleIor.empty() ? 1.5f : triangleIor[triangle]; }
   std::size_t triangleCount() const { return triangles.size(); }
 };
 
@@ -99,7 +119,9 @@ enum class AlbedoPolicy
 
 /// Checks a scene before solving and repairs what can be repaired, so that the solver never
 /// sees NaNs or out-of-range data. Throws linkgi::Error with a sentence naming the problem for:
-/// no vertices, no triangles, index out of range, array sizes that disagree, non-finite
+/// no vertices, no triangles, index out of range, array sizes that disagree (materials and
+/// indices of refraction: one per triangle), an unknown material, an index of refraction not
+/// above 0 or not finite, non-finite
 /// positions/normals/albedo/emission/light data, negative albedo, emission, light or
 /// environment, emission or environment above 1e30 (the bounces would overflow), a point or
 /// spot light too far away for the rescaled scene (below).
@@ -111,7 +133,7 @@ enum class AlbedoPolicy
 /// environment and no emission is valid: its solution is all zero (warned).
 std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp);
 
-/// The albedo, emission, light and environment half of validateScene, for a scene whose
+/// The albedo, emission, material, light and environment half of validateScene, for a scene whose
 /// positions, normals and triangles passed validateScene unchanged before (the solver's
 /// light and material updates): the same errors, repairs and warnings for those arrays.
 /// `albedoValidated` / `emissionValidated`: that array too passed unchanged before, and is

@@ -183,6 +183,10 @@ struct Solution
   std::vector<Vec3f> direct;   ///< E_d: irradiance from the point, spot and directional lights
   std::vector<Vec3f> indirect; ///< E_ind: bounced light, emissive surfaces and environment
   std::vector<Vec3f> radiance; ///< outgoing L = Le + rho/pi (E_d + E_ind)
+  /// Of E_ind, the light focused onto the element by mirrors and glass straight from the
+  /// lights (caustics): Method::PhotonMapping on a scene with specular triangles; empty
+  /// otherwise.
+  std::vector<Vec3f> caustics;
   std::size_t elementCount() const { return direct.size(); }
 };
 

@@ -170,7 +170,9 @@ Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& be
   differs(kPositions, !sameBits(now.positions, before.positions));
   differs(kNormals, !sameBits(now.normals, before.normals));
   differs(kLights, !sameBits(now.lights, before.lights));
-  differs(kAlbedo, !sameBits(now.albedo, before.albedo));
+  // Materials are part of kAlbedo: what a surface does with the light that reaches it.
+  differs(kAlbedo, !sameBits(now.albedo, before.albedo) ||
+    !sameBits(now.triangleMaterials, before.triangleMaterials) || !sameBits(now.triangleIor, before.triangleIor));
   differs(kEmission, !sameBits(now.emission, before.emission));
   const Environment &en = now.environment, &eb = before.environment;
   differs(kEnvironmentLayout, en.hasTexture() != eb.hasTexture() || en.width != eb.width || en.height != eb.height);

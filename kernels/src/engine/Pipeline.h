@@ -124,6 +124,9 @@ public:
   virtual ~MethodSpec() = default;
   virtual const char* name() const = 0; ///< "links"
   virtual const std::vector<StageSpec>& stages() const = 0;
+  /// Whether it carries light through mirror and glass triangles (else they are diffuse,
+  /// and the orchestrator says so).
+  virtual bool carriesSpecular() const { return false; }
   /// The CPU implementation; always exists.
   virtual std::unique_ptr<MethodBackend> createCpu(const SolverOptions& options) const = 0;
   /// The CUDA implementation on up to options.cudaDevices GPUs. Throws CudaError when the

@@ -18,6 +18,9 @@ struct Vpl
   /// Sky VPL: irradiance on a surface facing it, E(x) = flux * cos.
   Vec3f flux;
   std::uint32_t sky = 0;
+  /// Left at a diffuse surface by a path that met only mirrors and glass since its light
+  /// (light - specular+ - diffuse): photon mapping's caustic photons.
+  std::uint32_t caustic = 0;
 };
 
 /// Kinds of light-path sources.
@@ -61,7 +64,42 @@ struct PathScene
   bool russianRoulette = false;
   std::uint32_t seed = 0;
   float eps = 0.f; ///< ray offset along the normal
+  /// Per triangle (MaterialType), or null: every surface diffuse (instant radiosity lights
+  /// mirrors and glass as diffuse; photon mapping passes them).
+  const std::uint8_t* materials = nullptr;
+  const float* ior = nullptr; ///< per triangle with materials, or null for 1.5
 };
+
+/// Mirror and glass bounces a light path may take besides its diffuse ones (total internal
+/// reflection could otherwise keep it inside glass for ever).
+constexpr std::uint32_t kMaxSpecularBounces = 16;
+
+/// Reflection of unit d about unit n.
+LINKGI_HOST_DEVICE inline Vec3f reflect(const Vec3f& d, const Vec3f& n)
+{
+  return d - n * (2.f * dot(d, n));
+}
+
+/// Where a ray of unit direction d goes at a smooth dielectric with unit normal n (pointing
+/// to the side d comes from) and relative index eta = n_from / n_to: reflected with the exact
+/// Fresnel reflectance (unpolarized), refracted otherwise, picked by u in [0, 1).
+LINKGI_HOST_DEVICE inline Vec3f dielectricDirection(const Vec3f& d, const Vec3f& n, float eta, float u)
+{
+  const float cosi = fminf(1.f, -dot(d, n));
+  const float sin2t = eta * eta * fmaxf(0.f, 1.f - cosi * cosi);
+  if (sin2t >= 1.f)
+  {
+    return reflect(d, n); // total internal reflection
+  }
+  const float cost = std::sqrt(1.f - sin2t);
+  const float rs = (eta * cosi - cost) / (eta * cosi + cost), rp = (cosi - eta * cost) / (cosi + eta * cost);
+  const float fresnel = 0.5f * (rs * rs + rp * rp);
+  if (u < fresnel)
+  {
+    return reflect(d, n);
+  }
+  return d * eta + n * (eta * cosi - cost);
+}
 
 /// Radical inverse of `index` in `base` (one Halton dimension).
 LINKGI_HOST_DEVICE inline float radicalInverse(std::uint32_t base, std::uint32_t index)
@@ -293,7 +331,12 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
   }
   ray.tnear = 0.f;
   ray.tfar = 3.0e38f;
-  for (std::uint32_t bounce = 0; bounce < hits; ++bounce)
+  // Only specular bounces since the light (or an emitter, which is diffuse): a diffuse hit
+  // then leaves a caustic photon.
+  bool onlySpecular = src.kind == kLightSource;
+  bool metSpecular = false;
+  std::uint32_t specular = 0;
+  for (std::uint32_t bounce = 0; bounce < hits;)
   {
     const Hit h = trace(ray);
     if (h.triangle == kInvalidIndex)
@@ -302,10 +345,6 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
     }
     const Vec3f fn = s.faceNormals[h.triangle];
     const bool back = dot(ray.direction, fn) > 0.f;
-    if (back && !s.twoSided)
-    {
-      break; // the back of a one-sided surface is black
-    }
     const Triangle t = s.triangles[h.triangle];
     const float b0 = 1.f - h.u - h.v;
     const Vec3f p = s.positions[t.v[0]] * b0 + s.positions[t.v[1]] * h.u + s.positions[t.v[2]] * h.v;
@@ -314,16 +353,49 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
     {
       n = fn;
     }
+    const std::uint8_t material = s.materials ? s.materials[h.triangle] : 0u;
+    if (material != 0u)
+    {
+      // A mirror or glass: the path turns without losing power or leaving a VPL, and does
+      // not count as one of the bounces.
+      if (++specular > kMaxSpecularBounces)
+      {
+        break;
+      }
+      const Vec3f d = normalize(ray.direction), facing = back ? -n : n;
+      Vec3f next;
+      if (material == 1u)
+      {
+        next = reflect(d, facing);
+      }
+      else
+      {
+        const float ior = s.ior ? s.ior[h.triangle] : 1.5f;
+        next = dielectricDirection(d, facing, back ? ior : 1.f / ior, u(40 + specular));
+      }
+      const Vec3f geometric = dot(next, fn) > 0.f ? fn : -fn; // the side the path leaves by
+      ray.origin = p + geometric * s.eps;
+      ray.direction = next;
+      ray.tnear = 0.f;
+      ray.tfar = 3.0e38f;
+      metSpecular = true;
+      continue;
+    }
+    if (back && !s.twoSided)
+    {
+      break; // the back of a one-sided surface is black
+    }
     const Vec3f side = back ? -n : n, geometric = back ? -fn : fn;
     const Vec3f rho = s.albedo[t.v[0]] * b0 + s.albedo[t.v[1]] * h.u + s.albedo[t.v[2]] * h.v;
     power = power * rho;
     const Vec3f origin = p + geometric * s.eps;
-    out[count++] = { p, side, power, 0u };
-    if (bounce + 1 == hits)
+    out[count++] = { p, side, power, 0u, onlySpecular && metSpecular ? 1u : 0u };
+    onlySpecular = false;
+    if (++bounce == hits)
     {
       break;
     }
-    const std::uint32_t dim = 5 + 3 * bounce;
+    const std::uint32_t dim = 5 + 3 * (bounce - 1);
     if (s.russianRoulette)
     {
       // rho is in the power already: continuing with probability q and dividing by it keeps

@@ -3,11 +3,14 @@
 #include "ir/IrBackends.h"
 
 #include "linkgi/Links.h"
+#include "linkgi/Metrics.h"
+#include "linkgi/Reference.h"
 #include "linkgi/Sampling.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <tuple>
 
@@ -78,20 +81,144 @@ void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, con
   SolverOptions paths = options;
   paths.instantRadiosity.vplCount = options.photonMapping.photons;
   paths.instantRadiosity.russianRoulette = true;
-  const ir::PathSetup setup = ir::buildPathSetup(scene, faceNormals, paths);
+  ir::PathSetup setup = ir::buildPathSetup(scene, faceNormals, paths);
+  if (scene.hasSpecular())
+  {
+    setup.view.materials = reinterpret_cast<const std::uint8_t*>(scene.triangleMaterials.data());
+    setup.view.ior = scene.triangleIor.empty() ? nullptr : scene.triangleIor.data();
+  }
   const ir::VplSet hits = ir::traceVplsCpu(setup, tracer, 1, progress);
-  map.positions.clear();
-  map.normals.clear();
-  map.flux.clear();
+  for (auto* a : { &map.positions, &map.normals, &map.flux, &map.causticPositions, &map.causticNormals, &map.causticFlux })
+  {
+    a->clear();
+  }
   for (const ir::Vpl& vpl : hits.vpls)
   {
-    if (!vpl.sky) // the sky is what a gather ray that leaves the scene sees
+    if (vpl.sky)
     {
-      map.positions.push_back(vpl.position);
-      map.normals.push_back(vpl.normal);
-      map.flux.push_back(vpl.flux);
+      continue; // the sky is what a gather ray that leaves the scene sees
+    }
+    map.positions.push_back(vpl.position);
+    map.normals.push_back(vpl.normal);
+    map.flux.push_back(vpl.flux);
+    if (vpl.caustic)
+    {
+      map.causticPositions.push_back(vpl.position);
+      map.causticNormals.push_back(vpl.normal);
+      map.causticFlux.push_back(vpl.flux);
     }
   }
+}
+
+std::vector<Vec3f> causticReference(const Scene& s, const std::vector<Vec3f>& faceNormals,
+  const RayTracer& tracer, std::uint32_t paths, std::uint32_t seed, const ProgressCallback& progress)
+{
+  SolverOptions o;
+  o.bounces = 1; // to the first diffuse hit
+  o.seed = seed;
+  o.instantRadiosity.vplCount = paths;
+  ir::PathSetup setup = ir::buildPathSetup(s, faceNormals, o);
+  const std::size_t nv = s.vertexCount();
+  std::vector<Vec3f> out(nv, Vec3f(0.f));
+  if (!s.hasSpecular() || setup.view.paths == 0)
+  {
+    return out;
+  }
+  setup.view.materials = reinterpret_cast<const std::uint8_t*>(s.triangleMaterials.data());
+  setup.view.ior = s.triangleIor.empty() ? nullptr : s.triangleIor.data();
+  const std::vector<float> area = vertexAreas(s);
+  std::mutex merge;
+  std::vector<double> total(3 * nv, 0.0);
+  parallelFor("Caustics", setup.view.paths, 16384, [&](std::size_t begin, std::size_t end) {
+    std::vector<double> local(3 * nv, 0.0);
+    ir::Vpl slots[2];
+    for (std::size_t p = begin; p < end; ++p)
+    {
+      Hit last;
+      const int count = ir::traceLightPath(setup.view, std::uint32_t(p), slots, [&](const Ray& ray) {
+        tracer.trace(&ray, &last, 1);
+        return last;
+      });
+      if (count == 0 || !slots[count - 1].caustic)
+      {
+        continue;
+      }
+      // The path ended at that hit (one bounce): `last` is it.
+      const Triangle& t = s.triangles[last.triangle];
+      const float b[3] = { 1.f - last.u - last.v, last.u, last.v };
+      const Vec3f rho = s.albedo[t.v[0]] * b[0] + s.albedo[t.v[1]] * b[1] + s.albedo[t.v[2]] * b[2];
+      for (int c = 0; c < 3; ++c)
+      {
+        if (!(rho[c] > 0.f))
+        {
+          continue;
+        }
+        const double incident = double(slots[count - 1].flux[c]) / double(rho[c]);
+        for (int k = 0; k < 3; ++k)
+        {
+          local[3 * t.v[k] + c] += incident * b[k] / std::max(double(area[t.v[k]]), 1e-30);
+        }
+      }
+    }
+    const std::lock_guard<std::mutex> lock(merge);
+    for (std::size_t i = 0; i < local.size(); ++i)
+    {
+      total[i] += local[i];
+    }
+  }, progress);
+  for (std::size_t v = 0; v < nv; ++v)
+  {
+    out[v] = Vec3f(float(total[3 * v]), float(total[3 * v + 1]), float(total[3 * v + 2]));
+  }
+  return out;
+}
+
+std::vector<Vec3f> causticIrradiance(const Scene& s, const PhotonMap& map, std::uint32_t k, float maxRadius,
+  const ProgressCallback& progress)
+{
+  std::vector<Vec3f> out(s.vertexCount(), Vec3f(0.f));
+  if (map.causticPositions.empty())
+  {
+    return out;
+  }
+  const PointTree caustics(map.causticPositions);
+  const std::vector<float> area = vertexAreas(s);
+  const float max2 = maxRadius * maxRadius;
+  parallelFor("Gather", s.vertexCount(), 256, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::pair<float, Index>> found;
+    for (std::size_t v = begin; v < end; ++v)
+    {
+      const Vec3f n = s.normals[v];
+      const auto sameSide = [&](Index j) { return dot(map.causticNormals[j], n) > kEstimateCos; };
+      if (caustics.nearest(s.positions[v], k, max2, sameSide, found) == 0)
+      {
+        continue;
+      }
+      // A cone filter of radius R: the k-th photon's distance, but at least the radius of a
+      // disc as large as the vertex's one-ring (3 x its area), where its weight (1 - d/R)
+      // integrates like the vertex's hat function. A caustic sharper than the mesh then keeps
+      // its power instead of the one vertex that holds it claiming a tiny disc's density.
+      float r2 = found.size() == k ? found.back().first : max2;
+      const float ring2 = 3.f * area[v] / kPi;
+      if (ring2 > r2)
+      {
+        r2 = ring2;
+        caustics.nearest(s.positions[v], std::numeric_limits<std::uint32_t>::max(), r2, sameSide, found);
+      }
+      const float radius = std::sqrt(r2);
+      Vec3f sum(0.f);
+      for (const auto& f : found)
+      {
+        sum += map.causticFlux[f.second] * std::max(0.f, 1.f - std::sqrt(f.first) / radius);
+      }
+      const Vec3f& rho = s.albedo[v];
+      for (int c = 0; c < 3; ++c)
+      {
+        out[v][c] = rho[c] > 0.f && r2 > 0.f ? sum[c] * 3.f / (kPi * r2 * rho[c]) : 0.f;
+      }
+    }
+  }, progress);
+  return out;
 }
 
 void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride, const ProgressCallback& progress)
@@ -324,6 +451,45 @@ Clusters clusterVertices(const Scene& s, std::uint32_t k, float alpha, int itera
   return out;
 }
 
+/// Gather rays that hit a mirror or glass go on (reflected, or refracted with the Fresnel
+/// odds), until they hit a diffuse surface, leave, or take kMaxSpecularBounces turns.
+void followSpecular(const Scene& s, const std::vector<Vec3f>& faceNormals, const RayTracer& tracer,
+  float eps, Index sample, std::vector<Ray>& rays, std::vector<Hit>& hits)
+{
+  for (std::size_t r = 0; r < rays.size(); ++r)
+  {
+    for (std::uint32_t turn = 1; turn <= ir::kMaxSpecularBounces; ++turn)
+    {
+      const Hit& h = hits[r];
+      if (h.triangle == kInvalidIndex || s.material(h.triangle) == MaterialType::Diffuse)
+      {
+        break;
+      }
+      const Vec3f fn = faceNormals[h.triangle];
+      const Triangle& t = s.triangles[h.triangle];
+      const float b0 = 1.f - h.u - h.v;
+      const Vec3f p = s.positions[t.v[0]] * b0 + s.positions[t.v[1]] * h.u + s.positions[t.v[2]] * h.v;
+      Vec3f n = normalize(s.normals[t.v[0]] * b0 + s.normals[t.v[1]] * h.u + s.normals[t.v[2]] * h.v);
+      if (!(dot(n, n) > 0.f) || dot(n, fn) <= 0.f)
+      {
+        n = fn;
+      }
+      const Vec3f d = normalize(rays[r].direction);
+      const bool back = dot(d, fn) > 0.f;
+      const Vec3f facing = back ? -n : n;
+      const Vec3f next = s.material(h.triangle) == MaterialType::Mirror
+        ? ir::reflect(d, facing)
+        : ir::dielectricDirection(d, facing, back ? s.ior(h.triangle) : 1.f / s.ior(h.triangle),
+            hashToUnit(hash32(sample) ^ std::uint32_t(r), turn));
+      rays[r].origin = p + (dot(next, fn) > 0.f ? fn : -fn) * eps;
+      rays[r].direction = next;
+      rays[r].tnear = 0.f;
+      rays[r].tfar = 3.0e38f;
+      tracer.trace(&rays[r], &hits[r], 1);
+    }
+  }
+}
+
 SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
   const std::vector<Vec3f>& faceNormals, const RayTracer& tracer, const PhotonMap& map,
   const Clusters& clusters, const std::vector<Vec3f>& directions, std::uint32_t seed, float side,
@@ -353,6 +519,10 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
         rays[r].tfar = 3.0e38f;
       }
       tracer.trace(rays.data(), hits.data(), n);
+      if (s.hasSpecular())
+      {
+        followSpecular(s, faceNormals, tracer, eps, Index(j), rays, hits);
+      }
       Vec3f sum(0.f);
       double inverseDistances = 0.0;
       std::size_t hitCount = 0;
@@ -420,5 +590,17 @@ std::vector<Vec3f> interpolate(const Scene& s, const Clusters& clusters, const S
     }
   });
   return out;
+}
+}
+
+namespace linkgi
+{
+std::vector<Vec3f> solveCausticReference(const Scene& input, std::uint32_t paths, std::uint32_t seed)
+{
+  Scene scene = input;
+  validateScene(scene);
+  const std::unique_ptr<RayTracer> tracer = createCpuRayTracer();
+  tracer->build(scene.positions, scene.triangles);
+  return pm::causticReference(scene, frontFaceNormals(scene), *tracer, paths, seed);
 }
 }

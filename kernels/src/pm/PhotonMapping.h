@@ -30,6 +30,9 @@ struct PhotonMap
   /// a diffuse surface reflects there.
   std::vector<Vec3f> siteRadiance;
   PointTree sites;
+  /// The caustic map: the photons that met only mirrors and glass between their light and
+  /// this diffuse hit (also in the global map above), with the flux each reflects.
+  std::vector<Vec3f> causticPositions, causticNormals, causticFlux;
 
   std::size_t count() const { return positions.size(); }
   /// Total reflected flux (W): what conservation tests check.
@@ -88,6 +91,21 @@ SampleIrradiance finalGather(const Scene& scene, const std::vector<Vec3f>& shift
   const std::vector<Vec3f>& faceNormals, const RayTracer& tracer, const PhotonMap& map,
   const Clusters& clusters, const std::vector<Vec3f>& directions, std::uint32_t seed, float side,
   bool twoSided, const ProgressCallback& progress = {});
+
+/// Caustic irradiance at every vertex: the k nearest caustic photons on its side within
+/// `maxRadius` (the flux each reflects, over pi r^2, divided by the vertex's albedo); zero
+/// without caustic photons.
+std::vector<Vec3f> causticIrradiance(const Scene& scene, const PhotonMap& map, std::uint32_t k,
+  float maxRadius, const ProgressCallback& progress = {});
+
+/// The caustic reference: light tracing. `paths` light paths from the point, spot and
+/// directional lights, each to its first diffuse hit through any mirrors and glass; a hit
+/// after at least one of them splats its incident flux into the hit triangle's vertices'
+/// hat functions (barycentric weight over the vertex's third of its triangles' area):
+/// caustic irradiance per vertex (W/m^2) whose area integral is the caustic power. Unlike
+/// the photon map it needs no density estimate, so it converges to the exact projection.
+std::vector<Vec3f> causticReference(const Scene& scene, const std::vector<Vec3f>& faceNormals,
+  const RayTracer& tracer, std::uint32_t paths, std::uint32_t seed, const ProgressCallback& progress = {});
 
 /// Every vertex's irradiance from its neighbours' samples, weighted as in irradiance
 /// caching: w = 1 / (|x - s| / R + sqrt(2 - 2 n.n_s)) over samples facing the same way.

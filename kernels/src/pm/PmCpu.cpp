@@ -20,6 +20,8 @@ using namespace engine;
 constexpr std::uint32_t kSiteStride = 4;
 /// Lloyd iterations of the clustering.
 constexpr int kMeansIterations = 4;
+/// Caustic photons count within this fraction of the bounding-box diagonal of a vertex.
+constexpr float kCausticRadius = 0.02f;
 
 class PmCpu final : public MethodBackend
 {
@@ -46,8 +48,10 @@ public:
       case kGatherStage:
         return gather(c);
       case kFinishStage:
-        return finishSolution(c, geometry.topology, gatherStaged ? nextGathered : gathered,
+        finishSolution(c, geometry.topology, gatherStaged ? nextGathered : gathered,
           directStaged ? nextDirect.irradiance : direct.irradiance);
+        c.solution.caustics = gatherStaged ? nextCaustics : caustics;
+        return;
     }
   }
 
@@ -68,6 +72,7 @@ public:
     if (gatherStaged)
     {
       std::swap(gathered, nextGathered);
+      std::swap(caustics, nextCaustics);
       gatherRays = nextGatherRays;
     }
     mapStaged = clustersStaged = directStaged = gatherStaged = geometryTouched = false;
@@ -132,6 +137,18 @@ private:
       nextGathered.insert(nextGathered.end(), e.begin(), e.end());
       nextGatherRays += samples.rays;
     }
+    // Caustics, on the front sides: density estimation at every vertex, part of E_ind.
+    nextCaustics.clear();
+    if (!photons.causticPositions.empty())
+    {
+      nextCaustics = causticIrradiance(s, photons, o.photonMapping.estimatePhotons,
+        kCausticRadius * boundingDiagonal(s.positions));
+      nextCaustics.resize(nextGathered.size(), Vec3f(0.f)); // backs: none
+      for (std::size_t e = 0; e < nextGathered.size(); ++e)
+      {
+        nextGathered[e] += nextCaustics[e];
+      }
+    }
     gatherStaged = true;
   }
 
@@ -140,7 +157,7 @@ private:
   PhotonMap map, nextMap;
   Clusters clusters, nextClusters;
   DirectLightResult direct, nextDirect;
-  std::vector<Vec3f> gathered, nextGathered;
+  std::vector<Vec3f> gathered, nextGathered, caustics, nextCaustics;
   std::uint64_t gatherRays = 0, nextGatherRays = 0;
   bool mapStaged = false, clustersStaged = false, directStaged = false, gatherStaged = false;
 };

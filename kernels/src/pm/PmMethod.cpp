@@ -15,6 +15,7 @@ class PhotonMappingMethod final : public MethodSpec
 {
 public:
   const char* name() const override { return "photon-mapping"; }
+  bool carriesSpecular() const override { return true; }
   const std::vector<StageSpec>& stages() const override
   {
     constexpr std::uint32_t geometry = 1u << kGeometryStage;
