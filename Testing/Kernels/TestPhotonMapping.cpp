@@ -250,3 +250,73 @@ TEST(TestPhotonMapping, BadOptionsAreNamed)
   o.photonMapping.alpha = std::nanf("");
   EXPECT_NE(test::errorOf([&] { validateOptions(o); }).find("alpha"), std::string::npos);
 }
+
+TEST(TestPhotonMapping, MaterialsAreValidated)
+{
+  Scene s = test::twoSquares(false, 2);
+  s.triangleMaterials.assign(s.triangleCount(), MaterialType::Diffuse);
+  s.triangleMaterials[1] = MaterialType(7);
+  EXPECT_NE(test::errorOf([&] { validateScene(s); }).find("material 7"), std::string::npos);
+  s.triangleMaterials.pop_back();
+  s.triangleMaterials[1] = MaterialType::Glass;
+  EXPECT_NE(test::errorOf([&] { validateScene(s); }).find("one per triangle"), std::string::npos);
+  s.triangleMaterials.assign(s.triangleCount(), MaterialType::Glass);
+  for (const float bad : { 0.f, -1.5f, std::nanf(""), INFINITY })
+  {
+    s.triangleIor.assign(s.triangleCount(), 1.5f);
+    s.triangleIor[0] = bad;
+    EXPECT_NE(test::errorOf([&] { validateScene(s); }).find("index of refraction"), std::string::npos) << bad;
+  }
+  // A degenerate triangle goes, and its material and index with it.
+  Scene d = test::twoSquares(false, 2);
+  d.triangles.push_back({ { 0, 0, 1 } });
+  d.triangleMaterials.assign(d.triangleCount(), MaterialType::Diffuse);
+  d.triangleMaterials.back() = MaterialType::Mirror;
+  d.triangleIor.assign(d.triangleCount(), 1.5f);
+  validateScene(d);
+  EXPECT_EQ(d.triangleMaterials.size(), d.triangleCount());
+  EXPECT_EQ(d.triangleIor.size(), d.triangleCount());
+  EXPECT_FALSE(d.hasSpecular());
+}
+
+TEST(TestPhotonMapping, OtherMethodsSayTheyLightGlassAsDiffuse)
+{
+  const Scene s = makeStandardScene("cornell-glass");
+  Solver solver;
+  SolverOptions o = test::quickOptions();
+  solver.update(s, o);
+  const auto& w = solver.stats().warnings;
+  EXPECT_TRUE(std::any_of(w.begin(), w.end(), [](const std::string& m) { return m.find("as diffuse") != std::string::npos; }));
+  EXPECT_TRUE(solver.solution().caustics.empty());
+}
+
+TEST(TestPhotonMapping, CausticsAgreeWithLightTracing)
+{
+  // The glass ball and the mirror band: the brightest caustic vertex is the reference's or a
+  // neighbour, and the caustic power is within the 10%.
+  const Scene s = makeStandardScene("caustics");
+  const std::vector<Vec3f> ref = solveCausticReference(s, 1u << 22, 1);
+  Solver solver;
+  SolverOptions o = photonMapping();
+  o.smoothing = false; // smoothing blurs E_ind, caustics included, not the caustics array
+  const Solution& sol = solver.update(s, o);
+  ASSERT_EQ(sol.caustics.size(), sol.indirect.size());
+  Scene checked = s;
+  validateScene(checked);
+  const std::vector<float> area = vertexAreas(checked);
+  double power = 0, refPower = 0;
+  std::size_t peak = 0, refPeak = 0;
+  for (std::size_t v = 0; v < checked.vertexCount(); ++v)
+  {
+    power += sol.caustics[v].y * area[v];
+    refPower += ref[v].y * area[v];
+    peak = sol.caustics[v].y > sol.caustics[peak].y ? v : peak;
+    refPeak = ref[v].y > ref[refPeak].y ? v : refPeak;
+    EXPECT_LE(sol.caustics[v].y, sol.indirect[v].y * 1.0001f + 1e-6f) << "caustics are part of E_ind";
+  }
+  std::printf("caustic power %.4f, reference %.4f; peaks %.4f apart\n", power, refPower,
+    length(checked.positions[peak] - checked.positions[refPeak]));
+  EXPECT_GT(refPower, 0.3);
+  EXPECT_NEAR(power / refPower, 1.0, 0.10);
+  EXPECT_LE(length(checked.positions[peak] - checked.positions[refPeak]), 0.0201f * 1.42f); // a diagonal cell
+}

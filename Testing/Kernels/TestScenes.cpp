@@ -35,6 +35,8 @@ const Target kTargets[] = {
   within5("tearoom", 11900),
   within5("iphi", 76500),
   within5("conference", 122800),
+  { "caustics", 12000, 14000 }, // the floor's 10201, the ball's 2562, the mirror band
+  { "cornell-glass", 8000, 11000 },
 };
 
 float diagonal(const Scene& s)
@@ -323,3 +325,20 @@ TEST(TestScenes, DeformFollowsNormalsThroughTheMap)
     EXPECT_GT(dot(es.normals[i], expected), 0.995f) << i;
   }
 }
+
+TEST(TestScenes, CausticScenesHaveTheirMaterials)
+{
+  for (const char* name : { "caustics", "cornell-glass" })
+  {
+    Scene s = makeStandardScene(name);
+    ASSERT_EQ(s.triangleMaterials.size(), s.triangleCount()) << name;
+    ASSERT_EQ(s.triangleIor.size(), s.triangleCount()) << name;
+    EXPECT_TRUE(s.hasSpecular()) << name;
+    EXPECT_TRUE(validateScene(s).empty()) << name << ": valid as made";
+    const auto glass = std::count(s.triangleMaterials.begin(), s.triangleMaterials.end(), MaterialType::Glass);
+    EXPECT_GT(glass, 100) << name << ": a tessellated glass ball";
+  }
+  const Scene c = makeStandardScene("caustics");
+  EXPECT_GT(std::count(c.triangleMaterials.begin(), c.triangleMaterials.end(), MaterialType::Mirror), 50);
+}
+
