@@ -93,6 +93,8 @@ vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
   , ProxyVisibility(0)
   , ProxyResolution(32)
   , ImplicitVisibilityBins(12)
+  , MaterialArrayName(nullptr)
+  , IndexOfRefractionArrayName(nullptr)
   , NumberOfPhotons(262144)
   , NumberOfClusters(4096)
   , FinalGatherRays(256)
@@ -131,6 +133,8 @@ vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
 vtkGlobalIlluminationFilter::~vtkGlobalIlluminationFilter()
 {
   this->SetController(nullptr);
+  this->SetMaterialArrayName(nullptr);
+  this->SetIndexOfRefractionArrayName(nullptr);
   this->SetAlbedoArrayName(nullptr);
   this->SetEmissionArrayName(nullptr);
   this->SetEnvironmentTexture(nullptr);
@@ -430,6 +434,9 @@ void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Proxy Visibility: " << (this->ProxyVisibility ? "On" : "Off") << "\n";
   os << indent << "Proxy Resolution: " << this->ProxyResolution << "\n";
   os << indent << "Implicit Visibility Bins: " << this->ImplicitVisibilityBins << "\n";
+  os << indent << "Material Array Name: " << (this->MaterialArrayName ? this->MaterialArrayName : "(none)") << "\n";
+  os << indent << "Index Of Refraction Array Name: "
+     << (this->IndexOfRefractionArrayName ? this->IndexOfRefractionArrayName : "(none)") << "\n";
   os << indent << "Number Of Photons: " << this->NumberOfPhotons << "\n";
   os << indent << "Number Of Clusters: " << this->NumberOfClusters << "\n";
   os << indent << "Final Gather Rays: " << this->FinalGatherRays << "\n";

@@ -186,6 +186,23 @@ public:
 
   ///@{
   /**
+   * Mirrors and glass: the 1-component cell (or else point) array that gives each triangle
+   * its material, 0 diffuse, 1 mirror, 2 glass (a point array: the value most of the
+   * triangle's points have), and the array of glass's index of refraction (cell or point,
+   * the mean of the points'; none: 1.5). PHOTON_MAPPING carries light through mirrors and
+   * glass and adds the caustics they focus (output array CausticIrradiance, part of
+   * IndirectIrradiance); the other methods light them as diffuse surfaces, with a warning.
+   * Any other material value, or an index of refraction not above 0, is an error naming it.
+   * The default values are none (every surface diffuse).
+   */
+  vtkSetStringMacro(MaterialArrayName);
+  vtkGetStringMacro(MaterialArrayName);
+  vtkSetStringMacro(IndexOfRefractionArrayName);
+  vtkGetStringMacro(IndexOfRefractionArrayName);
+  ///@}
+
+  ///@{
+  /**
    * PHOTON_MAPPING: about how many photons each light update stores (one per diffuse hit of
    * a light path), from 1 to 16777216. The default value is 262144.
    */
@@ -572,6 +589,8 @@ protected:
   vtkTypeBool ProxyVisibility;
   int ProxyResolution;
   int ImplicitVisibilityBins;
+  char* MaterialArrayName;
+  char* IndexOfRefractionArrayName;
   int NumberOfPhotons;
   int NumberOfClusters;
   int FinalGatherRays;

@@ -80,6 +80,29 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
     scene.emission = Builder::GatherColors(input, this->Mesh, self->EmissionArrayName,
       self->EmissionArrayAssociation, linkgi::Vec3f(0.f), "emission");
   }
+  scene.triangleMaterials.clear();
+  scene.triangleIor.clear();
+  if (self->MaterialArrayName && *self->MaterialArrayName)
+  {
+    const std::vector<double> values =
+      Builder::GatherTriangleValues(input, this->Mesh, self->MaterialArrayName, true, "material");
+    scene.triangleMaterials.resize(values.size());
+    for (std::size_t t = 0; t < values.size(); ++t)
+    {
+      if (!(values[t] == 0.0 || values[t] == 1.0 || values[t] == 2.0))
+      {
+        throw linkgi::Error("The material array '" + std::string(self->MaterialArrayName) + "' has the value " +
+          std::to_string(values[t]) + "; the materials are 0 (diffuse), 1 (mirror) and 2 (glass).");
+      }
+      scene.triangleMaterials[t] = static_cast<linkgi::MaterialType>(int(values[t]));
+    }
+  }
+  if (self->IndexOfRefractionArrayName && *self->IndexOfRefractionArrayName)
+  {
+    const std::vector<double> values = Builder::GatherTriangleValues(
+      input, this->Mesh, self->IndexOfRefractionArrayName, false, "index of refraction");
+    scene.triangleIor.assign(values.begin(), values.end()); // the engine checks each value
+  }
   scene.lights.clear();
   for (vtkLight* light : this->Lights)
   {
@@ -284,6 +307,10 @@ void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(vtkGlobalIlluminat
     pd->AddArray(Builder::MapToPoints(mesh, solution.direct, offset, ("DirectIrradiance" + suffix).c_str()));
     pd->AddArray(Builder::MapToPoints(mesh, solution.indirect, offset, ("IndirectIrradiance" + suffix).c_str()));
     pd->AddArray(Builder::MapToPoints(mesh, solution.radiance, offset, ("Radiance" + suffix).c_str()));
+    if (!solution.caustics.empty())
+    {
+      pd->AddArray(Builder::MapToPoints(mesh, solution.caustics, offset, ("CausticIrradiance" + suffix).c_str()));
+    }
   }
 
   Builder::AddStatistics(output->GetFieldData(), s, msFilter, this->Warnings);

@@ -250,6 +250,49 @@ vtkGlobalIlluminationSceneBuilder::Mesh vtkGlobalIlluminationSceneBuilder::Build
 }
 
 //------------------------------------------------------------------------------
+std::vector<double> vtkGlobalIlluminationSceneBuilder::GatherTriangleValues(vtkPolyData* input,
+  const Mesh& mesh, const char* arrayName, bool majority, const char* role)
+{
+  vtkDataArray* cells = input->GetCellData()->GetArray(arrayName);
+  vtkDataArray* points = cells ? nullptr : input->GetPointData()->GetArray(arrayName);
+  vtkDataArray* array = cells ? cells : points;
+  if (!array)
+  {
+    Fail(std::string("The ") + role + " array '" + arrayName +
+      "' is not a numeric array of the input's cell or point data; check the array name.");
+  }
+  if (array->GetNumberOfComponents() != 1)
+  {
+    Fail(std::string("The ") + role + " array '" + arrayName + "' has " +
+      std::to_string(array->GetNumberOfComponents()) + " components; it needs 1.");
+  }
+  const vtkIdType needed = cells ? input->GetNumberOfCells() : input->GetNumberOfPoints();
+  if (array->GetNumberOfTuples() < needed)
+  {
+    Fail(std::string("The ") + role + " array '" + arrayName + "' has " +
+      std::to_string(array->GetNumberOfTuples()) + " tuples, but the input has " + std::to_string(needed) +
+      (cells ? " cells." : " points."));
+  }
+  const linkgi::Scene& scene = mesh.Scene;
+  std::vector<double> values(scene.triangleCount());
+  for (std::size_t t = 0; t < values.size(); ++t)
+  {
+    if (cells)
+    {
+      values[t] = cells->GetComponent(mesh.TriangleCell[t], 0);
+      continue;
+    }
+    double v[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      v[k] = points->GetComponent(mesh.ElementPoint[scene.triangles[t].v[k]], 0);
+    }
+    values[t] = majority ? (v[1] == v[2] ? v[1] : v[0]) : (v[0] + v[1] + v[2]) / 3.0;
+  }
+  return values;
+}
+
+//------------------------------------------------------------------------------
 std::vector<linkgi::Vec3f> vtkGlobalIlluminationSceneBuilder::GatherColors(vtkPolyData* input,
   const Mesh& mesh, const char* arrayName, int association, const linkgi::Vec3f& fallback,
   const char* role)

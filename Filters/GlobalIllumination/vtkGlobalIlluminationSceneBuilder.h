@@ -72,6 +72,16 @@ public:
     const char* arrayName, int association, const linkgi::Vec3f& fallback, const char* role);
 
   /**
+   * One value per triangle of `mesh` from the 1-component array `arrayName` of the input's
+   * cell data (the triangle's cell), or else of its point data: the value most of the
+   * triangle's three points have (the first point's when all differ) with `majority`, their
+   * mean without. Throws, naming `role` ("material"), for a missing or non-numeric array, or
+   * one of other than 1 component.
+   */
+  static std::vector<double> GatherTriangleValues(vtkPolyData* input, const Mesh& mesh,
+    const char* arrayName, bool majority, const char* role);
+
+  /**
    * Converts a vtkLight as vtkGlobalIlluminationLights::Convert does (the mapper uses the
    * same function) into the engine's light; `out` is written only if that returns
    * CONVERTED.

@@ -3,7 +3,9 @@
 #include "FilterTestUtilities.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkCellData.h"
 #include "vtkFieldData.h"
+#include "vtkIntArray.h"
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkSphereSource.h"
 #include "vtkStringArray.h"
@@ -139,3 +141,53 @@ TEST(TestGlobalIlluminationMethod, PhotonMappingLightsLikeTheLinksAndKeepsItsClu
   EXPECT_EQ(Method(filter->GetOutput()), "photon-mapping");
 }
 
+
+TEST(TestGlobalIlluminationMethod, GlassFocusesCausticsWithPhotonMapping)
+{
+  // The sphere on the floor as glass (a cell array: 2 on the sphere's cells, 0 on the
+  // floor's): photon mapping adds CausticIrradiance on the floor; a bad value is an error
+  // that names it and keeps the output; the link method lights the glass as diffuse and says so.
+  auto filter = SphereOnFloorFilter();
+  vtkPolyData* input = vtkPolyData::SafeDownCast(filter->GetInputDataObject(0, 0));
+  vtkNew<vtkIntArray> material;
+  material->SetName("Material");
+  const vtkIdType floorCells = MakeFloor(2, 20)->GetNumberOfCells();
+  for (vtkIdType c = 0; c < input->GetNumberOfCells(); ++c)
+  {
+    material->InsertNextValue(c < floorCells ? 0 : 2);
+  }
+  input->GetCellData()->AddArray(material);
+  filter->SetMaterialArrayName("Material");
+  filter->SetMethodToPhotonMapping();
+  filter->SetNumberOfPhotons(65536);
+  filter->SetNumberOfClusters(512);
+  filter->Update();
+  vtkDataArray* caustics = PointArray(filter->GetOutput(), "CausticIrradiance");
+  ASSERT_NE(caustics, nullptr);
+  double brightest = 0.0;
+  for (vtkIdType i = 0; i < caustics->GetNumberOfTuples(); ++i)
+  {
+    brightest = std::max(brightest, caustics->GetComponent(i, 0));
+  }
+  EXPECT_GT(brightest, 0.0) << "the glass ball focuses light onto the floor";
+
+  material->SetValue(0, 3);
+  material->Modified();
+  input->Modified();
+  filter->Update();
+  EXPECT_NE(PointArray(filter->GetOutput(), "CausticIrradiance"), nullptr) << "the previous output is kept";
+
+  material->SetValue(0, 0);
+  material->Modified();
+  input->Modified();
+  filter->SetMethodToLinks();
+  filter->Update();
+  auto* warnings = vtkStringArray::SafeDownCast(filter->GetOutput()->GetFieldData()->GetAbstractArray("LinkGI.Warnings"));
+  bool said = false;
+  for (vtkIdType i = 0; warnings && i < warnings->GetNumberOfValues(); ++i)
+  {
+    said = said || warnings->GetValue(i).find("as diffuse") != std::string::npos;
+  }
+  EXPECT_TRUE(said);
+  EXPECT_EQ(PointArray(filter->GetOutput(), "CausticIrradiance"), nullptr);
+}

@@ -158,6 +158,16 @@ void vtkPVGlobalIlluminationFilter::SetEmissionArray(
   this->SetEmissionArrayName(ArrayNameOrNull(name));
 }
 
+void vtkPVGlobalIlluminationFilter::SetMaterialArray(int, int, int, int, const char* name)
+{
+  this->SetMaterialArrayName(ArrayNameOrNull(name));
+}
+
+void vtkPVGlobalIlluminationFilter::SetIndexOfRefractionArray(int, int, int, int, const char* name)
+{
+  this->SetIndexOfRefractionArrayName(ArrayNameOrNull(name));
+}
+
 //------------------------------------------------------------------------------
 void vtkPVGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
 {

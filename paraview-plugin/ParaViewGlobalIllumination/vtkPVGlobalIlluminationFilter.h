@@ -121,6 +121,10 @@ public:
    */
   void SetAlbedoArray(int index, int port, int connection, int association, const char* name);
   void SetEmissionArray(int index, int port, int connection, int association, const char* name);
+  /// Materials and indices of refraction (the filter reads the cell array of that name, or
+  /// else the point array; the association is not needed).
+  void SetMaterialArray(int index, int port, int connection, int association, const char* name);
+  void SetIndexOfRefractionArray(int index, int port, int connection, int association, const char* name);
   ///@}
 
 protected:
