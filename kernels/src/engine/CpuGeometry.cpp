@@ -37,6 +37,19 @@ void CpuGeometry::update(const StageContext& c)
   }
 }
 
+void CpuGeometry::describe(SolverStats& st) const
+{
+  st.backend = "cpu";
+  st.device = tracer ? tracer->name() : "";
+  st.devices = 0;
+  st.linkedPerDevice.clear();
+  st.batchesPerDevice.clear();
+  st.msTracePerDevice.clear();
+  st.msCompressPerDevice.clear();
+  st.msWallPerDevice.clear();
+  st.gpuBytesAllocated = 0;
+}
+
 void finishSolution(const StageContext& c, const Topology& topology, std::vector<Vec3f> indirect,
   const std::vector<Vec3f>& direct)
 {

@@ -19,6 +19,10 @@ struct CpuGeometry
   /// builds (topology) or refits (positions) the tracer; records the part "Topology" and
   /// the BVH counters. The tracer references the scene's arrays (RayTracer::build).
   void update(const StageContext& context);
+
+  /// What every CPU backend reports the same way: "cpu", the tracer's name, no GPUs and
+  /// nothing per device.
+  void describe(SolverStats& stats) const;
 };
 
 /// The last stage of the CPU methods that gather E_ind per element (instant radiosity,

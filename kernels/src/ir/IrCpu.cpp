@@ -172,15 +172,7 @@ public:
 
   void describe(SolverStats& st) const override
   {
-    st.backend = "cpu";
-    st.device = geometry.tracer ? geometry.tracer->name() : "";
-    st.devices = 0;
-    st.linkedPerDevice.clear();
-    st.batchesPerDevice.clear();
-    st.msTracePerDevice.clear();
-    st.msCompressPerDevice.clear();
-    st.msWallPerDevice.clear();
-    st.gpuBytesAllocated = 0;
+    geometry.describe(st);
     st.rays = gatherRays;
     st.linksRaw = st.linksCompressed = st.linkBytes = 0;
     st.lightRays = direct.shadowRays;

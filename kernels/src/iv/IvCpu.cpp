@@ -65,15 +65,7 @@ public:
 
   void describe(SolverStats& st) const override
   {
-    st.backend = "cpu";
-    st.device = geometry.tracer ? geometry.tracer->name() : "";
-    st.devices = 0;
-    st.linkedPerDevice.clear();
-    st.batchesPerDevice.clear();
-    st.msTracePerDevice.clear();
-    st.msCompressPerDevice.clear();
-    st.msWallPerDevice.clear();
-    st.gpuBytesAllocated = 0;
+    geometry.describe(st);
     st.rays = 0; // visibility is implied: no link rays
     st.linksRaw = nodeLinkCount;
     st.linksCompressed = links.transport.nonZeros();
