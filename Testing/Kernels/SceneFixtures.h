@@ -4,6 +4,7 @@
 
 #include "linkgi/Error.h"
 #include "linkgi/MeshBuilder.h"
+#include "linkgi/Reference.h"
 #include "linkgi/SolverTypes.h"
 
 #include <functional>
@@ -53,6 +54,21 @@ inline Scene twoSquares(bool perpendicular, int n)
 
 /// A closed room (inward box) with a block on the floor and a point light under the ceiling:
 /// a quick scene with shadows, colour bleeding and every stage of the solver.
+/// E_d + E_ind of the path-traced reference: `paths` per vertex, `bounces` bounces.
+inline std::vector<Vec3f> referenceTotal(const Scene& scene, std::uint32_t paths, std::uint32_t bounces)
+{
+  ReferenceOptions ro;
+  ro.pathsPerVertex = paths;
+  ro.bounces = bounces;
+  const ReferenceSolution ref = solveReference(scene, ro);
+  std::vector<Vec3f> total(ref.direct.size());
+  for (std::size_t i = 0; i < total.size(); ++i)
+  {
+    total[i] = ref.direct[i] + ref.indirect[i];
+  }
+  return total;
+}
+
 inline Scene roomWithBlock(float cell = 0.25f)
 {
   MeshBuilder b;

@@ -143,15 +143,7 @@ TEST(TestInstantRadiosity, AgreesWithReference)
   // A room with a block, a point light, colour: total irradiance against per-vertex path
   // tracing with 2048 paths and the same 3 bounces. The error shrinks with more VPLs.
   const Scene s = test::roomWithBlock(0.25f);
-  ReferenceOptions ro;
-  ro.pathsPerVertex = 2048;
-  ro.bounces = 3;
-  const ReferenceSolution ref = solveReference(s, ro);
-  std::vector<Vec3f> reference(ref.direct.size());
-  for (std::size_t i = 0; i < reference.size(); ++i)
-  {
-    reference[i] = ref.direct[i] + ref.indirect[i];
-  }
+  const std::vector<Vec3f> reference = test::referenceTotal(s, 2048, 3);
   const std::vector<float> area = vertexAreas(s);
   double previous = 1e9;
   for (std::uint32_t vpls : { 64u, 4096u })

@@ -170,15 +170,7 @@ TEST(TestPhotonMapping, AgreesWithReference)
   // The room with a block: total irradiance against per-vertex path tracing (2048 paths, the
   // same 3 bounces); the bound is 8%.
   const Scene s = test::roomWithBlock(0.25f);
-  ReferenceOptions ro;
-  ro.pathsPerVertex = 2048;
-  ro.bounces = 3;
-  const ReferenceSolution ref = solveReference(s, ro);
-  std::vector<Vec3f> reference(ref.direct.size());
-  for (std::size_t i = 0; i < reference.size(); ++i)
-  {
-    reference[i] = ref.direct[i] + ref.indirect[i];
-  }
+  const std::vector<Vec3f> reference = test::referenceTotal(s, 2048, 3);
   Solver solver;
   const ErrorMetrics err = relativeRmse(total(solver.update(s, photonMapping())), reference, vertexAreas(s));
   std::printf("room: relative RMSE luminance %.4f (worst channel %.4f)\n", err.relRmseLuminance, maxComponent(err.relRmse));
