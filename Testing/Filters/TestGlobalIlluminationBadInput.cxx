@@ -7,7 +7,10 @@
 #include "vtkExecutive.h"
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkImageData.h"
+#include "vtkSphereSource.h"
 #include "vtkStringArray.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
 
 #include <gtest/gtest.h>
 
@@ -361,4 +364,47 @@ TEST(GlobalIlluminationFilterBadInput, RoundedRaysPerVertexIsInTheOutputsWarning
   filter->Update();
   EXPECT_EQ(warnings().find("perfect square"), std::string::npos);
   EXPECT_TRUE(messages.Errors.empty());
+}
+
+TEST(GlobalIlluminationFilterBadInput, ASphereScaledBy1e30IsLitAsTheUnitSphere)
+{
+  // Issue 17's case: the sphere scaled by 1e30 lost 69 of its 96 triangles as "degenerate"
+  // (float overflow in the area test). Under the sun (irradiance does not depend on the
+  // distance) it must keep every triangle and get the unit sphere's light.
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(12);
+  sphere->SetPhiResolution(10);
+  sphere->Update();
+  vtkNew<vtkTransform> scale;
+  scale->Scale(1e30, 1e30, 1e30);
+  vtkNew<vtkTransformPolyDataFilter> huge;
+  huge->SetInputConnection(sphere->GetOutputPort());
+  huge->SetTransform(scale);
+  huge->Update();
+  ASSERT_EQ(huge->GetOutput()->GetNumberOfCells(), sphere->GetOutput()->GetNumberOfCells());
+
+  const auto lit = [](vtkPolyData* input) {
+    auto filter = FloorFilter(input);
+    MessageCapture messages(filter);
+    filter->Update();
+    EXPECT_FALSE(messages.HasWarning("degenerate")) << "no triangle is lost to the scale";
+    EXPECT_TRUE(messages.Errors.empty());
+    auto out = vtkSmartPointer<vtkPolyData>::New();
+    out->DeepCopy(filter->GetOutput());
+    return out;
+  };
+  const auto unit = lit(sphere->GetOutput());
+  const auto big = lit(huge->GetOutput());
+  vtkDataArray* a = PointArray(unit, "DirectIrradiance");
+  vtkDataArray* b = PointArray(big, "DirectIrradiance");
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(b, nullptr);
+  double worst = 0.0, largest = 0.0;
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    worst = std::max(worst, std::abs(a->GetComponent(i, 0) - b->GetComponent(i, 0)));
+    largest = std::max(largest, a->GetComponent(i, 0));
+  }
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LE(worst, 1e-4 * largest) << "the scale changes no result";
 }
