@@ -1,7 +1,9 @@
 #include "vtkGlobalIlluminationSceneSource.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkFloatArray.h"
+#include "vtkIntArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkLight.h"
@@ -105,6 +107,22 @@ int vtkGlobalIlluminationSceneSource::RequestData(
     scene.emission.assign(scene.vertexCount(), linkgi::Vec3f(0.f));
   }
   output->GetPointData()->AddArray(rgbArray("Emission", scene.emission));
+  if (scene.hasSpecular())
+  {
+    // Mirrors and glass: the filter's MaterialArrayName "Material", IndexOfRefractionArrayName
+    // "IndexOfRefraction".
+    vtkNew<vtkIntArray> material;
+    material->SetName("Material");
+    vtkNew<vtkFloatArray> ior;
+    ior->SetName("IndexOfRefraction");
+    for (std::size_t t = 0; t < scene.triangleCount(); ++t)
+    {
+      material->InsertNextValue(static_cast<int>(scene.material(t)));
+      ior->InsertNextValue(scene.ior(t));
+    }
+    output->GetCellData()->AddArray(material);
+    output->GetCellData()->AddArray(ior);
+  }
   return 1;
 }
 

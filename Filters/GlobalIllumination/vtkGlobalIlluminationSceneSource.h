@@ -3,7 +3,9 @@
  * @brief   LinkGI's standard scenes (Cornell box, furnace, tearoom, ...) as vtkPolyData.
  *
  * Produces one of the engine's generated test and benchmark scenes as triangles with point
- * arrays `Normals` (the point normals), `Albedo` and `Emission` (float RGB), ready for
+ * arrays `Normals` (the point normals), `Albedo` and `Emission` (float RGB), and for scenes
+ * with mirrors or glass (`caustics`, `cornell-glass`) the cell arrays `Material` and
+ * `IndexOfRefraction` (MaterialArrayName, IndexOfRefractionArrayName), ready for
  * vtkGlobalIlluminationFilter (set its AlbedoArrayName to "Albedo" and EmissionArrayName to
  * "Emission"). CreateLights() returns the scene's lights as vtkLight objects, so the same
  * lights can be handed to the filter and to a renderer.
