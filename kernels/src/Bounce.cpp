@@ -25,7 +25,8 @@ void gatherRgb(const CsrRows& m, const Vec3f* x, Vec3f* y)
 }
 
 std::vector<Vec3f> iterateBounces(const SparseMatrix& transport, const BounceInputs& inputs,
-  std::uint32_t bounces, const ProgressCallback& progress)
+  std::uint32_t bounces, const ProgressCallback& progress,
+  const std::function<void(std::vector<Vec3f>&)>& exchange)
 {
   const std::size_t n = inputs.fixedIrradiance.size();
   std::vector<Vec3f> indirect(n, Vec3f(0.f)), radiance(n);
@@ -43,6 +44,10 @@ std::vector<Vec3f> iterateBounces(const SparseMatrix& transport, const BounceInp
       }
     });
     gatherRgb(transport, radiance.data(), indirect.data());
+    if (exchange)
+    {
+      exchange(indirect); // other processes' rows gathered zero here
+    }
   }
   return indirect;
 }

@@ -268,6 +268,11 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
         RowChunk& chunk = chunks[c];
         for (std::size_t x = c * kChunkRows; x < std::min(rows, (c + 1) * kChunkRows); ++x)
         {
+          if (options.rows && !options.rows[x])
+          {
+            rowCounts[x] = envRowCounts[x] = 0; // another process's row
+            continue;
+          }
           const Hit* hits = hitsOf(x, hitScratch);
           const Index v = elements.vertexOf(x);
           const Frame frame = vertexFrame(
@@ -299,7 +304,9 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
   returnFreedMemory(); // what the chunks' growth left behind
   assembleCsr(chunks, rowCounts, false, out.transport);
   assembleCsr(chunks, envRowCounts, true, out.environment);
-  out.rays = std::uint64_t(rows) * n;
+  const std::size_t linked =
+    options.rows ? std::size_t(std::count(options.rows, options.rows + rows, std::uint8_t(1))) : rows;
+  out.rays = std::uint64_t(linked) * n;
   for (const RowChunk& chunk : chunks)
   {
     out.rawLinks += chunk.rawLinks;

@@ -185,6 +185,13 @@ bool Solver::Impl::chooseCuda(const SolverOptions& opt, SolverStats& st)
     st.backendNote = "CPU requested.";
     return false;
   }
+  if (opt.partition)
+  {
+    // Every process must take the same path through the partition's collective exchanges:
+    // one falling back from the GPU alone would leave the others waiting.
+    st.backendNote = "A partitioned solve runs on the CPU.";
+    return false;
+  }
   const std::string who = opt.backend == Backend::Auto ? "Auto" : "CUDA requested";
   if (cuda.fits(opt, true))
   {

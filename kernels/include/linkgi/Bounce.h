@@ -51,8 +51,10 @@ struct BounceInputs
 /// n_B Jacobi bounces from E_ind = 0: L = Le + rho/pi (E_fixed + E_ind), E_ind = W L.
 /// Returns E_ind, which holds light that bounced up to n_B times plus the emission of
 /// emissive elements gathered through the links.
+/// `exchange` (Partition::exchange), when given, completes E_ind after each gather.
 std::vector<Vec3f> iterateBounces(const SparseMatrix& transport, const BounceInputs& inputs,
-  std::uint32_t bounces, const ProgressCallback& progress = {});
+  std::uint32_t bounces, const ProgressCallback& progress = {},
+  const std::function<void(std::vector<Vec3f>&)>& exchange = {});
 
 /// Eq. 5-6 of the paper: each element becomes the mean of itself and those one-ring
 /// neighbours whose normals are within the feature angle (dot > cosFeatureAngle).

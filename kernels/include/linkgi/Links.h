@@ -72,6 +72,9 @@ struct LinkOptions
   bool twoSided = false;
   bool twist = true;
   std::uint32_t seed = 0;
+  /// Per element, or null for all: only rows marked 1 are linked (Partition), the others
+  /// stay empty.
+  const std::uint8_t* rows = nullptr;
 };
 
 /// Per ray: the triangle hit (kInvalidIndex = miss) and its barycentrics.

@@ -5,11 +5,28 @@
 #include "linkgi/Scene.h"
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace linkgi
 {
+/// This process's share of a scene that several processes (MPI ranks) solve together, each
+/// holding the whole scene: the link method on the CPU links only the rows (receiving
+/// elements) marked here and completes each bounce's per-element vector through `exchange`,
+/// so the links, their memory and their time are split among the processes and the result
+/// is the one process's, bit for bit. The other methods and the GPU solve every row.
+struct Partition
+{
+  /// Per element (vertices, then their back sides when two-sided): 1 = this process's row.
+  std::vector<std::uint8_t> rows;
+  /// Completes a per-element RGB vector in which every process set its own rows and zeroed
+  /// the others (an allreduce of the sum over the processes). Collective: every process
+  /// calls it at the same points of an update.
+  std::function<void(std::vector<Vec3f>&)> exchange;
+};
+
 /// How the indirect light is computed. Every method writes the same Solution.
 enum class Method
 {
@@ -159,6 +176,9 @@ struct SolverOptions
   /// with an error that says what would fit, before anything is allocated. 0 (default):
   /// what the machine has available, less a margin (linkgi/Memory.h).
   std::uint64_t memoryBudget = 0;
+  /// Under MPI: this process's rows (see Partition); null (default): all of them. Another
+  /// Partition object, even an equal one, relinks.
+  std::shared_ptr<const Partition> partition;
 };
 
 /// The method called `name` ("links", "instant-radiosity": SolverStats::method); throws

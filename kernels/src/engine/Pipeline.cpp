@@ -17,7 +17,7 @@ bool operator==(const SolverOptions& a, const SolverOptions& b)
     a.backend == b.backend && a.cudaDevices == b.cudaDevices &&
     a.cudaBvhUpdate == b.cudaBvhUpdate && a.cudaBvhBuild == b.cudaBvhBuild &&
     a.instantRadiosity == b.instantRadiosity && a.implicitVisibility == b.implicitVisibility &&
-    a.photonMapping == b.photonMapping && a.memoryBudget == b.memoryBudget;
+    a.photonMapping == b.photonMapping && a.memoryBudget == b.memoryBudget && a.partition == b.partition;
 }
 
 bool operator==(const PhotonMappingOptions& a, const PhotonMappingOptions& b)
@@ -178,7 +178,8 @@ Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& be
   differs(kEnvironmentLayout, en.hasTexture() != eb.hasTexture() || en.width != eb.width || en.height != eb.height);
   const bool sameColor = std::memcmp(&en.color, &eb.color, sizeof(Vec3f)) == 0;
   differs(kEnvironmentRadiance, !sameColor || !sameBits(en.texels, eb.texels));
-  differs(kSampling, o.raysPerVertex != b.raysPerVertex || o.twist != b.twist || o.seed != b.seed);
+  differs(kSampling, o.raysPerVertex != b.raysPerVertex || o.twist != b.twist || o.seed != b.seed ||
+    o.partition != b.partition);
   differs(kSides, o.twoSided != b.twoSided);
   differs(kLightSampling, o.lightOversampling != b.lightOversampling);
   differs(kIteration, o.bounces != b.bounces);

@@ -4,6 +4,7 @@
 #include "engine/CpuGeometry.h"
 
 #include "linkgi/Bounce.h"
+#include "linkgi/Error.h"
 #include "linkgi/DirectLight.h"
 #include "linkgi/Links.h"
 
@@ -16,6 +17,21 @@ namespace linkgi::links
 namespace
 {
 using namespace engine;
+
+/// The partition's rows (null: every row), checked against the element count.
+const std::uint8_t* ownRows(const SolverOptions& o, std::size_t elements)
+{
+  if (!o.partition)
+  {
+    return nullptr;
+  }
+  if (o.partition->rows.size() != elements || !o.partition->exchange)
+  {
+    throw Error("The partition marks " + std::to_string(o.partition->rows.size()) + " rows for " +
+      std::to_string(elements) + " elements, or has no exchange; give one flag per element.");
+  }
+  return o.partition->rows.data();
+}
 
 class LinksCpu final : public MethodBackend
 {
@@ -80,7 +96,8 @@ private:
   void buildLinks(const StageContext& c)
   {
     const SolverOptions& o = c.options;
-    const LinkOptions linkOptions{ o.raysPerVertex, o.twoSided, o.twist, o.seed };
+    const LinkOptions linkOptions{ o.raysPerVertex, o.twoSided, o.twist, o.seed,
+      ownRows(o, Elements{ c.scene.vertexCount(), o.twoSided }.count()) };
     const auto within = [&c](double lo, double hi) -> ProgressCallback {
       return [&c, lo, hi](const char*, double f) { return !c.progress || c.progress("Links", lo + (hi - lo) * f); };
     };
@@ -111,6 +128,11 @@ private:
     const std::vector<Vec3f> texels = environmentTexelRadiance(s.environment);
     std::vector<Vec3f> envIrradiance(ne);
     gatherRgb(linksNow.environment, texels.data(), envIrradiance.data());
+    const bool partitioned = ownRows(o, ne) != nullptr;
+    if (partitioned)
+    {
+      o.partition->exchange(envIrradiance);
+    }
     BounceInputs inputs;
     inputs.fixedIrradiance.resize(ne);
     inputs.albedo.resize(ne);
@@ -125,7 +147,8 @@ private:
       inputs.emission.assign(ne, Vec3f(0.f));
       std::copy(s.emission.begin(), s.emission.end(), inputs.emission.begin());
     }
-    std::vector<Vec3f> indirect = iterateBounces(linksNow.transport, inputs, o.bounces, c.progress);
+    std::vector<Vec3f> indirect = iterateBounces(linksNow.transport, inputs, o.bounces, c.progress,
+      partitioned ? o.partition->exchange : std::function<void(std::vector<Vec3f>&)>());
     for (std::size_t e = 0; e < ne; ++e)
     {
       indirect[e] += envIrradiance[e];

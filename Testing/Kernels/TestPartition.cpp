@@ -1,0 +1,129 @@
+// Partitioned solves (SolverOptions::partition, issue 16): processes that each link only their
+// rows and complete every bounce through an exchange give, together, the one-process result
+// bit for bit. Two threads stand in for two MPI ranks.
+#include "SceneFixtures.h"
+
+#include "linkgi/Solver.h"
+
+#include <gtest/gtest.h>
+
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+using namespace linkgi;
+
+namespace
+{
+/// A sum over `parties` threads: each adds its vector, waits for the others, takes the sum.
+class SumExchange
+{
+public:
+  explicit SumExchange(int parties) : parties(parties) {}
+
+  void operator()(std::vector<Vec3f>& v)
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    const std::uint64_t round = generation;
+    if (arrived == 0)
+    {
+      sum.assign(v.size(), Vec3f(0.f));
+    }
+    for (std::size_t i = 0; i < v.size(); ++i)
+    {
+      sum[i] += v[i];
+    }
+    if (++arrived == parties)
+    {
+      result = sum;
+      arrived = 0;
+      ++generation;
+      ++exchanges;
+      done.notify_all();
+    }
+    else
+    {
+      done.wait(lock, [&] { return generation != round; });
+    }
+    v = result;
+  }
+  int exchanges = 0;
+
+private:
+  const int parties;
+  std::mutex mutex;
+  std::condition_variable done;
+  int arrived = 0;
+  std::uint64_t generation = 0;
+  std::vector<Vec3f> sum, result;
+};
+}
+
+TEST(TestPartition, TwoProcessesGiveTheOneProcessResultBitForBit)
+{
+  const Scene s = test::roomWithBlock(0.5f);
+  SolverOptions o = test::quickOptions();
+  o.backend = Backend::Cpu;
+  Solver whole;
+  const Solution one = whole.update(s, o);
+
+  // Rows split in interleaved runs of 7 (not a contiguous half: any mask works).
+  SumExchange exchange(2);
+  std::vector<std::shared_ptr<Partition>> parts(2);
+  for (int p = 0; p < 2; ++p)
+  {
+    parts[p] = std::make_shared<Partition>();
+    parts[p]->rows.resize(s.vertexCount());
+    for (std::size_t e = 0; e < s.vertexCount(); ++e)
+    {
+      parts[p]->rows[e] = std::uint8_t((e / 7) % 2 == std::size_t(p));
+    }
+    parts[p]->exchange = [&exchange](std::vector<Vec3f>& v) { exchange(v); };
+  }
+  Solution result[2];
+  SolverStats stats[2];
+  Solver solvers[2];
+  const auto run = [&](int p, const Scene& scene) {
+    SolverOptions mine = o;
+    mine.partition = parts[p];
+    result[p] = solvers[p].update(scene, mine);
+    stats[p] = solvers[p].stats();
+  };
+  std::thread other(run, 1, std::cref(s));
+  run(0, s);
+  other.join();
+  EXPECT_EQ(exchange.exchanges, int(o.bounces) + 1) << "the sky's irradiance, then one per bounce";
+  for (int p = 0; p < 2; ++p)
+  {
+    EXPECT_TRUE(sameBits(result[p].indirect, one.indirect)) << "process " << p;
+    EXPECT_TRUE(sameBits(result[p].radiance, one.radiance)) << "process " << p;
+    EXPECT_LT(stats[p].linksCompressed, whole.stats().linksCompressed * 3 / 4) << "each links its rows only";
+  }
+  EXPECT_EQ(stats[0].linksCompressed + stats[1].linksCompressed, whole.stats().linksCompressed);
+
+  // A light move: no relinking, the same agreement.
+  Scene lit = s;
+  lit.lights[0].position.x += 0.3f;
+  const Solution oneLit = whole.update(lit, o);
+  std::thread again(run, 1, std::cref(lit));
+  run(0, lit);
+  again.join();
+  for (int p = 0; p < 2; ++p)
+  {
+    EXPECT_FALSE(stats[p].ran("Links")) << "process " << p;
+    EXPECT_TRUE(sameBits(result[p].indirect, oneLit.indirect)) << "process " << p;
+  }
+}
+
+TEST(TestPartition, AMaskOfTheWrongSizeIsNamed)
+{
+  const Scene s = test::roomWithBlock(0.5f);
+  SolverOptions o = test::quickOptions();
+  o.backend = Backend::Cpu;
+  auto part = std::make_shared<Partition>();
+  part->rows.assign(3, 1);
+  part->exchange = [](std::vector<Vec3f>&) {};
+  o.partition = part;
+  Solver solver;
+  EXPECT_NE(test::errorOf([&] { solver.update(s, o); }).find("one flag per element"), std::string::npos);
+}
