@@ -210,6 +210,10 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
     // Collective under MPI, so before any branch that one process alone could take.
     vtkPolyData* solved = internals.Partitions.Gather(this->Controller, surface);
     const bool distributed = internals.Partitions.Distributed();
+    if (!distributed)
+    {
+      internals.ActivePartition.reset();
+    }
     const bool merged = surface != input;
     vtkPolyData* lit = merged ? internals.Lit.Get() : vtkPolyData::SafeDownCast(output);
     if (solved->GetNumberOfPoints() == 0 || solved->GetNumberOfCells() == 0)
@@ -227,6 +231,7 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
       internals.CheckDistributed(this);
       vtkPolyData* target = distributed ? internals.GlobalLit.Get() : lit;
       const linkgi::Scene& scene = internals.UpdateScene(this, solved);
+      internals.ActivePartition = internals.Partitions.Rows(this->Controller, internals.Mesh.ElementPoint, this->TwoSided);
       internals.Update(this, scene);
       internals.ShapeOutput(solved, target);
       const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;

@@ -220,7 +220,9 @@ void vtkGlobalIlluminationFilter::vtkInternals::Update(
         " vertices (ProxyVertices chooses its size). " + tooLarge.what());
     }
   }
-  this->Proxy.update(scene, this->Options(self), proxy, this->Progress(self));
+  linkgi::SolverOptions options = this->Options(self);
+  options.partition = nullptr; // the proxy's rows are not the surface's: every process solves it
+  this->Proxy.update(scene, options, proxy, this->Progress(self));
   this->ProxyUsed = true;
 }
 
@@ -241,6 +243,7 @@ linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
     : self->Method == vtkGlobalIlluminationFilter::PHOTON_MAPPING
     ? linkgi::Method::PhotonMapping
     : linkgi::Method::Links;
+  options.partition = this->ActivePartition;
   options.photonMapping.photons = static_cast<std::uint32_t>(self->NumberOfPhotons);
   options.photonMapping.clusters = static_cast<std::uint32_t>(self->NumberOfClusters);
   options.photonMapping.gatherRays = static_cast<std::uint32_t>(self->FinalGatherRays);

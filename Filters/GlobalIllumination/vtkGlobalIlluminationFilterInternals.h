@@ -66,6 +66,8 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   // `GlobalLit`, and each process keeps the light of its own points.
   vtkGlobalIlluminationPartitions Partitions;
   vtkNew<vtkPolyData> GlobalLit;
+  /// This process's rows of the global surface for the engine (Options), null alone.
+  std::shared_ptr<const linkgi::Partition> ActivePartition;
   /// Under MPI: refuses Refinement, and says that an asynchronous update ran synchronously.
   void CheckDistributed(vtkGlobalIlluminationFilter* self);
 

@@ -12,6 +12,7 @@
 
 #include "linkgi/Error.h"
 
+#include <cstring>
 #include <string>
 
 //------------------------------------------------------------------------------
@@ -21,6 +22,7 @@ vtkPolyData* vtkGlobalIlluminationPartitions::Gather(
   this->Processes = controller ? controller->GetNumberOfProcesses() : 1;
   this->Count = local->GetNumberOfPoints();
   this->Received = 0;
+  *this->Exchanged = 0;
   if (this->Processes <= 1)
   {
     this->Global = nullptr;
@@ -123,5 +125,46 @@ void vtkGlobalIlluminationPartitions::Scatter(vtkPolyData* lit, vtkPolyData* loc
   received->SetName("LinkGI.PartitionBytesReceived");
   received->InsertNextValue(this->Received);
   merged->AddArray(received);
+  vtkNew<vtkUnsignedLongLongArray> exchanged;
+  exchanged->SetName("LinkGI.RadianceBytesExchanged");
+  exchanged->InsertNextValue(*this->Exchanged);
+  merged->AddArray(exchanged);
   output->SetFieldData(merged);
+}
+
+//------------------------------------------------------------------------------
+std::shared_ptr<const linkgi::Partition> vtkGlobalIlluminationPartitions::Rows(
+  vtkMultiProcessController* controller, const std::vector<vtkIdType>& elementPoint, bool twoSided)
+{
+  if (!this->Distributed())
+  {
+    this->Partition.reset();
+    return nullptr;
+  }
+  const std::size_t elements = elementPoint.size() * (twoSided ? 2 : 1);
+  if (this->Partition && this->PartitionGlobal == this->Global.Get() &&
+    this->PartitionTime == this->Global->GetMTime() && this->PartitionElements == elements)
+  {
+    return this->Partition;
+  }
+  auto partition = std::make_shared<linkgi::Partition>();
+  partition->rows.resize(elements);
+  for (std::size_t e = 0; e < elements; ++e)
+  {
+    const vtkIdType point = elementPoint[e % elementPoint.size()];
+    partition->rows[e] = point >= this->Offset && point < this->Offset + this->Count ? 1 : 0;
+  }
+  std::shared_ptr<std::uint64_t> exchanged = this->Exchanged;
+  partition->exchange = [controller, exchanged](std::vector<linkgi::Vec3f>& values) {
+    const vtkIdType n = static_cast<vtkIdType>(3 * values.size());
+    std::vector<float> sum(values.size() * 3);
+    controller->AllReduce(reinterpret_cast<const float*>(values.data()), sum.data(), n, vtkCommunicator::SUM_OP);
+    std::memcpy(values.data(), sum.data(), sizeof(float) * sum.size());
+    *exchanged += sizeof(float) * sum.size();
+  };
+  this->Partition = partition;
+  this->PartitionGlobal = this->Global.Get();
+  this->PartitionTime = this->Global->GetMTime();
+  this->PartitionElements = elements;
+  return this->Partition;
 }

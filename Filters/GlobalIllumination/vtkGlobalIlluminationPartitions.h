@@ -10,6 +10,9 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include "linkgi/SolverTypes.h"
+
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,8 +37,18 @@ public:
   /// Bytes this process received in the last exchange (0 when nothing was exchanged).
   std::size_t ReceivedBytes() const { return this->Received; }
 
+  /// The engine's partition for the last Gather: this process's rows are the elements of its
+  /// own points (`elementPoint`: each element's point in the global surface; the back sides
+  /// of a two-sided solve follow the fronts), the exchange an allreduce of the sum through
+  /// `controller`. The same object until the global surface or this process's part changes
+  /// (another object would make the engine relink). Null with one process.
+  std::shared_ptr<const linkgi::Partition> Rows(vtkMultiProcessController* controller,
+    const std::vector<vtkIdType>& elementPoint, bool twoSided);
+
   /// `output` = `local` with every point array of `lit` (the lit global surface) that
-  /// `local` lacks, cut to this process's points, and `lit`'s field data. Ghost points that
+  /// `local` lacks, cut to this process's points, and `lit`'s field data, with
+  /// LinkGI.Processes, LinkGI.PartitionBytesReceived and LinkGI.RadianceBytesExchanged (what
+  /// the bounces' exchanges moved into this process in the last update). Ghost points that
   /// no non-ghost cell of this process uses keep the values of their place in the global
   /// surface, which are those of the owner's copy only where the partition shares no point.
   void Scatter(vtkPolyData* lit, vtkPolyData* local, vtkPolyData* output) const;
@@ -48,6 +61,13 @@ private:
   vtkIdType Offset = 0;
   vtkIdType Count = 0;
   std::size_t Received = 0;
+  std::shared_ptr<linkgi::Partition> Partition;
+  const vtkPolyData* PartitionGlobal = nullptr;
+  vtkMTimeType PartitionTime = 0;
+  std::size_t PartitionElements = 0;
+  /// Bytes each process sent and received through the partition's exchanges since the last
+  /// Gather (shared with the exchange, which counts them).
+  std::shared_ptr<std::uint64_t> Exchanged = std::make_shared<std::uint64_t>(0);
 };
 
 #endif

@@ -124,6 +124,12 @@ int main(int argc, char* argv[])
   ok &= Check(rank, out->GetNumberOfPoints() == mine->GetNumberOfPoints(), "the output has this rank's points");
   ok &= Check(rank, Field(out, "LinkGI.Processes") == ranks, "LinkGI.Processes is the number of ranks");
   ok &= Check(rank, Field(out, "LinkGI.PartitionBytesReceived") > 0, "the partitions were exchanged");
+  // Each rank links only its own points' rows; the bounces exchange 12 B per element, once
+  // for the sky and once per bounce.
+  const double elements = double(block->GetNumberOfPoints() + floor->GetNumberOfPoints());
+  ok &= Check(rank, Field(out, "LinkGI.RadianceBytesExchanged") == 12.0 * elements * 3,
+    "the radiance exchanges moved 12 B per element, 3 times (" +
+      std::to_string(Field(out, "LinkGI.RadianceBytesExchanged")) + " B)");
 
   // One process lighting the appended surface, in rank order: the same scene.
   vtkNew<vtkAppendPolyData> append;
@@ -135,6 +141,9 @@ int main(int argc, char* argv[])
   Configure(whole, light);
   whole->SetInputData(append->GetOutput());
   whole->Update();
+  const double linksHere = Field(out, "LinkGI.LinksCompressed"), linksAll = Field(whole->GetOutput(), "LinkGI.LinksCompressed");
+  ok &= Check(rank, rank > 1 ? linksHere == 0.0 : linksHere > 0.0 && linksHere < linksAll,
+    "this rank links its own rows only (" + std::to_string(linksHere) + " of " + std::to_string(linksAll) + ")");
   if (mine->GetNumberOfPoints() > 0)
   {
     for (const char* name : { "DirectIrradiance", "IndirectIrradiance", "Radiance" })
