@@ -4,6 +4,7 @@
 #include "SceneFixtures.h"
 
 #include "pm/PhotonMapping.h"
+#include "pm/PmTypes.h"
 
 #include "linkgi/Links.h"
 #include "linkgi/Metrics.h"
@@ -15,6 +16,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
 
 using namespace linkgi;
 
@@ -311,4 +314,45 @@ TEST(TestPhotonMapping, CausticsAgreeWithLightTracing)
   EXPECT_GT(refPower, 0.3);
   EXPECT_NEAR(power / refPower, 1.0, 0.10);
   EXPECT_LE(length(checked.positions[peak] - checked.positions[refPeak]), 0.0201f * 1.42f); // a diagonal cell
+}
+
+// The plain-data search a GPU backend runs (PmTypes.h) finds what the CPU's kd-tree finds:
+// the nearest accepted point, ties to the smaller index, on clustered points with duplicates.
+TEST(TestPhotonMapping, FlatTreeSearchEqualsPointTree)
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  std::vector<Vec3f> points;
+  for (int i = 0; i < 5000; ++i)
+  {
+    // A third on a plane and some repeated, as photons on a wall are.
+    Vec3f p(u(rng), i % 3 == 0 ? 0.f : u(rng), u(rng));
+    points.push_back(i % 97 == 1 ? points[i - 1] : p);
+  }
+  const pm::PointTree tree(points);
+  const pm::PointTreeView view = tree.view();
+  ASSERT_EQ(view.count, points.size());
+  std::vector<std::pair<float, Index>> found;
+  int rejectedSome = 0;
+  for (int q = 0; q < 2000; ++q)
+  {
+    const Vec3f x = q < 100 ? points[q * 7] : Vec3f(1.5f * u(rng), 1.5f * u(rng), 1.5f * u(rng));
+    const Index parity = Index(q % 3);
+    const auto accept = [&](Index i) { return i % 3 != parity; };
+    const float maxD2 = q % 4 == 0 ? 0.01f : std::numeric_limits<float>::max();
+    const std::size_t n = tree.nearest(x, 1, maxD2, accept, found);
+    const Index flat = pm::nearestOne(view, x, maxD2, accept);
+    if (n == 0)
+    {
+      EXPECT_EQ(flat, kInvalidIndex) << "query " << q;
+      ++rejectedSome;
+      continue;
+    }
+    EXPECT_EQ(flat, found[0].second) << "query " << q;
+  }
+  EXPECT_GT(rejectedSome, 0); // the distance bound was exercised
+  // An empty tree finds nothing.
+  const std::vector<Vec3f> none;
+  const pm::PointTree empty(none);
+  EXPECT_EQ(pm::nearestOne(empty.view(), Vec3f(0.f), 1.f, [](Index) { return true; }), kInvalidIndex);
 }

@@ -23,8 +23,6 @@ namespace
 constexpr float kInfinity = std::numeric_limits<float>::max();
 /// Photons count towards a site's estimate within 37 degrees of its normal.
 constexpr float kEstimateCos = 0.8f;
-/// A gather ray reads estimates within 60 degrees of the surface it hit.
-constexpr float kLookupCos = 0.5f;
 
 /// 10 bits per axis of p's place in the box [lo, lo + size], interleaved.
 std::uint32_t morton(const Vec3f& p, const Vec3f& lo, float invSize)
@@ -67,12 +65,8 @@ Vec3f PhotonMap::totalFlux() const
 
 Vec3f PhotonMap::radiance(const Vec3f& y, const Vec3f& n, std::vector<std::pair<float, Index>>& scratch) const
 {
-  if (sites.size() == 0)
-  {
-    return Vec3f(0.f);
-  }
-  const auto facing = [&](Index i) { return dot(siteNormals[i], n) > kLookupCos; };
-  return sites.nearest(y, 1, kInfinity, facing, scratch) ? siteRadiance[scratch[0].second] : Vec3f(0.f);
+  (void)scratch;
+  return lookupRadiance({ sites.view(), siteNormals.data(), siteRadiance.data() }, y, n);
 }
 
 void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, const RayTracer& tracer,

@@ -2,6 +2,8 @@
 // estimate sites, cluster centres): k nearest, or the nearest, that pass a predicate.
 #pragma once
 
+#include "pm/PmTypes.h"
+
 #include "linkgi/Math.h"
 
 #include <algorithm>
@@ -36,9 +38,11 @@ public:
   }
 
   std::size_t size() const { return order.size(); }
+  /// The tree as plain arrays (PmTypes.h), valid while this tree and its points live.
+  PointTreeView view() const { return { points, order.data(), axes.data(), std::uint32_t(order.size()) }; }
 
 private:
-  static constexpr std::size_t kLeaf = 8;
+  static constexpr std::size_t kLeaf = kTreeLeaf;
   void build(std::size_t begin, std::size_t end);
 
   template <typename Accept>

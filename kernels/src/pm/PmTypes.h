@@ -1,0 +1,111 @@
+// Photon mapping's plain-data layout, for the CPU backend and a CUDA backend alike: the
+// kd-tree of PointTree as raw arrays (the implicit median tree: node i of a range is
+// order[mid], split on axes[mid]), and the gather's radiance lookup on it. Host and device
+// code include this header; a GPU backend copies PointTree's arrays (PointTree::view) and the
+// estimate sites to the device and runs the same lookupRadiance.
+#pragma once
+
+#include "linkgi/Config.h"
+#include "linkgi/Math.h"
+
+#include <cstdint>
+
+namespace linkgi::pm
+{
+/// Ranges of at most this many points are leaves (PointTree::build stops there).
+constexpr std::uint32_t kTreeLeaf = 8;
+/// A gather hit reads the nearest estimate whose normal is within 60 degrees of its own.
+constexpr float kLookupCos = 0.5f;
+/// Depth of the explicit stack: a median tree of 2^32 points with leaves of 8 is 30 deep.
+constexpr int kTreeStack = 64;
+
+/// PointTree's arrays, borrowed: points[order[i]] is the point at tree position i.
+struct PointTreeView
+{
+  const Vec3f* points = nullptr;
+  const Index* order = nullptr;
+  const std::uint8_t* axes = nullptr; ///< split axis of the node whose median is order[i]
+  std::uint32_t count = 0;
+};
+
+/// The nearest point to q for which accept(index) holds (ties to the smaller index), or
+/// kInvalidIndex; no recursion and no heap, so it runs in a CUDA thread. Gives the same
+/// index as PointTree::nearest with k = 1.
+template <typename Accept>
+LINKGI_HOST_DEVICE inline Index nearestOne(const PointTreeView& t, const Vec3f& q, float maxDistance2, Accept&& accept)
+{
+  Index best = kInvalidIndex;
+  float bound = maxDistance2;
+  const auto consider = [&](Index i) {
+    const Vec3f d = t.points[i] - q;
+    const float d2 = dot(d, d);
+    if ((d2 < bound || (d2 == bound && (best == kInvalidIndex || i < best))) && accept(i))
+    {
+      bound = d2;
+      best = i;
+    }
+  };
+  // Each entry: a range, and the squared distance to the splitting plane that must not
+  // exceed the bound for the range to be searched (0 for ranges searched unconditionally).
+  std::uint32_t begin[kTreeStack], end[kTreeStack];
+  float plane[kTreeStack];
+  int top = 0;
+  begin[0] = 0;
+  end[0] = t.count;
+  plane[0] = 0.f;
+  while (top >= 0)
+  {
+    const std::uint32_t b = begin[top], e = end[top];
+    const float p = plane[top];
+    --top;
+    if (p > bound || b >= e)
+    {
+      continue;
+    }
+    if (e - b <= kTreeLeaf)
+    {
+      for (std::uint32_t i = b; i < e; ++i)
+      {
+        consider(t.order[i]);
+      }
+      continue;
+    }
+    const std::uint32_t mid = (b + e) / 2;
+    const Index m = t.order[mid];
+    const int axis = t.axes[mid];
+    const float diff = q[axis] - t.points[m][axis];
+    consider(m);
+    const bool leftFirst = diff < 0.f;
+    // The far side first onto the stack, so the near side is searched first.
+    ++top;
+    begin[top] = leftFirst ? mid + 1 : b;
+    end[top] = leftFirst ? e : mid;
+    plane[top] = diff * diff;
+    ++top;
+    begin[top] = leftFirst ? b : mid + 1;
+    end[top] = leftFirst ? mid : e;
+    plane[top] = 0.f;
+  }
+  return best;
+}
+
+/// The radiance estimates of the global photon map, borrowed (PhotonMap's site arrays).
+struct RadianceSitesView
+{
+  PointTreeView tree; ///< over the site positions
+  const Vec3f* normals = nullptr;
+  const Vec3f* radiance = nullptr;
+};
+
+/// The outgoing radiance a gather ray sees at surface point y (unit normal n): the nearest
+/// estimate facing within 60 degrees of n, zero when there is none.
+LINKGI_HOST_DEVICE inline Vec3f lookupRadiance(const RadianceSitesView& s, const Vec3f& y, const Vec3f& n)
+{
+  if (s.tree.count == 0)
+  {
+    return Vec3f(0.f);
+  }
+  const Index i = nearestOne(s.tree, y, 3.4e38f, [&](Index j) { return dot(s.normals[j], n) > kLookupCos; });
+  return i == kInvalidIndex ? Vec3f(0.f) : s.radiance[i];
+}
+}
