@@ -83,6 +83,7 @@ vtkPolyData* vtkGlobalIlluminationPartitions::Gather(
   }
   this->LocalInput = local;
   this->LocalTime = local->GetMTime();
+  ++this->Generation;
   return this->Global;
 }
 
@@ -142,8 +143,7 @@ std::shared_ptr<const linkgi::Partition> vtkGlobalIlluminationPartitions::Rows(
     return nullptr;
   }
   const std::size_t elements = elementPoint.size() * (twoSided ? 2 : 1);
-  if (this->Partition && this->PartitionGlobal == this->Global.Get() &&
-    this->PartitionTime == this->Global->GetMTime() && this->PartitionElements == elements)
+  if (this->Partition && this->PartitionGeneration == this->Generation && this->PartitionElements == elements)
   {
     return this->Partition;
   }
@@ -154,6 +154,11 @@ std::shared_ptr<const linkgi::Partition> vtkGlobalIlluminationPartitions::Rows(
     const vtkIdType point = elementPoint[e % elementPoint.size()];
     partition->rows[e] = point >= this->Offset && point < this->Offset + this->Count ? 1 : 0;
   }
+  this->PartitionGeneration = this->Generation;
+  if (this->Partition && this->Partition->rows == partition->rows)
+  {
+    return this->Partition; // the surfaces were exchanged again, but the rows are the same
+  }
   std::shared_ptr<std::uint64_t> exchanged = this->Exchanged;
   partition->exchange = [controller, exchanged](std::vector<linkgi::Vec3f>& values) {
     const vtkIdType n = static_cast<vtkIdType>(3 * values.size());
@@ -163,8 +168,6 @@ std::shared_ptr<const linkgi::Partition> vtkGlobalIlluminationPartitions::Rows(
     *exchanged += sizeof(float) * sum.size();
   };
   this->Partition = partition;
-  this->PartitionGlobal = this->Global.Get();
-  this->PartitionTime = this->Global->GetMTime();
   this->PartitionElements = elements;
   return this->Partition;
 }

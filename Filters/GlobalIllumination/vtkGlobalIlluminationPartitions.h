@@ -62,8 +62,9 @@ private:
   vtkIdType Count = 0;
   std::size_t Received = 0;
   std::shared_ptr<linkgi::Partition> Partition;
-  const vtkPolyData* PartitionGlobal = nullptr;
-  vtkMTimeType PartitionTime = 0;
+  /// Counts the exchanges that replaced Global; the partition follows it (not Global's
+  /// MTime, which the steps after Gather may touch without changing the surface).
+  std::uint64_t Generation = 0, PartitionGeneration = 0;
   std::size_t PartitionElements = 0;
   /// Bytes each process sent and received through the partition's exchanges since the last
   /// Gather (shared with the exchange, which counts them).
