@@ -304,11 +304,12 @@ Clusters clusterVertices(const Scene& s, std::uint32_t k, float alpha, int itera
   };
   std::vector<Index> seeds;
   seeds.reserve(kc);
-  std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> todo{ { 0, nv, kc } };
-  while (!todo.empty())
+  // Ranges of `order` still to seed: (begin, end, seeds to place in it).
+  std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> unseeded{ { 0, nv, kc } };
+  while (!unseeded.empty())
   {
-    auto [b, e, count] = todo.back();
-    todo.pop_back();
+    auto [b, e, count] = unseeded.back();
+    unseeded.pop_back();
     if (count == 0)
     {
       continue;
@@ -330,8 +331,8 @@ Clusters clusterVertices(const Scene& s, std::uint32_t k, float alpha, int itera
     const double left = variation(b, mid), right = variation(mid, e);
     std::size_t toLeft = std::size_t(std::llround(double(count) * left / (left + right)));
     toLeft = std::min(std::max(toLeft, count > e - mid ? count - (e - mid) : std::size_t(0)), std::min(count, mid - b));
-    todo.emplace_back(b, mid, toLeft);
-    todo.emplace_back(mid, e, count - toLeft);
+    unseeded.emplace_back(b, mid, toLeft);
+    unseeded.emplace_back(mid, e, count - toLeft);
   }
 
   // k-means: each vertex joins the best of the 8 centres nearest in space (the paper
@@ -492,6 +493,8 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
   const std::size_t nc = clusters.count(), n = directions.size();
   const float eps = rayEpsilon(s);
   const float diagonal = boundingDiagonal(s.positions);
+  // One O(triangles) scan, not one per sample.
+  const bool specular = s.hasSpecular();
   SampleIrradiance out;
   out.irradiance.assign(nc, Vec3f(0.f));
   out.harmonicDistance.assign(nc, diagonal);
@@ -513,7 +516,7 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
         rays[r].tfar = 3.0e38f;
       }
       tracer.trace(rays.data(), hits.data(), n);
-      if (s.hasSpecular())
+      if (specular)
       {
         followSpecular(s, faceNormals, tracer, eps, Index(j), rays, hits);
       }
