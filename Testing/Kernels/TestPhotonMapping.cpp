@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -316,9 +317,10 @@ TEST(TestPhotonMapping, CausticsAgreeWithLightTracing)
   EXPECT_LE(length(checked.positions[peak] - checked.positions[refPeak]), 0.0201f * 1.42f); // a diagonal cell
 }
 
-// The plain-data search a GPU backend runs (PmTypes.h) finds what the CPU's kd-tree finds:
-// the nearest accepted point, ties to the smaller index, on clustered points with duplicates.
-TEST(TestPhotonMapping, FlatTreeSearchEqualsPointTree)
+// The searches both backends run on the plain-data tree (PmTypes.h) find what a brute-force
+// scan finds: the nearest, the k nearest by (distance, index) and every point within a
+// radius, among the accepted points, on clustered points with duplicates and ties.
+TEST(TestPhotonMapping, TreeSearchesEqualBruteForce)
 {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1.f, 1.f);
@@ -332,23 +334,50 @@ TEST(TestPhotonMapping, FlatTreeSearchEqualsPointTree)
   const pm::PointTree tree(points);
   const pm::PointTreeView view = tree.view();
   ASSERT_EQ(view.count, points.size());
-  std::vector<std::pair<float, Index>> found;
+  std::vector<pm::Neighbour> found, all;
   int rejectedSome = 0;
-  for (int q = 0; q < 2000; ++q)
+  for (int q = 0; q < 600; ++q)
   {
     const Vec3f x = q < 100 ? points[q * 7] : Vec3f(1.5f * u(rng), 1.5f * u(rng), 1.5f * u(rng));
     const Index parity = Index(q % 3);
     const auto accept = [&](Index i) { return i % 3 != parity; };
     const float maxD2 = q % 4 == 0 ? 0.01f : std::numeric_limits<float>::max();
-    const std::size_t n = tree.nearest(x, 1, maxD2, accept, found);
+    all.clear();
+    for (Index i = 0; i < Index(points.size()); ++i)
+    {
+      const Vec3f d = points[i] - x;
+      if (dot(d, d) <= maxD2 && accept(i))
+      {
+        all.push_back({ dot(d, d), i });
+      }
+    }
+    std::sort(all.begin(), all.end(), pm::nearer);
+    for (const std::uint32_t k : { 1u, 8u, 64u })
+    {
+      const std::size_t n = tree.nearest(x, k, maxD2, accept, found);
+      ASSERT_EQ(n, std::min<std::size_t>(k, all.size())) << "query " << q << ", k " << k;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        EXPECT_EQ(found[i].index, all[i].index) << "query " << q << ", k " << k << ", rank " << i;
+      }
+    }
     const Index flat = pm::nearestOne(view, x, maxD2, accept);
-    if (n == 0)
+    if (all.empty())
     {
       EXPECT_EQ(flat, kInvalidIndex) << "query " << q;
       ++rejectedSome;
       continue;
     }
-    EXPECT_EQ(flat, found[0].second) << "query " << q;
+    EXPECT_EQ(flat, all[0].index) << "query " << q;
+    // Every point within the 10th's distance, accepted or not.
+    const float r2 = all[std::min<std::size_t>(9, all.size() - 1)].d2;
+    std::size_t within = 0, expected = 0;
+    pm::forEachWithin(view, x, r2, [&](Index, float d2) { within += d2 <= r2; });
+    for (const Vec3f& p : points)
+    {
+      expected += dot(p - x, p - x) <= r2;
+    }
+    EXPECT_EQ(within, expected) << "query " << q;
   }
   EXPECT_GT(rejectedSome, 0); // the distance bound was exercised
   // An empty tree finds nothing.

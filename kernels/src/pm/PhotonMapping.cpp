@@ -21,8 +21,6 @@ namespace linkgi::pm
 namespace
 {
 constexpr float kInfinity = std::numeric_limits<float>::max();
-/// Photons count towards a site's estimate within 37 degrees of its normal.
-constexpr float kEstimateCos = 0.8f;
 
 /// 10 bits per axis of p's place in the box [lo, lo + size], interleaved.
 std::uint32_t morton(const Vec3f& p, const Vec3f& lo, float invSize)
@@ -50,6 +48,17 @@ Vec3f unitOr(const Vec3f& v, const Vec3f& fallback)
 }
 }
 
+ir::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals, const SolverOptions& options)
+{
+  ir::PathSetup setup = ir::buildPathSetup(scene, faceNormals, options);
+  if (scene.hasSpecular())
+  {
+    setup.view.materials = reinterpret_cast<const std::uint8_t*>(scene.triangleMaterials.data());
+    setup.view.ior = scene.triangleIor.empty() ? nullptr : scene.triangleIor.data();
+  }
+  return setup;
+}
+
 Vec3f PhotonMap::totalFlux() const
 {
   double sum[3] = { 0.0, 0.0, 0.0 };
@@ -63,10 +72,9 @@ Vec3f PhotonMap::totalFlux() const
   return Vec3f(float(sum[0]), float(sum[1]), float(sum[2]));
 }
 
-Vec3f PhotonMap::radiance(const Vec3f& y, const Vec3f& n, std::vector<std::pair<float, Index>>& scratch) const
+RadianceSitesView PhotonMap::sitesView() const
 {
-  (void)scratch;
-  return lookupRadiance({ sites.view(), siteNormals.data(), siteRadiance.data() }, y, n);
+  return { sites.view(), siteNormals.data(), siteRadiance.data() };
 }
 
 void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, const RayTracer& tracer,
@@ -75,12 +83,7 @@ void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, con
   SolverOptions paths = options;
   paths.instantRadiosity.vplCount = options.photonMapping.photons;
   paths.instantRadiosity.russianRoulette = true;
-  ir::PathSetup setup = ir::buildPathSetup(scene, faceNormals, paths);
-  if (scene.hasSpecular())
-  {
-    setup.view.materials = reinterpret_cast<const std::uint8_t*>(scene.triangleMaterials.data());
-    setup.view.ior = scene.triangleIor.empty() ? nullptr : scene.triangleIor.data();
-  }
+  const ir::PathSetup setup = pathSetup(scene, faceNormals, paths);
   const ir::VplSet hits = ir::traceVplsCpu(setup, tracer, 1, progress);
   for (auto* a : { &map.positions, &map.normals, &map.flux, &map.causticPositions, &map.causticNormals, &map.causticFlux })
   {
@@ -111,15 +114,13 @@ std::vector<Vec3f> causticReference(const Scene& s, const std::vector<Vec3f>& fa
   o.bounces = 1; // to the first diffuse hit
   o.seed = seed;
   o.instantRadiosity.vplCount = paths;
-  ir::PathSetup setup = ir::buildPathSetup(s, faceNormals, o);
+  const ir::PathSetup setup = pathSetup(s, faceNormals, o);
   const std::size_t nv = s.vertexCount();
   std::vector<Vec3f> out(nv, Vec3f(0.f));
   if (!s.hasSpecular() || setup.view.paths == 0)
   {
     return out;
   }
-  setup.view.materials = reinterpret_cast<const std::uint8_t*>(s.triangleMaterials.data());
-  setup.view.ior = s.triangleIor.empty() ? nullptr : s.triangleIor.data();
   const std::vector<float> area = vertexAreas(s);
   std::mutex merge;
   std::vector<double> total(3 * nv, 0.0);
@@ -176,40 +177,14 @@ std::vector<Vec3f> causticIrradiance(const Scene& s, const PhotonMap& map, std::
     return out;
   }
   const PointTree caustics(map.causticPositions);
+  const PhotonsView view{ caustics.view(), map.causticNormals.data(), map.causticFlux.data() };
   const std::vector<float> area = vertexAreas(s);
-  const float max2 = maxRadius * maxRadius;
   parallelFor("Gather", s.vertexCount(), 256, [&](std::size_t begin, std::size_t end) {
-    std::vector<std::pair<float, Index>> found;
+    std::vector<Neighbour> heap(k);
     for (std::size_t v = begin; v < end; ++v)
     {
-      const Vec3f n = s.normals[v];
-      const auto sameSide = [&](Index j) { return dot(map.causticNormals[j], n) > kEstimateCos; };
-      if (caustics.nearest(s.positions[v], k, max2, sameSide, found) == 0)
-      {
-        continue;
-      }
-      // A cone filter of radius R: the k-th photon's distance, but at least the radius of a
-      // disc as large as the vertex's one-ring (3 x its area), where its weight (1 - d/R)
-      // integrates like the vertex's hat function. A caustic sharper than the mesh then keeps
-      // its power instead of the one vertex that holds it claiming a tiny disc's density.
-      float r2 = found.size() == k ? found.back().first : max2;
-      const float ring2 = 3.f * area[v] / kPi;
-      if (ring2 > r2)
-      {
-        r2 = ring2;
-        caustics.nearest(s.positions[v], std::numeric_limits<std::uint32_t>::max(), r2, sameSide, found);
-      }
-      const float radius = std::sqrt(r2);
-      Vec3f sum(0.f);
-      for (const auto& f : found)
-      {
-        sum += map.causticFlux[f.second] * std::max(0.f, 1.f - std::sqrt(f.first) / radius);
-      }
-      const Vec3f& rho = s.albedo[v];
-      for (int c = 0; c < 3; ++c)
-      {
-        out[v][c] = rho[c] > 0.f && r2 > 0.f ? sum[c] * 3.f / (kPi * r2 * rho[c]) : 0.f;
-      }
+      out[v] = causticEstimate(view, s.positions[v], s.normals[v], s.albedo[v], area[v], k, maxRadius * maxRadius,
+        heap.data());
     }
   }, progress);
   return out;
@@ -221,31 +196,17 @@ void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride,
   const std::size_t siteCount = (n + stride - 1) / stride;
   map.sitePositions.resize(siteCount);
   map.siteNormals.resize(siteCount);
-  map.siteRadiance.assign(siteCount, Vec3f(0.f));
+  map.siteRadiance.resize(siteCount);
   const PointTree photons(map.positions);
+  const PhotonsView view{ photons.view(), map.normals.data(), map.flux.data() };
   parallelFor("Photons", siteCount, 256, [&](std::size_t begin, std::size_t end) {
-    std::vector<std::pair<float, Index>> found;
+    std::vector<Neighbour> heap(k);
     for (std::size_t s = begin; s < end; ++s)
     {
       const std::size_t i = s * stride;
-      const Vec3f& normal = map.normals[i];
       map.sitePositions[s] = map.positions[i];
-      map.siteNormals[s] = normal;
-      const auto sameSide = [&](Index j) { return dot(map.normals[j], normal) > kEstimateCos; };
-      if (photons.nearest(map.positions[i], k, kInfinity, sameSide, found) < 2)
-      {
-        continue; // a lone photon says nothing about density
-      }
-      Vec3f sum(0.f);
-      for (const auto& f : found)
-      {
-        sum += map.flux[f.second];
-      }
-      const float r2 = found.back().first;
-      if (r2 > 0.f)
-      {
-        map.siteRadiance[s] = sum * (1.f / (kPi * kPi * r2));
-      }
+      map.siteNormals[s] = map.normals[i];
+      map.siteRadiance[s] = siteRadiance(view, Index(i), k, heap.data());
     }
   }, progress);
   map.sites = PointTree(map.sitePositions);
@@ -348,18 +309,18 @@ Clusters clusterVertices(const Scene& s, std::uint32_t k, float alpha, int itera
   const auto assign = [&]() {
     const PointTree tree(centre);
     parallelRanges(nv, 1024, [&](std::size_t begin, std::size_t end) {
-      std::vector<std::pair<float, Index>> found;
+      std::vector<Neighbour> found;
       for (std::size_t v = begin; v < end; ++v)
       {
         tree.nearest(s.positions[v], 8, kInfinity, [](Index) { return true; }, found);
         float best = kInfinity;
-        for (const auto& f : found)
+        for (const Neighbour& f : found)
         {
-          const float e = clusterMetric(s.positions[v], s.normals[v], centre[f.second], centreNormal[f.second], a);
+          const float e = clusterMetric(s.positions[v], s.normals[v], centre[f.index], centreNormal[f.index], a);
           if (e < best)
           {
             best = e;
-            out.assignment[v] = f.second;
+            out.assignment[v] = f.index;
           }
         }
       }
@@ -429,7 +390,7 @@ Clusters clusterVertices(const Scene& s, std::uint32_t k, float alpha, int itera
   constexpr int m = Clusters::kInterpolants;
   out.neighbours.assign(nv * m, kInvalidIndex);
   parallelRanges(nv, 1024, [&](std::size_t begin, std::size_t end) {
-    std::vector<std::pair<float, Index>> found;
+    std::vector<Neighbour> found;
     for (std::size_t v = begin; v < end; ++v)
     {
       Index* row = &out.neighbours[v * m];
@@ -437,52 +398,13 @@ Clusters clusterVertices(const Scene& s, std::uint32_t k, float alpha, int itera
       int count = 1;
       const auto facing = [&](Index j) { return j != row[0] && dot(s.normals[out.sample[j]], s.normals[v]) > 0.f; };
       samples.nearest(s.positions[v], m - 1, kInfinity, facing, found);
-      for (const auto& f : found)
+      for (const Neighbour& f : found)
       {
-        row[count++] = f.second;
+        row[count++] = f.index;
       }
     }
   });
   return out;
-}
-
-/// Gather rays that hit a mirror or glass go on (reflected, or refracted with the Fresnel
-/// odds), until they hit a diffuse surface, leave, or take kMaxSpecularBounces turns.
-void followSpecular(const Scene& s, const std::vector<Vec3f>& faceNormals, const RayTracer& tracer,
-  float eps, Index sample, std::vector<Ray>& rays, std::vector<Hit>& hits)
-{
-  for (std::size_t r = 0; r < rays.size(); ++r)
-  {
-    for (std::uint32_t turn = 1; turn <= ir::kMaxSpecularBounces; ++turn)
-    {
-      const Hit& h = hits[r];
-      if (h.triangle == kInvalidIndex || s.material(h.triangle) == MaterialType::Diffuse)
-      {
-        break;
-      }
-      const Vec3f fn = faceNormals[h.triangle];
-      const Triangle& t = s.triangles[h.triangle];
-      const float b0 = 1.f - h.u - h.v;
-      const Vec3f p = s.positions[t.v[0]] * b0 + s.positions[t.v[1]] * h.u + s.positions[t.v[2]] * h.v;
-      Vec3f n = normalize(s.normals[t.v[0]] * b0 + s.normals[t.v[1]] * h.u + s.normals[t.v[2]] * h.v);
-      if (!(dot(n, n) > 0.f) || dot(n, fn) <= 0.f)
-      {
-        n = fn;
-      }
-      const Vec3f d = normalize(rays[r].direction);
-      const bool back = dot(d, fn) > 0.f;
-      const Vec3f facing = back ? -n : n;
-      const Vec3f next = s.material(h.triangle) == MaterialType::Mirror
-        ? ir::reflect(d, facing)
-        : ir::dielectricDirection(d, facing, back ? s.ior(h.triangle) : 1.f / s.ior(h.triangle),
-            hashToUnit(hash32(sample) ^ std::uint32_t(r), turn));
-      rays[r].origin = p + (dot(next, fn) > 0.f ? fn : -fn) * eps;
-      rays[r].direction = next;
-      rays[r].tnear = 0.f;
-      rays[r].tfar = 3.0e38f;
-      tracer.trace(&rays[r], &hits[r], 1);
-    }
-  }
 }
 
 SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
@@ -491,23 +413,27 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
   bool twoSided, const ProgressCallback& progress)
 {
   const std::size_t nc = clusters.count(), n = directions.size();
-  const float eps = rayEpsilon(s);
+  const ir::PathSetup setup = pathSetup(s, faceNormals, SolverOptions());
+  const ir::PathScene& view = setup.view;
+  const RadianceSitesView sites = map.sitesView();
   const float diagonal = boundingDiagonal(s.positions);
-  // One O(triangles) scan, not one per sample.
-  const bool specular = s.hasSpecular();
   SampleIrradiance out;
   out.irradiance.assign(nc, Vec3f(0.f));
   out.harmonicDistance.assign(nc, diagonal);
   parallelFor("Gather", nc, 4, [&](std::size_t begin, std::size_t end) {
     std::vector<Ray> rays(n);
     std::vector<Hit> hits(n);
-    std::vector<std::pair<float, Index>> scratch;
+    const auto trace = [&tracer](const Ray& ray) {
+      Hit h;
+      tracer.trace(&ray, &h, 1);
+      return h;
+    };
     for (std::size_t j = begin; j < end; ++j)
     {
       const Index v = clusters.sample[j];
       const Vec3f normal = s.normals[v] * side;
       const Frame frame = vertexFrame(normal, true, seed, side > 0.f ? v : Index(v + s.vertexCount()));
-      const Vec3f origin = elementRayOrigin(s.positions[v], normal, shifts[v], eps);
+      const Vec3f origin = elementRayOrigin(s.positions[v], normal, shifts[v], view.eps);
       for (std::size_t r = 0; r < n; ++r)
       {
         rays[r].origin = origin;
@@ -515,37 +441,20 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
         rays[r].tnear = 0.f;
         rays[r].tfar = 3.0e38f;
       }
-      tracer.trace(rays.data(), hits.data(), n);
-      if (specular)
-      {
-        followSpecular(s, faceNormals, tracer, eps, Index(j), rays, hits);
-      }
+      tracer.trace(rays.data(), hits.data(), n); // the first hits in one batch
       Vec3f sum(0.f);
       double inverseDistances = 0.0;
       std::size_t hitCount = 0;
       for (std::size_t r = 0; r < n; ++r)
       {
-        const Hit& h = hits[r];
-        if (h.triangle == kInvalidIndex)
+        const GatherHit g = shadeGatherRay(view, sites, rays[r], hits[r], std::uint32_t(j), std::uint32_t(r),
+          twoSided, trace);
+        sum += g.radiance;
+        if (g.hit)
         {
-          sum += s.environment.radiance(normalize(rays[r].direction));
-          continue;
+          ++hitCount;
+          inverseDistances += 1.0 / std::max(double(g.distance), 1e-30);
         }
-        Vec3f fn = faceNormals[h.triangle];
-        ++hitCount;
-        inverseDistances += 1.0 / std::max(double(h.t) * double(length(rays[r].direction)), 1e-30);
-        if (dot(rays[r].direction, fn) > 0.f)
-        {
-          if (!twoSided)
-          {
-            continue; // the back of a one-sided surface is black
-          }
-          fn = -fn; // photons arriving at the back were stored with the back's normal
-        }
-        const Triangle& t = s.triangles[h.triangle];
-        const float b0 = 1.f - h.u - h.v;
-        const Vec3f y = s.positions[t.v[0]] * b0 + s.positions[t.v[1]] * h.u + s.positions[t.v[2]] * h.v;
-        sum += map.radiance(y, fn, scratch);
       }
       out.irradiance[j] = sum * (kPi / float(n));
       if (hitCount > 0)
@@ -561,29 +470,13 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
 std::vector<Vec3f> interpolate(const Scene& s, const Clusters& clusters, const SampleIrradiance& samples)
 {
   const std::size_t nv = s.vertexCount();
-  constexpr int m = Clusters::kInterpolants;
   std::vector<Vec3f> out(nv);
   parallelRanges(nv, 4096, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v)
     {
-      const Index* row = &clusters.neighbours[v * m];
-      Vec3f sum(0.f);
-      float weights = 0.f;
-      for (int i = 0; i < m && row[i] != kInvalidIndex; ++i)
-      {
-        const Index j = row[i], sv = clusters.sample[j];
-        const float c = dot(s.normals[v], s.normals[sv]);
-        if (c <= 0.f)
-        {
-          continue;
-        }
-        const float e = length(s.positions[v] - s.positions[sv]) / std::max(samples.harmonicDistance[j], 1e-30f) +
-          std::sqrt(std::max(0.f, 2.f - 2.f * c));
-        const float w = 1.f / std::max(e, 1e-4f);
-        sum += samples.irradiance[j] * w;
-        weights += w;
-      }
-      out[v] = weights > 0.f ? sum / weights : samples.irradiance[row[0]];
+      out[v] = interpolateVertex(s.positions.data(), s.normals.data(), Index(v),
+        &clusters.neighbours[v * kInterpolants], clusters.sample.data(), samples.irradiance.data(),
+        samples.harmonicDistance.data());
     }
   });
   return out;

@@ -7,7 +7,10 @@
 // irradiance-caching weights. See Documentation/Methods.md, "Photon mapping".
 #pragma once
 
+#include "pm/PmMath.h"
 #include "pm/PointTree.h"
+
+#include "ir/IrHost.h"
 
 #include "linkgi/Parallel.h"
 #include "linkgi/RayTracer.h"
@@ -37,10 +40,13 @@ struct PhotonMap
   std::size_t count() const { return positions.size(); }
   /// Total reflected flux (W): what conservation tests check.
   Vec3f totalFlux() const;
-  /// The outgoing radiance seen at surface point y (unit normal n): the nearest estimate
-  /// whose normal is within 60 degrees of n, zero when there is none.
-  Vec3f radiance(const Vec3f& y, const Vec3f& n, std::vector<std::pair<float, Index>>& scratch) const;
+  /// The estimates as the gather reads them (lookupRadiance, PmTypes.h).
+  RadianceSitesView sitesView() const;
 };
+
+/// Instant radiosity's light-path set-up (sources, the scene's view) with the scene's
+/// mirrors and glass: what photons and the final gather trace through, on either backend.
+ir::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals, const SolverOptions& options);
 
 /// The photons of `options` (PhotonMappingOptions::photons, bounces, seed, sides): instant
 /// radiosity's light paths from every source, with Russian roulette by albedo, into `map`'s
@@ -60,7 +66,7 @@ struct Clusters
   std::vector<Index> assignment; ///< per vertex: its cluster
   /// Per vertex, up to kInterpolants clusters whose samples it interpolates (its own first),
   /// kInvalidIndex where there are fewer.
-  static constexpr int kInterpolants = 6;
+  static constexpr int kInterpolants = pm::kInterpolants;
   std::vector<Index> neighbours;
   std::size_t count() const { return sample.size(); }
 };

@@ -1,8 +1,9 @@
-// Photon mapping's plain-data layout, for the CPU backend and a CUDA backend alike: the
+// Photon mapping's plain-data layout, for the CPU backend and the CUDA backend alike: the
 // kd-tree of PointTree as raw arrays (the implicit median tree: node i of a range is
-// order[mid], split on axes[mid]), and the gather's radiance lookup on it. Host and device
-// code include this header; a GPU backend copies PointTree's arrays (PointTree::view) and the
-// estimate sites to the device and runs the same lookupRadiance.
+// order[mid], split on axes[mid]), and the searches on it: the nearest point, the k nearest,
+// every point within a radius. Host and device code include this header; the CPU builds the
+// arrays with PointTree, the GPU with pm/PmKernels.h's DevicePointTree, and both search them
+// with these functions. What the searches find does not depend on the tree's shape.
 #pragma once
 
 #include "linkgi/Config.h"
@@ -28,21 +29,30 @@ struct PointTreeView
   std::uint32_t count = 0;
 };
 
-/// The nearest point to q for which accept(index) holds (ties to the smaller index), or
-/// kInvalidIndex; no recursion and no heap, so it runs in a CUDA thread. Gives the same
-/// index as PointTree::nearest with k = 1.
-template <typename Accept>
-LINKGI_HOST_DEVICE inline Index nearestOne(const PointTreeView& t, const Vec3f& q, float maxDistance2, Accept&& accept)
+/// A found point: its squared distance and index. Searches order them by (d2, index).
+struct Neighbour
 {
-  Index best = kInvalidIndex;
-  float bound = maxDistance2;
+  float d2;
+  Index index;
+};
+
+LINKGI_HOST_DEVICE inline bool nearer(const Neighbour& a, const Neighbour& b)
+{
+  return a.d2 < b.d2 || (a.d2 == b.d2 && a.index < b.index);
+}
+
+/// The traversal every search shares: visits the points of the tree that can be within the
+/// current bound (`bound()`, a squared distance, re-read as it shrinks) of q, nearer side
+/// first; `visit(index, d2)` is called for each point within it.
+template <typename Bound, typename Visit>
+LINKGI_HOST_DEVICE inline void visitNear(const PointTreeView& t, const Vec3f& q, Bound&& bound, Visit&& visit)
+{
   const auto consider = [&](Index i) {
     const Vec3f d = t.points[i] - q;
     const float d2 = dot(d, d);
-    if ((d2 < bound || (d2 == bound && (best == kInvalidIndex || i < best))) && accept(i))
+    if (d2 <= bound())
     {
-      bound = d2;
-      best = i;
+      visit(i, d2);
     }
   };
   // Each entry: a range, and the squared distance to the splitting plane that must not
@@ -58,7 +68,7 @@ LINKGI_HOST_DEVICE inline Index nearestOne(const PointTreeView& t, const Vec3f& 
     const std::uint32_t b = begin[top], e = end[top];
     const float p = plane[top];
     --top;
-    if (p > bound || b >= e)
+    if (p > bound() || b >= e)
     {
       continue;
     }
@@ -86,6 +96,85 @@ LINKGI_HOST_DEVICE inline Index nearestOne(const PointTreeView& t, const Vec3f& 
     end[top] = leftFirst ? mid : e;
     plane[top] = 0.f;
   }
+}
+
+/// The k nearest points to q within sqrt(maxDistance2) for which accept(index) holds (by
+/// (d2, index), so ties go to the smaller index) into `heap` (room for k), as a max-heap:
+/// heap[0] is the farthest found. Returns how many (at most k).
+template <typename Accept>
+LINKGI_HOST_DEVICE inline std::uint32_t kNearest(const PointTreeView& t, const Vec3f& q, std::uint32_t k,
+  float maxDistance2, Accept&& accept, Neighbour* heap)
+{
+  std::uint32_t size = 0;
+  if (k == 0)
+  {
+    return 0;
+  }
+  const auto bound = [&]() { return size == k ? heap[0].d2 : maxDistance2; };
+  visitNear(t, q, bound, [&](Index i, float d2) {
+    const Neighbour n{ d2, i };
+    if ((size == k && !nearer(n, heap[0])) || !accept(i))
+    {
+      return;
+    }
+    std::uint32_t at;
+    if (size < k)
+    {
+      at = size++; // sift up from the end
+      while (at > 0 && nearer(heap[(at - 1) / 2], n))
+      {
+        heap[at] = heap[(at - 1) / 2];
+        at = (at - 1) / 2;
+      }
+    }
+    else
+    {
+      at = 0; // replace the farthest, sift down
+      for (;;)
+      {
+        std::uint32_t c = 2 * at + 1;
+        if (c >= size)
+        {
+          break;
+        }
+        if (c + 1 < size && nearer(heap[c], heap[c + 1]))
+        {
+          ++c;
+        }
+        if (!nearer(n, heap[c]))
+        {
+          break;
+        }
+        heap[at] = heap[c];
+        at = c;
+      }
+    }
+    heap[at] = n;
+  });
+  return size;
+}
+
+/// visit(index, d2) for every point within sqrt(maxDistance2) of q, in no particular order.
+template <typename Visit>
+LINKGI_HOST_DEVICE inline void forEachWithin(const PointTreeView& t, const Vec3f& q, float maxDistance2, Visit&& visit)
+{
+  visitNear(t, q, [maxDistance2]() { return maxDistance2; }, visit);
+}
+
+/// The nearest point to q for which accept(index) holds (ties to the smaller index), or
+/// kInvalidIndex; no recursion and no heap, so it runs in a CUDA thread.
+template <typename Accept>
+LINKGI_HOST_DEVICE inline Index nearestOne(const PointTreeView& t, const Vec3f& q, float maxDistance2, Accept&& accept)
+{
+  Index best = kInvalidIndex;
+  float bound = maxDistance2;
+  visitNear(t, q, [&bound]() { return bound; }, [&](Index i, float d2) {
+    if ((d2 < bound || best == kInvalidIndex || i < best) && accept(i))
+    {
+      bound = d2;
+      best = i;
+    }
+  });
   return best;
 }
 

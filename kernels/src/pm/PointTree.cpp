@@ -12,7 +12,7 @@ PointTree::PointTree(const std::vector<Vec3f>& p) : points(p.data()), order(p.si
 
 void PointTree::build(std::size_t begin, std::size_t end)
 {
-  if (end - begin <= kLeaf)
+  if (end - begin <= kTreeLeaf)
   {
     return;
   }

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 namespace linkgi::pm
@@ -21,19 +20,16 @@ public:
   /// reallocate (moving or swapping the vector is fine).
   explicit PointTree(const std::vector<Vec3f>& points);
 
-  /// Up to k (squared distance, index) pairs of the points nearest to `q` for which
-  /// accept(index) holds, within sqrt(maxDistance2), into `found`, nearest first. Returns
-  /// how many. `found` is the caller's (one per thread).
+  /// Up to k of the points nearest to `q` for which accept(index) holds, within
+  /// sqrt(maxDistance2), into `found` (the caller's, one per thread), nearest first; kNearest
+  /// on view(). Returns how many.
   template <typename Accept>
-  std::size_t nearest(const Vec3f& q, std::size_t k, float maxDistance2, Accept&& accept,
-    std::vector<std::pair<float, Index>>& found) const
+  std::size_t nearest(const Vec3f& q, std::uint32_t k, float maxDistance2, Accept&& accept,
+    std::vector<Neighbour>& found) const
   {
-    found.clear();
-    if (k > 0 && !order.empty())
-    {
-      search(0, order.size(), q, k, maxDistance2, accept, found);
-    }
-    std::sort_heap(found.begin(), found.end());
+    found.resize(k);
+    found.resize(kNearest(view(), q, k, maxDistance2, accept, found.data()));
+    std::sort(found.begin(), found.end(), nearer);
     return found.size();
   }
 
@@ -42,52 +38,7 @@ public:
   PointTreeView view() const { return { points, order.data(), axes.data(), std::uint32_t(order.size()) }; }
 
 private:
-  static constexpr std::size_t kLeaf = kTreeLeaf;
   void build(std::size_t begin, std::size_t end);
-
-  template <typename Accept>
-  void search(std::size_t begin, std::size_t end, const Vec3f& q, std::size_t k, float& bound,
-    Accept& accept, std::vector<std::pair<float, Index>>& heap) const
-  {
-    const auto consider = [&](Index i) {
-      const Vec3f d = points[i] - q;
-      const float d2 = dot(d, d);
-      if (d2 > bound || !accept(i))
-      {
-        return;
-      }
-      heap.emplace_back(d2, i);
-      std::push_heap(heap.begin(), heap.end());
-      if (heap.size() > k)
-      {
-        std::pop_heap(heap.begin(), heap.end());
-        heap.pop_back();
-      }
-      if (heap.size() == k)
-      {
-        bound = heap.front().first;
-      }
-    };
-    if (end - begin <= kLeaf)
-    {
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        consider(order[i]);
-      }
-      return;
-    }
-    const std::size_t mid = (begin + end) / 2;
-    const Index m = order[mid];
-    const int axis = axes[mid];
-    const float diff = q[axis] - points[m][axis];
-    consider(m);
-    const bool leftFirst = diff < 0.f;
-    search(leftFirst ? begin : mid + 1, leftFirst ? mid : end, q, k, bound, accept, heap);
-    if (diff * diff <= bound)
-    {
-      search(leftFirst ? mid + 1 : begin, leftFirst ? end : mid, q, k, bound, accept, heap);
-    }
-  }
 
   const Vec3f* points = nullptr;
   std::vector<Index> order;            ///< the points, in the implicit tree's order
