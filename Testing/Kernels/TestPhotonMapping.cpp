@@ -1,9 +1,11 @@
 // Photon mapping (Method::PhotonMapping): the photons carry the lights' power, the
 // clustering's metric and coverage, agreement with the reference and the furnace, and what
 // each change re-runs.
+#include "CudaFixtures.h"
 #include "SceneFixtures.h"
 
 #include "pm/PhotonMapping.h"
+#include "pm/PmBackends.h"
 #include "pm/PmTypes.h"
 
 #include "linkgi/Links.h"
@@ -384,4 +386,91 @@ TEST(TestPhotonMapping, TreeSearchesEqualBruteForce)
   const std::vector<Vec3f> none;
   const pm::PointTree empty(none);
   EXPECT_EQ(pm::nearestOne(empty.view(), Vec3f(0.f), 1.f, [](Index) { return true; }), kInvalidIndex);
+}
+
+// The GPU's kd-tree (levels of segmented sorts, axes from sampled boxes) is a valid implicit
+// median tree: the host's searches on its arrays find what brute force finds.
+TEST(TestPhotonMapping, DeviceTreeSearchesEqualBruteForce)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  for (const std::size_t n : { std::size_t(5), std::size_t(9), std::size_t(1000), std::size_t(70001) })
+  {
+    std::vector<Vec3f> points;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      Vec3f p(u(rng), i % 3 == 0 ? 0.f : u(rng), 0.1f * u(rng));
+      points.push_back(i % 97 == 1 ? points[i - 1] : p);
+    }
+    std::vector<Index> order;
+    std::vector<std::uint8_t> axes;
+    pm::buildTreeOnDevice(points, order, axes);
+    std::vector<Index> sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      ASSERT_EQ(sorted[i], Index(i)) << "the order is a permutation, n " << n;
+    }
+    const pm::PointTreeView view{ points.data(), order.data(), axes.data(), std::uint32_t(n) };
+    std::vector<pm::Neighbour> heap(16), all;
+    for (int q = 0; q < 200; ++q)
+    {
+      const Vec3f x = q < 50 ? points[(q * 7919) % n] : Vec3f(u(rng), u(rng), u(rng));
+      all.clear();
+      for (Index i = 0; i < Index(n); ++i)
+      {
+        all.push_back({ dot(points[i] - x, points[i] - x), i });
+      }
+      std::sort(all.begin(), all.end(), pm::nearer);
+      const std::uint32_t found = pm::kNearest(view, x, 16, 3.4e38f, [](Index) { return true; }, heap.data());
+      ASSERT_EQ(found, std::min<std::size_t>(16, n));
+      std::sort(heap.begin(), heap.begin() + found, pm::nearer);
+      for (std::uint32_t i = 0; i < found; ++i)
+      {
+        EXPECT_EQ(heap[i].index, all[i].index) << "n " << n << ", query " << q << ", rank " << i;
+      }
+    }
+  }
+}
+
+// Both backends trace the same Halton light paths (a hit may differ where a path grazes an
+// edge), so the photon maps, the estimates and the gathers agree: on the Cornell box, after a
+// light move, and on the caustic scene with its caustics.
+TEST(TestPhotonMapping, CpuAndCudaBackendsAgree)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  for (const char* name : { "cornell", "caustics" })
+  {
+    const Scene s = makeStandardScene(name);
+    SolverOptions o = photonMapping();
+    Solver cpu, gpu;
+    for (int step = 0; step < 2; ++step)
+    {
+      Scene now = s;
+      if (step == 1)
+      {
+        now.lights[0].position.x += 0.05f * boundingDiagonal(s.positions);
+      }
+      const Solution& a = cpu.update(now, test::onBackend(Backend::Cpu, o));
+      const Solution& b = gpu.update(now, test::onBackend(Backend::Cuda, o));
+      ASSERT_EQ(gpu.stats().backend, "cuda") << (gpu.stats().warnings.empty() ? "" : gpu.stats().warnings[0]);
+      const double photons = double(cpu.stats().photons);
+      EXPECT_NEAR(double(gpu.stats().photons) / photons, 1.0, 1e-3) << name << ", step " << step;
+      EXPECT_EQ(gpu.stats().clusters, cpu.stats().clusters) << name;
+      const float direct = test::relativeError(b.direct, a.direct);
+      const float indirect = test::relativeError(b.indirect, a.indirect);
+      std::printf("%s step %d: photons %zu / %zu, relative RMSE direct %.5f, indirect %.5f\n", name, step,
+        std::size_t(gpu.stats().photons), std::size_t(cpu.stats().photons), direct, indirect);
+      EXPECT_LT(direct, 0.01f) << name << ", step " << step;
+      EXPECT_LT(indirect, 0.03f) << name << ", step " << step;
+      ASSERT_EQ(b.caustics.size(), a.caustics.size()) << name;
+      if (!a.caustics.empty())
+      {
+        const float caustics = test::relativeError(b.caustics, a.caustics);
+        std::printf("%s step %d: caustics relative RMSE %.5f\n", name, step, caustics);
+        EXPECT_LT(caustics, 0.05f) << name << ", step " << step;
+      }
+    }
+  }
 }

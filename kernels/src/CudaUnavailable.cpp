@@ -2,6 +2,7 @@
 #include "linkgi/Cuda.h"
 
 #include "ir/IrBackends.h"
+#include "pm/PmBackends.h"
 #include "links/LinksBackends.h"
 
 namespace linkgi::cuda
@@ -42,6 +43,19 @@ std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
 }
 
 std::vector<Vec3f> gatherCuda(const Scene&, const VplSet&, const GatherParams&, bool)
+{
+  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
+}
+}
+
+namespace linkgi::pm
+{
+std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
+{
+  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
+}
+
+void buildTreeOnDevice(const std::vector<Vec3f>&, std::vector<Index>&, std::vector<std::uint8_t>&)
 {
   throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
 }

@@ -7,9 +7,8 @@
 #include "ir/IrBackends.h"
 #include "ir/IrKernels.h"
 
-#include "cuda/DeviceBvh.h"
+#include "cuda/DeviceMesh.h"
 #include "cuda/DirectLightStage.h"
-#include "cuda/DeviceTopology.h"
 #include "cuda/GPUBuffer.h"
 #include "cuda/PinnedStaging.h"
 #include "cuda/Primitives.h"
@@ -24,74 +23,9 @@ namespace linkgi::ir
 namespace
 {
 using namespace engine;
+using cuda::DeviceMesh;
 using cuda::GPUBuffer;
 using cuda::Rgba;
-
-/// The mesh on the GPU: arrays, topology, shifts, face normals and BVH.
-struct DeviceMesh
-{
-  GPUBuffer<Vec3f> positions, normals, shifts, faceNormals;
-  GPUBuffer<Triangle> triangles;
-  cuda::DeviceTopology topology;
-  cuda::DeviceBvh bvh;
-  Index vertexCount = 0, triangleCount = 0;
-  SceneExtent extent; ///< of the positions uploaded
-  cuda::PinnedStaging staging;
-
-  /// Uploads what `changes` touched (through pinned memory) and queues the rest on `stream`
-  /// (no wait). The previous update's copies must have completed.
-  void update(const Scene& s, Changes changes, cudaStream_t stream, SolverStats* stats)
-  {
-    vertexCount = Index(s.vertexCount());
-    triangleCount = Index(s.triangleCount());
-    const bool topologyChanged = (changes & kTopology) != 0;
-    const bool positionsChanged = (changes & (kTopology | kPositions)) != 0;
-    const bool normalsChanged = (changes & (kTopology | kNormals)) != 0 || normals.size() != s.normals.size();
-    staging.begin(cuda::PinnedStaging::room(topologyChanged ? s.triangles.size() * sizeof(Triangle) : 0) +
-      2 * cuda::PinnedStaging::room(s.positions.size() * sizeof(Vec3f)));
-    if (topologyChanged)
-    {
-      staging.upload(triangles, s.triangles, stream);
-    }
-    if (positionsChanged)
-    {
-      staging.upload(positions, s.positions, stream);
-      extent = sceneExtent(s);
-    }
-    if (normalsChanged)
-    {
-      staging.upload(normals, s.normals, stream);
-    }
-    if (changes & kTopology)
-    {
-      topology.build(triangles.data(), triangleCount, vertexCount, stream);
-    }
-    shifts.resize(vertexCount);
-    faceNormals.resize(triangleCount);
-    cuda::originShifts(positions.data(), normals.data(), topology.neighbourOffsets.data(),
-      topology.neighbours.data(), vertexCount, shifts.data(), stream);
-    cuda::frontFaceNormals(positions.data(), normals.data(), triangles.data(), triangleCount,
-      faceNormals.data(), stream);
-    if (changes & kTopology)
-    {
-      bvh.build(positions.data(), vertexCount, triangles.data(), triangleCount, stream);
-      if (stats)
-      {
-        stats->builtBvh = true;
-        ++stats->bvhBuilds;
-      }
-    }
-    else if (changes & kPositions)
-    {
-      bvh.refit(positions.data(), triangles.data(), stream);
-      if (stats)
-      {
-        stats->refitBvh = true;
-        ++stats->bvhRefits;
-      }
-    }
-  }
-};
 
 /// A VPL set on the GPU.
 struct DeviceVpls
@@ -143,24 +77,12 @@ gpu::GatherLaunch gatherLaunch(const DeviceMesh& mesh, const DeviceVpls& vpls, B
   return g;
 }
 
-int useFirstDevice()
-{
-  std::string why;
-  const std::vector<cuda::DeviceInfo> found = cuda::devices(&why);
-  if (found.empty())
-  {
-    throw CudaError("No CUDA device: " + why + ".", false);
-  }
-  LINKGI_CUDA_CHECK(cudaSetDevice(found[0].index));
-  return found[0].index;
-}
-
 class IrCuda final : public MethodBackend
 {
 public:
   IrCuda()
   {
-    const int device = useFirstDevice();
+    const int device = cuda::useFirstDevice();
     cudaDeviceProp prop{};
     LINKGI_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
     name = prop.name;
@@ -281,31 +203,10 @@ private:
     view.sources = sources.data();
     view.cdf = cdf.data();
     view.envTexels = s.environment.texels.empty() ? nullptr : envTexels.data();
-    const std::uint32_t slotsPerPath = view.bounces + 1;
-    std::size_t found = 0;
-    for (int pass = 0; pass < 2; ++pass)
-    {
-      slots.resize(std::size_t(view.paths) * slotsPerPath);
-      counts.resize(std::size_t(view.paths) + 1);
-      pathOffsets.resize(std::size_t(view.paths) + 1);
-      LINKGI_CUDA_CHECK(cudaMemsetAsync(counts.data() + view.paths, 0, sizeof(Index), stream));
-      gpu::traceLightPaths(view, mesh.bvh.view(), slots.data(), counts.data(), stream);
-      cuda::exclusiveSum(counts.data(), pathOffsets.data(), std::size_t(view.paths) + 1, scanTemp, stream);
-      static_assert(sizeof(Offset) == sizeof(unsigned long long), "the VPL total lands in a ray-count slot");
-      LINKGI_CUDA_CHECK(cudaMemcpyAsync(rayCounts + kFoundSlot, pathOffsets.data() + view.paths, sizeof(Offset),
-        cudaMemcpyDeviceToHost, stream));
-      LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
-      found = std::size_t(rayCounts[kFoundSlot]);
-      // The same rule as the CPU's (traceVplsCpu), so both trace the same paths.
-      const std::uint32_t more = pass == 0 ? secondPassPaths(view.paths, found, setup.targetVpls, slotsPerPath) : 0;
-      if (!more)
-      {
-        break;
-      }
-      view.paths = more;
-    }
-    vpls.pack(slots, counts, pathOffsets, view.paths, slotsPerPath, c.options.instantRadiosity.interleave, found,
-      stream);
+    const std::size_t found = gpu::traceAllPaths(view, mesh.bvh.view(), setup.targetVpls, paths,
+      rayCounts + kFoundSlot, stream);
+    vpls.pack(paths.slots, paths.counts, paths.pathOffsets, view.paths, view.bounces + 1,
+      c.options.instantRadiosity.interleave, found, stream);
   }
 
   void directLight(const StageContext& c)
@@ -412,10 +313,7 @@ private:
   GPUBuffer<float> cdf, vertexVisible, edgeVisible;
   GPUBuffer<Light> lights, litLights;
   GPUBuffer<Vec3f> albedo, emission, envTexels, direct, output;
-  GPUBuffer<Vpl> slots;
-  GPUBuffer<Index> counts;
-  GPUBuffer<Offset> pathOffsets;
-  GPUBuffer<unsigned char> scanTemp;
+  gpu::DevicePaths paths;
   DeviceVpls vpls;
   GPUBuffer<Rgba> gathered;
   GPUBuffer<unsigned long long> counter, gatherCounter;
@@ -438,7 +336,7 @@ std::unique_ptr<MethodBackend> createCudaBackend(const SolverOptions&)
 std::vector<Vec3f> gatherCuda(const Scene& scene, const VplSet& set, const GatherParams& params,
   bool twoSided)
 {
-  useFirstDevice();
+  cuda::useFirstDevice();
   cudaStream_t stream = nullptr;
   DeviceMesh mesh;
   mesh.update(scene, kEverything, stream, nullptr);

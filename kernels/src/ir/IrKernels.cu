@@ -225,6 +225,36 @@ void traceLightPaths(const PathScene& scene, const BvhView& bvh, Vpl* slots, Ind
   LINKGI_CUDA_CHECK_LAUNCH("pathKernel");
 }
 
+std::size_t traceAllPaths(PathScene& view, const BvhView& bvh, std::uint32_t targetVpls, DevicePaths& paths,
+  unsigned long long* pinnedFound, cudaStream_t stream)
+{
+  const std::uint32_t slotsPerPath = view.bounces + 1;
+  std::size_t found = 0;
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    paths.slots.resize(std::size_t(view.paths) * slotsPerPath);
+    paths.counts.resize(std::size_t(view.paths) + 1);
+    paths.pathOffsets.resize(std::size_t(view.paths) + 1);
+    LINKGI_CUDA_CHECK(cudaMemsetAsync(paths.counts.data() + view.paths, 0, sizeof(Index), stream));
+    traceLightPaths(view, bvh, paths.slots.data(), paths.counts.data(), stream);
+    cuda::exclusiveSum(paths.counts.data(), paths.pathOffsets.data(), std::size_t(view.paths) + 1, paths.scanTemp,
+      stream);
+    static_assert(sizeof(Offset) == sizeof(unsigned long long), "the VPL total lands in a ray-count slot");
+    LINKGI_CUDA_CHECK(cudaMemcpyAsync(pinnedFound, paths.pathOffsets.data() + view.paths, sizeof(Offset),
+      cudaMemcpyDeviceToHost, stream));
+    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+    found = std::size_t(*pinnedFound);
+    // The same rule as the CPU's (traceVplsCpu), so both trace the same paths.
+    const std::uint32_t more = pass == 0 ? secondPassPaths(view.paths, found, targetVpls, slotsPerPath) : 0;
+    if (!more)
+    {
+      break;
+    }
+    view.paths = more;
+  }
+  return found;
+}
+
 void gatherVpls(const GatherLaunch& p, cuda::Rgba* out, unsigned long long* rays, cudaStream_t stream)
 {
   const std::size_t elements = p.twoSided ? 2 * std::size_t(p.vertexCount) : p.vertexCount;

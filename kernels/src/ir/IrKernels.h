@@ -15,6 +15,23 @@ namespace linkgi::ir::gpu
 void traceLightPaths(const PathScene& scene, const BvhView& bvh, Vpl* slots, Index* counts,
   cudaStream_t stream);
 
+/// Light paths' hits on the device: bounces + 1 slots per path, the count each used, and
+/// their exclusive sum.
+struct DevicePaths
+{
+  cuda::GPUBuffer<Vpl> slots;
+  cuda::GPUBuffer<Index> counts;
+  cuda::GPUBuffer<Offset> pathOffsets;
+  cuda::GPUBuffer<unsigned char> scanTemp;
+};
+
+/// Traces view.paths light paths into `paths`, then, where they left fewer than half of
+/// `targetVpls` VPLs, the second pass the CPU's traceVplsCpu traces (secondPassPaths), which
+/// replaces the first: view.paths becomes the pass kept. Waits once per pass to learn the
+/// VPLs found (through `pinnedFound`, one slot of pinned host memory) and returns them.
+std::size_t traceAllPaths(PathScene& view, const BvhView& bvh, std::uint32_t targetVpls, DevicePaths& paths,
+  unsigned long long* pinnedFound, cudaStream_t stream);
+
 /// The VPL set on the device as packVpls (IrHost.h) packs it on the host: the paths' VPLs in
 /// path order, subset r the paths [subsetFirstPath(r), subsetFirstPath(r + 1)).
 /// pathOffsets: the exclusive sum of counts over paths + 1 entries. vpls holds the total;

@@ -21,6 +21,13 @@
 
 namespace linkgi::pm
 {
+/// What both backends fix: radiance estimates at every 4th photon (Christensen's
+/// precomputed estimates); Lloyd iterations of the clustering; caustic photons count within
+/// this fraction of the bounding-box diagonal of a vertex.
+constexpr std::uint32_t kSiteStride = 4;
+constexpr int kMeansIterations = 4;
+constexpr float kCausticRadius = 0.02f;
+
 /// The global photon map: photons, and outgoing radiance estimates at every `siteStride`-th
 /// photon (Christensen's precomputed estimates, which stand in for the paper's illumination
 /// cut: a gather ray reads the nearest estimate instead of searching photons).

@@ -16,13 +16,6 @@ namespace
 {
 using namespace engine;
 
-/// Radiance estimates at every 4th photon (Christensen's precomputed estimates).
-constexpr std::uint32_t kSiteStride = 4;
-/// Lloyd iterations of the clustering.
-constexpr int kMeansIterations = 4;
-/// Caustic photons count within this fraction of the bounding-box diagonal of a vertex.
-constexpr float kCausticRadius = 0.02f;
-
 class PmCpu final : public MethodBackend
 {
 public:

@@ -3,8 +3,6 @@
 // Documentation/Methods.md, "Photon mapping".
 #include "pm/PmBackends.h"
 
-#include "linkgi/Cuda.h"
-
 namespace linkgi::pm
 {
 namespace
@@ -37,10 +35,7 @@ public:
     return table;
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
-  std::unique_ptr<MethodBackend> createCuda(const SolverOptions&) const override
-  {
-    throw CudaError("The photon-mapping method has no CUDA backend yet.", false);
-  }
+  std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
 };
 }
 

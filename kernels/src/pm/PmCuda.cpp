@@ -1,0 +1,377 @@
+// Photon mapping on one GPU: the mesh and its BVH (cuda/DeviceMesh), light paths (instant
+// radiosity's kernels), the photon map, its kd-trees and estimates, the final gather, the
+// interpolation and the caustics stay on the device; the direct light and the finish are the
+// link method's CUDA launchers. The clusters depend on the geometry alone and are the host's
+// (clusterVertices), uploaded: a light move does not rebuild them. One stream: an update
+// waits for the device where the host needs a number (paths' hits, photons stored) and once
+// at the end, for the output.
+#include "pm/PmBackends.h"
+#include "pm/PmKernels.h"
+#include "pm/PhotonMapping.h"
+
+#include "ir/IrKernels.h"
+
+#include "cuda/DeviceMesh.h"
+#include "cuda/DirectLightStage.h"
+#include "cuda/PinnedStaging.h"
+
+#include "linkgi/Cuda.h"
+#include "linkgi/Metrics.h"
+#include "linkgi/Sampling.h"
+
+#include <cmath>
+
+namespace linkgi::pm
+{
+namespace
+{
+using namespace engine;
+using cuda::GPUBuffer;
+
+class PmCuda final : public MethodBackend
+{
+public:
+  PmCuda()
+  {
+    const int device = cuda::useFirstDevice();
+    cudaDeviceProp prop{};
+    LINKGI_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
+    name = prop.name;
+    LINKGI_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
+    void* pinned = nullptr;
+    LINKGI_CUDA_CHECK(cudaMallocHost(&pinned, kSlots * sizeof(unsigned long long)));
+    counters = static_cast<unsigned long long*>(pinned);
+  }
+  ~PmCuda() override
+  {
+    cudaFreeHost(counters);
+    if (stream)
+    {
+      cudaStreamDestroy(stream);
+    }
+  }
+  PmCuda(const PmCuda&) = delete;
+  PmCuda& operator=(const PmCuda&) = delete;
+
+  void run(std::size_t stage, const StageContext& c) override
+  {
+    // Device state is updated in place: a failed update leaves it unusable (discard()).
+    switch (stage)
+    {
+      case kGeometryStage:
+        return geometry(c);
+      case kPhotonStage:
+        return tracePhotons(c);
+      case kClusterStage:
+        return cluster(c);
+      case kLightLinkStage:
+        return directLight(c);
+      case kGatherStage:
+        return gather(c);
+      case kFinishStage:
+        return finish(c);
+    }
+  }
+  void commit() override {}
+  bool discard() override { return false; }
+
+  void describe(SolverStats& st) const override
+  {
+    st.backend = "cuda";
+    st.device = name;
+    st.devices = 1;
+    st.linkedPerDevice.clear();
+    st.batchesPerDevice.clear();
+    st.msTracePerDevice.clear();
+    st.msCompressPerDevice.clear();
+    st.msWallPerDevice.clear();
+    st.gpuBytesAllocated = cuda::MemoryLedger::takePeak();
+    st.rays = gatherRays;
+    st.linksRaw = st.linksCompressed = st.linkBytes = 0;
+    st.lightRays = lightRays;
+    st.photons = photonCount;
+    st.clusters = clusterCount;
+  }
+
+private:
+  void geometry(const StageContext& c)
+  {
+    mesh.update(c.scene, c.changes, stream, &c.stats);
+    if (c.changes & (kTopology | kPositions))
+    {
+      areas.upload(vertexAreas(c.scene), stream); // the caustics' one-ring discs
+    }
+  }
+
+  void tracePhotons(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    SolverOptions o = c.options;
+    o.instantRadiosity.vplCount = o.photonMapping.photons;
+    o.instantRadiosity.russianRoulette = true;
+    const ir::PathSetup setup = ir::buildPathSetup(s, {}, o, &mesh.extent);
+    sources.upload(setup.sources, stream);
+    cdf.upload(setup.cdf, stream);
+    lights.upload(s.lights, stream);
+    // Materials and the sky only when they changed (a light move uploads neither).
+    if (c.changes & (kTopology | kAlbedo))
+    {
+      albedo.upload(s.albedo, stream);
+      specular = s.hasSpecular();
+      if (specular)
+      {
+        materials.upload(reinterpret_cast<const std::uint8_t*>(s.triangleMaterials.data()), s.triangles.size(),
+          stream);
+        ior.upload(s.triangleIor, stream);
+      }
+    }
+    if (c.changes & (kTopology | kEmission))
+    {
+      emission.upload(s.emission, stream);
+    }
+    if (c.changes & (kEnvironmentLayout | kEnvironmentRadiance))
+    {
+      envTexels.upload(s.environment.texels, stream);
+    }
+    pathView = deviceView(s, setup.view);
+    ir::PathScene view = pathView;
+    const std::size_t found = ir::gpu::traceAllPaths(view, mesh.bvh.view(), setup.targetVpls, paths,
+      counters + kFoundSlot, stream);
+    // The hits in path order (one subset), then split into photons and caustic photons.
+    hits.resize(std::max<std::size_t>(found, 1));
+    subsetOffsets.resize(2);
+    subsetScale.resize(1);
+    ir::gpu::packVpls(paths.slots.data(), paths.counts.data(), paths.pathOffsets.data(), view.paths,
+      view.bounces + 1, 1, hits.data(), subsetOffsets.data(), subsetScale.data(), stream);
+    static_assert(sizeof(Offset) == sizeof(unsigned long long), "photon totals land in counter slots");
+    gpu::splitPhotons(hits.data(), found, photons, flags, scan, temp,
+      reinterpret_cast<Offset*>(counters + kPhotonSlot), stream);
+    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+    photonCount = std::size_t(counters[kPhotonSlot]);
+    causticCount = std::size_t(counters[kCausticSlot]);
+    checkPhotonCount(photonCount);
+    photonTree.build(photons.positions.data(), std::uint32_t(photonCount), stream);
+    const std::uint32_t siteCount = std::uint32_t((photonCount + kSiteStride - 1) / kSiteStride);
+    sitePositions.resize(std::max<std::uint32_t>(siteCount, 1));
+    siteNormals.resize(std::max<std::uint32_t>(siteCount, 1));
+    siteRadiance.resize(std::max<std::uint32_t>(siteCount, 1));
+    gpu::estimateSites({ photonTree.view(), photons.normals.data(), photons.flux.data() }, kSiteStride, siteCount,
+      o.photonMapping.estimatePhotons, sitePositions.data(), siteNormals.data(), siteRadiance.data(), stream);
+    siteTree.build(sitePositions.data(), siteCount, stream);
+    causticTree.build(photons.causticPositions.data(), std::uint32_t(causticCount), stream);
+  }
+
+  /// The path view over the device's arrays.
+  ir::PathScene deviceView(const Scene& s, ir::PathScene view) const
+  {
+    view.positions = mesh.positions.data();
+    view.normals = mesh.normals.data();
+    view.albedo = albedo.data();
+    view.emission = s.emission.empty() ? nullptr : emission.data();
+    view.triangles = mesh.triangles.data();
+    view.faceNormals = mesh.faceNormals.data();
+    view.lights = lights.data();
+    view.sources = sources.data();
+    view.cdf = cdf.data();
+    view.envTexels = s.environment.texels.empty() ? nullptr : envTexels.data();
+    view.materials = specular ? materials.data() : nullptr;
+    view.ior = specular && !s.triangleIor.empty() ? ior.data() : nullptr;
+    return view;
+  }
+
+  static void checkPhotonCount(std::size_t n)
+  {
+    // The kd-tree's sort counts in int (CUB); PhotonMappingOptions caps photons at 2^24.
+    if (n >= (std::size_t(1) << 31))
+    {
+      throw CudaError("Photon mapping on the GPU holds at most 2^31 photons; " + std::to_string(n) +
+        " were stored.", false);
+    }
+  }
+
+  void cluster(const StageContext& c)
+  {
+    const Clusters clusters = clusterVertices(c.scene, c.options.photonMapping.clusters,
+      c.options.photonMapping.alpha, kMeansIterations, c.progress);
+    samples.upload(clusters.sample, stream);
+    neighbours.upload(clusters.neighbours, stream);
+    clusterCount = clusters.count();
+  }
+
+  void directLight(const StageContext& c)
+  {
+    cuda::queueDirectLight(c.scene, c.options,
+      { mesh.bvh, mesh.positions, mesh.normals, mesh.shifts, mesh.topology, mesh.topology.edgeCount(), mesh.extent.eps },
+      { litLights, vertexVisible, edgeVisible, direct, lightCounter }, stream);
+    // Read by finish, after its wait.
+    LINKGI_CUDA_CHECK(cudaMemcpyAsync(counters + kLightSlot, lightCounter.data(), sizeof(unsigned long long),
+      cudaMemcpyDeviceToHost, stream));
+    lightPending = true;
+  }
+
+  void gather(const StageContext& c)
+  {
+    const SolverOptions& o = c.options;
+    const Index nv = mesh.vertexCount;
+    if (directions.size() != o.photonMapping.gatherRays)
+    {
+      directions.upload(makeDirectionSet(o.photonMapping.gatherRays), stream);
+    }
+    // Caustics, on the front sides: density estimation at every vertex, part of E_ind.
+    if (causticCount)
+    {
+      caustics.resize(nv);
+      const float radius = kCausticRadius * mesh.extent.diagonal;
+      gpu::causticIrradiance({ causticTree.view(), photons.causticNormals.data(), photons.causticFlux.data() },
+        mesh.positions.data(), mesh.normals.data(), albedo.data(), areas.data(), nv, o.photonMapping.estimatePhotons,
+        radius * radius, caustics.data(), stream);
+    }
+    gpu::GatherLaunch g;
+    g.scene = pathView; // the gather runs whenever the photons were traced again for its inputs
+    g.bvh = mesh.bvh.view();
+    g.sites = { siteTree.view(), siteNormals.data(), siteRadiance.data() };
+    g.shifts = mesh.shifts.data();
+    g.samples = samples.data();
+    g.clusters = std::uint32_t(clusterCount);
+    g.vertexCount = nv;
+    g.directions = directions.data();
+    g.directionCount = o.photonMapping.gatherRays;
+    g.seed = o.seed;
+    g.twoSided = o.twoSided;
+    g.diagonal = mesh.extent.diagonal;
+    const Elements elements{ nv, o.twoSided };
+    gathered.resize(elements.count());
+    sampleIrradiance.resize(std::max<std::size_t>(clusterCount, 1));
+    harmonicDistance.resize(std::max<std::size_t>(clusterCount, 1));
+    gatherRays = 0;
+    for (const float side : { 1.f, -1.f })
+    {
+      if (side < 0.f && !o.twoSided)
+      {
+        break;
+      }
+      g.side = side;
+      gpu::finalGather(g, sampleIrradiance.data(), harmonicDistance.data(), stream);
+      gpu::interpolate(mesh.positions.data(), mesh.normals.data(), nv, neighbours.data(), samples.data(),
+        sampleIrradiance.data(), harmonicDistance.data(), side > 0.f && causticCount ? caustics.data() : nullptr,
+        gathered.data() + (side > 0.f ? 0 : nv), stream);
+      gatherRays += std::uint64_t(clusterCount) * o.photonMapping.gatherRays;
+    }
+    gatherRan = true;
+  }
+
+  void finish(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    const Elements elements{ s.vertexCount(), c.options.twoSided };
+    const std::size_t ne = elements.count();
+    // albedo and emission: uploaded by the photon stage, which every change of them re-runs
+    cuda::FinishParams f;
+    f.bounce.elements = Index(ne);
+    f.bounce.vertexCount = mesh.vertexCount;
+    f.bounce.direct = direct.data();
+    f.bounce.environment = gathered.data(); // finish adds it to the bounced light: here all of E_ind
+    f.bounce.albedo = albedo.data();
+    f.bounce.emission = s.emission.empty() ? nullptr : emission.data();
+    f.indirect = nullptr;
+    f.smoothing = c.options.smoothing;
+    f.cosFeatureAngle = std::cos(c.options.featureAngleDegrees * (kPi / 180.f));
+    f.neighbourOffsets = mesh.topology.neighbourOffsets.data();
+    f.neighbours = mesh.topology.neighbours.data();
+    f.normals = mesh.normals.data();
+    output.resize(3 * ne);
+    cuda::finish(f, output.data(), stream);
+    const std::size_t bytes = ne * sizeof(Vec3f);
+    const bool newCaustics = gatherRan && causticCount;
+    const std::size_t causticBytes = newCaustics ? mesh.vertexCount * sizeof(Vec3f) : 0;
+    staging.begin(cuda::PinnedStaging::room(3 * bytes) + cuda::PinnedStaging::room(causticBytes));
+    const auto* at = static_cast<const unsigned char*>(staging.download(output.data(), 3 * bytes, stream));
+    const auto* causticsAt =
+      newCaustics ? static_cast<const unsigned char*>(staging.download(caustics.data(), causticBytes, stream)) : nullptr;
+    // The update's one wait for the device (besides the photon counts).
+    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+    if (lightPending)
+    {
+      lightRays = counters[kLightSlot];
+      lightPending = false;
+    }
+    if (gatherRan)
+    {
+      // Caustics per element: the fronts' (backs get none), or none without caustic photons.
+      causticsHost.clear();
+      if (newCaustics)
+      {
+        causticsHost.assign(ne, Vec3f(0.f));
+        cuda::PinnedStaging::copy(causticsHost.data(), causticsAt, causticBytes);
+      }
+      gatherRan = false;
+    }
+    Solution& sol = c.solution;
+    sol.direct.resize(ne);
+    sol.indirect.resize(ne);
+    sol.radiance.resize(ne);
+    cuda::PinnedStaging::copy(sol.direct.data(), at, bytes);
+    cuda::PinnedStaging::copy(sol.indirect.data(), at + bytes, bytes);
+    cuda::PinnedStaging::copy(sol.radiance.data(), at + 2 * bytes, bytes);
+    sol.caustics = causticsHost;
+  }
+
+  /// counters' slots (pinned): the direct light's shadow rays, the paths' hits found, the
+  /// photons and the caustic photons stored.
+  static constexpr int kLightSlot = 0, kFoundSlot = 1, kPhotonSlot = 2, kCausticSlot = 3, kSlots = 4;
+
+  cudaStream_t stream = nullptr;
+  std::string name;
+  cuda::DeviceMesh mesh;
+  GPUBuffer<float> areas, cdf, vertexVisible, edgeVisible;
+  GPUBuffer<ir::Source> sources;
+  GPUBuffer<Light> lights, litLights;
+  GPUBuffer<Vec3f> albedo, emission, envTexels, direct, output;
+  GPUBuffer<std::uint8_t> materials;
+  GPUBuffer<float> ior;
+  bool specular = false;
+  ir::PathScene pathView; ///< the photon stage's, over the device's arrays
+  ir::gpu::DevicePaths paths;
+  GPUBuffer<ir::Vpl> hits;
+  GPUBuffer<std::uint32_t> subsetOffsets;
+  GPUBuffer<float> subsetScale;
+  gpu::DevicePhotons photons;
+  GPUBuffer<Index> flags;
+  GPUBuffer<Offset> scan;
+  GPUBuffer<unsigned char> temp;
+  gpu::DevicePointTree photonTree, siteTree, causticTree;
+  GPUBuffer<Vec3f> sitePositions, siteNormals, siteRadiance;
+  GPUBuffer<Index> samples, neighbours;
+  GPUBuffer<Vec3f> directions, sampleIrradiance, caustics;
+  GPUBuffer<float> harmonicDistance;
+  GPUBuffer<cuda::Rgba> gathered;
+  GPUBuffer<unsigned long long> lightCounter;
+  cuda::PinnedStaging staging;
+  unsigned long long* counters = nullptr; ///< pinned, kSlots entries
+  std::vector<Vec3f> causticsHost;
+  std::size_t photonCount = 0, causticCount = 0, clusterCount = 0;
+  std::uint64_t gatherRays = 0, lightRays = 0;
+  bool lightPending = false, gatherRan = false;
+};
+}
+
+std::unique_ptr<MethodBackend> createCudaBackend(const SolverOptions&)
+{
+  return std::make_unique<PmCuda>();
+}
+
+void buildTreeOnDevice(const std::vector<Vec3f>& points, std::vector<Index>& order, std::vector<std::uint8_t>& axes)
+{
+  cuda::useFirstDevice();
+  GPUBuffer<Vec3f> device;
+  device.upload(points);
+  gpu::DevicePointTree tree;
+  tree.build(device.data(), std::uint32_t(points.size()), nullptr);
+  LINKGI_CUDA_CHECK(cudaDeviceSynchronize());
+  const PointTreeView view = tree.view();
+  order.resize(points.size());
+  axes.resize(points.size());
+  LINKGI_CUDA_CHECK(cudaMemcpy(order.data(), view.order, order.size() * sizeof(Index), cudaMemcpyDeviceToHost));
+  LINKGI_CUDA_CHECK(cudaMemcpy(axes.data(), view.axes, axes.size(), cudaMemcpyDeviceToHost));
+}
+}
