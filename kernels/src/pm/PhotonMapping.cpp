@@ -74,7 +74,7 @@ Vec3f PhotonMap::totalFlux() const
 
 RadianceSitesView PhotonMap::sitesView() const
 {
-  return { sites.view(), siteNormals.data(), siteRadiance.data() };
+  return { sites.view(), siteNormals.data(), siteRadiance.data(), maxDistance2 };
 }
 
 void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, const RayTracer& tracer,
@@ -190,8 +190,10 @@ std::vector<Vec3f> causticIrradiance(const Scene& s, const PhotonMap& map, std::
   return out;
 }
 
-void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride, const ProgressCallback& progress)
+void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride, float maxRadius,
+  const ProgressCallback& progress)
 {
+  map.maxDistance2 = maxRadius * maxRadius;
   const std::size_t n = map.count(), stride = std::max<std::uint32_t>(siteStride, 1);
   const std::size_t siteCount = (n + stride - 1) / stride;
   map.sitePositions.resize(siteCount);
@@ -206,7 +208,7 @@ void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride,
       const std::size_t i = s * stride;
       map.sitePositions[s] = map.positions[i];
       map.siteNormals[s] = map.normals[i];
-      map.siteRadiance[s] = siteRadiance(view, Index(i), k, heap.data());
+      map.siteRadiance[s] = siteRadiance(view, Index(i), k, map.maxDistance2, heap.data());
     }
   }, progress);
   map.sites = PointTree(map.sitePositions);

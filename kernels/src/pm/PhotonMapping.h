@@ -17,16 +17,26 @@
 #include "linkgi/Scene.h"
 #include "linkgi/SolverTypes.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace linkgi::pm
 {
 /// What both backends fix: radiance estimates at every 4th photon (Christensen's
-/// precomputed estimates); Lloyd iterations of the clustering; caustic photons count within
-/// this fraction of the bounding-box diagonal of a vertex.
-constexpr std::uint32_t kSiteStride = 4;
+/// precomputed estimates), at most kMaxSites of them (an exact 64-nearest search is the
+/// photon stage's largest cost; more photons make each estimate sharper instead), from
+/// photons and read by gather rays within kEstimateRadius; Lloyd iterations of the
+/// clustering; caustic photons count within kCausticRadius of a vertex. Radii are fractions
+/// of the bounding-box diagonal.
+constexpr std::uint32_t kMaxSites = 65536;
+constexpr float kEstimateRadius = 0.05f;
 constexpr int kMeansIterations = 4;
 constexpr float kCausticRadius = 0.02f;
+/// Every siteStride(n)-th of n photons holds an estimate.
+inline std::uint32_t siteStride(std::size_t photons)
+{
+  return std::uint32_t(std::max<std::size_t>(4, (photons + kMaxSites - 1) / kMaxSites));
+}
 
 /// The global photon map: photons, and outgoing radiance estimates at every `siteStride`-th
 /// photon (Christensen's precomputed estimates, which stand in for the paper's illumination
@@ -40,6 +50,7 @@ struct PhotonMap
   /// a diffuse surface reflects there.
   std::vector<Vec3f> siteRadiance;
   PointTree sites;
+  float maxDistance2 = 3.4e38f; ///< of the photons an estimate counts, of the estimate a gather ray reads
   /// The caustic map: the photons that met only mirrors and glass between their light and
   /// this diffuse hit (also in the global map above), with the flux each reflects.
   std::vector<Vec3f> causticPositions, causticNormals, causticFlux;
@@ -62,8 +73,9 @@ void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, con
   const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress = {});
 
 /// Builds the map's estimates from photons already in positions/normals/flux: k nearest
-/// photons within 37 degrees of the site's normal, at every `siteStride`-th photon.
-void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride,
+/// photons within 37 degrees of the site's normal and within `maxRadius`, at every
+/// `siteStride`-th photon (siteRadiance, PmMath.h).
+void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride, float maxRadius,
   const ProgressCallback& progress = {});
 
 /// The clusters of the vertices, and what interpolation needs from them.

@@ -97,7 +97,8 @@ private:
       return [&c, lo](const char*, double f) { return !c.progress || c.progress("Photons", lo + 0.5 * f); };
     };
     linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, *geometry.tracer, c.options, nextMap, half(0.0));
-    estimateRadiance(nextMap, c.options.photonMapping.estimatePhotons, kSiteStride, half(0.5));
+    estimateRadiance(nextMap, c.options.photonMapping.estimatePhotons, siteStride(nextMap.count()),
+      kEstimateRadius * boundingDiagonal(c.scene.positions), half(0.5));
     mapStaged = true;
   }
 

@@ -19,7 +19,10 @@
 #include "linkgi/Metrics.h"
 #include "linkgi/Sampling.h"
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace linkgi::pm
 {
@@ -27,6 +30,22 @@ namespace
 {
 using namespace engine;
 using cuda::GPUBuffer;
+
+struct Tick
+{
+  cudaStream_t stream;
+  const char* what;
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  static bool on() { static const bool o = std::getenv("LINKGI_PM_PROFILE") != nullptr; return o; }
+  void operator()(const char* step)
+  {
+    if (!on()) return;
+    cudaStreamSynchronize(stream);
+    const auto t = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "PMPROF %s %s %.3f\n", what, step, std::chrono::duration<double, std::milli>(t - t0).count());
+    t0 = t;
+  }
+};
 
 class PmCuda final : public MethodBackend
 {
@@ -105,6 +124,7 @@ private:
 
   void tracePhotons(const StageContext& c)
   {
+    Tick tick{ stream, "photons" };
     const Scene& s = c.scene;
     SolverOptions o = c.options;
     o.instantRadiosity.vplCount = o.photonMapping.photons;
@@ -137,6 +157,7 @@ private:
     ir::PathScene view = pathView;
     const std::size_t found = ir::gpu::traceAllPaths(view, mesh.bvh.view(), setup.targetVpls, paths,
       counters + kFoundSlot, stream);
+    tick("trace");
     // The hits in path order (one subset), then split into photons and caustic photons.
     hits.resize(std::max<std::size_t>(found, 1));
     subsetOffsets.resize(2);
@@ -150,14 +171,22 @@ private:
     photonCount = std::size_t(counters[kPhotonSlot]);
     causticCount = std::size_t(counters[kCausticSlot]);
     checkPhotonCount(photonCount);
+    tick("split");
     photonTree.build(photons.positions.data(), std::uint32_t(photonCount), stream);
-    const std::uint32_t siteCount = std::uint32_t((photonCount + kSiteStride - 1) / kSiteStride);
+    tick("photon tree");
+    const std::uint32_t stride = siteStride(photonCount);
+    const std::uint32_t siteCount = std::uint32_t((photonCount + stride - 1) / stride);
     sitePositions.resize(std::max<std::uint32_t>(siteCount, 1));
     siteNormals.resize(std::max<std::uint32_t>(siteCount, 1));
     siteRadiance.resize(std::max<std::uint32_t>(siteCount, 1));
-    gpu::estimateSites({ photonTree.view(), photons.normals.data(), photons.flux.data() }, kSiteStride, siteCount,
-      o.photonMapping.estimatePhotons, sitePositions.data(), siteNormals.data(), siteRadiance.data(), stream);
+    const float radius = kEstimateRadius * mesh.extent.diagonal;
+    estimateMax2 = radius * radius;
+    gpu::estimateSites({ photonTree.view(), photons.normals.data(), photons.flux.data() }, stride,
+      o.photonMapping.estimatePhotons, estimateMax2, sitePositions.data(), siteNormals.data(), siteRadiance.data(),
+      flags, scan, temp, stream);
+    tick("estimates");
     siteTree.build(sitePositions.data(), siteCount, stream);
+    tick("site tree");
     causticTree.build(photons.causticPositions.data(), std::uint32_t(causticCount), stream);
   }
 
@@ -211,6 +240,8 @@ private:
 
   void gather(const StageContext& c)
   {
+    Tick tick{ stream, "gather" };
+    tick("before");
     const SolverOptions& o = c.options;
     const Index nv = mesh.vertexCount;
     if (directions.size() != o.photonMapping.gatherRays)
@@ -229,7 +260,7 @@ private:
     gpu::GatherLaunch g;
     g.scene = pathView; // the gather runs whenever the photons were traced again for its inputs
     g.bvh = mesh.bvh.view();
-    g.sites = { siteTree.view(), siteNormals.data(), siteRadiance.data() };
+    g.sites = { siteTree.view(), siteNormals.data(), siteRadiance.data(), estimateMax2 };
     g.shifts = mesh.shifts.data();
     g.samples = samples.data();
     g.clusters = std::uint32_t(clusterCount);
@@ -251,11 +282,14 @@ private:
         break;
       }
       g.side = side;
+      tick("caustics");
       gpu::finalGather(g, sampleIrradiance.data(), harmonicDistance.data(), stream);
+      tick("final gather");
       gpu::interpolate(mesh.positions.data(), mesh.normals.data(), nv, neighbours.data(), samples.data(),
         sampleIrradiance.data(), harmonicDistance.data(), side > 0.f && causticCount ? caustics.data() : nullptr,
         gathered.data() + (side > 0.f ? 0 : nv), stream);
       gatherRays += std::uint64_t(clusterCount) * o.photonMapping.gatherRays;
+      tick("interpolate");
     }
     gatherRan = true;
   }
@@ -350,6 +384,7 @@ private:
   unsigned long long* counters = nullptr; ///< pinned, kSlots entries
   std::vector<Vec3f> causticsHost;
   std::size_t photonCount = 0, causticCount = 0, clusterCount = 0;
+  float estimateMax2 = 0.f; ///< kEstimateRadius, squared
   std::uint64_t gatherRays = 0, lightRays = 0;
   bool lightPending = false, gatherRan = false;
 };

@@ -13,6 +13,9 @@ namespace
 constexpr int kThreads = 128;
 /// A range's split axis is the longest side of the box of at most this many of its points.
 constexpr std::uint32_t kAxisSample = 256;
+/// Levels whose ranges hold more points than this on average are sorted by one radix sort of
+/// the whole array (a segmented sort gives a large range a single block).
+constexpr std::uint32_t kSegmentedSortBelow = 4096;
 
 unsigned blocks(std::size_t n, int threads = kThreads)
 {
@@ -94,16 +97,11 @@ __global__ void splitKernel(const Vec3f* points, const Index* order, const std::
   }
 }
 
-// Sort keys: each position's coordinate along its range's axis (positions outside every
-// range, medians placed earlier and leaves, are not sorted and get 0).
-__global__ void keysKernel(const Vec3f* points, const Index* order, const std::uint32_t* begins,
-  const std::uint32_t* ends, std::uint32_t ranges, const std::uint8_t* rangeAxes, std::uint32_t n, float* keys)
+/// The range of this level that holds position i, or `ranges` where none does (a median
+/// placed earlier, or a leaf).
+__device__ std::uint32_t rangeOf(const std::uint32_t* begins, const std::uint32_t* ends, std::uint32_t ranges,
+  std::uint32_t i)
 {
-  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= n)
-  {
-    return;
-  }
   // The last range that starts at or before i.
   std::uint32_t lo = 0, hi = ranges;
   while (hi - lo > 1)
@@ -118,7 +116,43 @@ __global__ void keysKernel(const Vec3f* points, const Index* order, const std::u
       hi = m;
     }
   }
-  keys[i] = begins[lo] <= i && i < ends[lo] ? points[order[i]][rangeAxes[lo]] : 0.f;
+  return begins[lo] <= i && i < ends[lo] ? lo : ranges;
+}
+
+// Segmented sort keys: each position's coordinate along its range's axis (0 outside them:
+// the sort does not touch those positions).
+__global__ void keysKernel(const Vec3f* points, const Index* order, const std::uint32_t* begins,
+  const std::uint32_t* ends, std::uint32_t ranges, const std::uint8_t* rangeAxes, std::uint32_t n, float* keys)
+{
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n)
+  {
+    const std::uint32_t r = rangeOf(begins, ends, ranges, i);
+    keys[i] = r < ranges ? points[order[i]][rangeAxes[r]] : 0.f;
+  }
+}
+
+// Whole-array sort keys that sort every range in place and leave every other position where
+// it is: high bits the range's start (the position itself outside the ranges), low bits the
+// coordinate's bits in an order that sorts like the floats.
+__global__ void globalKeysKernel(const Vec3f* points, const Index* order, const std::uint32_t* begins,
+  const std::uint32_t* ends, std::uint32_t ranges, const std::uint8_t* rangeAxes, std::uint32_t n,
+  std::uint64_t* keys)
+{
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n)
+  {
+    return;
+  }
+  const std::uint32_t r = rangeOf(begins, ends, ranges, i);
+  if (r == ranges)
+  {
+    keys[i] = std::uint64_t(i) << 32;
+    return;
+  }
+  const std::uint32_t bits = __float_as_uint(points[order[i]][rangeAxes[r]]);
+  const std::uint32_t sortable = bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+  keys[i] = (std::uint64_t(begins[r]) << 32) | sortable;
 }
 
 __global__ void flagKernel(const ir::Vpl* hits, std::size_t count, Index* photon, Index* caustic)
@@ -154,20 +188,42 @@ __global__ void scatterKernel(const ir::Vpl* hits, std::size_t count, const Offs
   }
 }
 
-template <int K>
-__global__ void sitesKernel(PhotonsView photons, std::uint32_t stride, std::uint32_t siteCount, std::uint32_t k,
-  Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance)
+// Which tree positions hold a site's photon (every stride-th photon is one).
+__global__ void siteFlagKernel(const Index* order, std::uint32_t n, std::uint32_t stride, Index* flags)
 {
-  const std::uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
-  if (s >= siteCount)
+  const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t < n)
+  {
+    flags[t] = order[t] % stride == 0 ? 1u : 0u;
+  }
+}
+
+// The sites in the tree's order: neighbouring threads then search neighbouring photons.
+__global__ void siteOrderKernel(const Index* order, std::uint32_t n, std::uint32_t stride, const Offset* at,
+  Index* sites)
+{
+  const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t < n && order[t] % stride == 0)
+  {
+    sites[at[t]] = order[t] / stride;
+  }
+}
+
+template <int K>
+__global__ void sitesKernel(PhotonsView photons, const Index* siteOrder, std::uint32_t stride, std::uint32_t siteCount,
+  std::uint32_t k, float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance)
+{
+  const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= siteCount)
   {
     return;
   }
   Neighbour heap[K];
+  const Index s = siteOrder[t];
   const Index i = s * stride;
   sitePositions[s] = photons.tree.points[i];
   siteNormals[s] = photons.normals[i];
-  siteRadiance[s] = pm::siteRadiance(photons, i, k, heap);
+  siteRadiance[s] = pm::siteRadiance(photons, i, k, max2, heap);
 }
 
 template <int K>
@@ -208,10 +264,11 @@ void withHeap(std::uint32_t k, Args&&... args)
 template <int K>
 struct SitesLaunch
 {
-  static void run(const PhotonsView& p, std::uint32_t stride, std::uint32_t siteCount, std::uint32_t k,
-    Vec3f* positions, Vec3f* normals, Vec3f* radiance, cudaStream_t stream)
+  static void run(const PhotonsView& p, const Index* siteOrder, std::uint32_t stride, std::uint32_t siteCount,
+    std::uint32_t k, float max2, Vec3f* positions, Vec3f* normals, Vec3f* radiance, cudaStream_t stream)
   {
-    sitesKernel<K><<<blocks(siteCount), kThreads, 0, stream>>>(p, stride, siteCount, k, positions, normals, radiance);
+    sitesKernel<K><<<blocks(siteCount), kThreads, 0, stream>>>(p, siteOrder, stride, siteCount, k, max2, positions,
+      normals, radiance);
     LINKGI_CUDA_CHECK_LAUNCH("sitesKernel");
   }
 };
@@ -330,6 +387,13 @@ void DevicePointTree::build(const Vec3f* p, std::uint32_t n, cudaStream_t stream
   orderOut.resize(n);
   keys.resize(n);
   keysOut.resize(n);
+  wideKeys.resize(n);
+  wideKeysOut.resize(n);
+  int positionBits = 1;
+  while (positionBits < 32 && (std::uint64_t(1) << positionBits) < n)
+  {
+    ++positionBits;
+  }
   for (auto* b : { &begins, &ends, &nextBegins, &nextEnds })
   {
     b->resize(widest);
@@ -343,18 +407,29 @@ void DevicePointTree::build(const Vec3f* p, std::uint32_t n, cudaStream_t stream
     splitKernel<<<blocks(std::size_t(ranges) * 32), kThreads, 0, stream>>>(points, order.data(), begins.data(),
       ends.data(), ranges, rangeAxes.data(), axes.data(), nextBegins.data(), nextEnds.data(), last);
     LINKGI_CUDA_CHECK_LAUNCH("splitKernel");
-    keysKernel<<<blocks(n), kThreads, 0, stream>>>(points, order.data(), begins.data(), ends.data(), ranges,
-      rangeAxes.data(), n, keys.data());
-    LINKGI_CUDA_CHECK_LAUNCH("keysKernel");
-    // Positions outside the ranges keep their entries: the sort writes only inside them.
-    LINKGI_CUDA_CHECK(cudaMemcpyAsync(orderOut.data(), order.data(), n * sizeof(Index), cudaMemcpyDeviceToDevice,
-      stream));
-    std::size_t bytes = 0;
-    LINKGI_CUDA_CHECK(cub::DeviceSegmentedSort::SortPairs(nullptr, bytes, keys.data(), keysOut.data(),
-      order.data(), orderOut.data(), int(n), int(ranges), begins.data(), ends.data(), stream));
-    temp.resize(std::max<std::size_t>(bytes, 1));
-    LINKGI_CUDA_CHECK(cub::DeviceSegmentedSort::SortPairs(temp.data(), bytes, keys.data(), keysOut.data(),
-      order.data(), orderOut.data(), int(n), int(ranges), begins.data(), ends.data(), stream));
+    if (n / ranges > kSegmentedSortBelow)
+    {
+      globalKeysKernel<<<blocks(n), kThreads, 0, stream>>>(points, order.data(), begins.data(), ends.data(),
+        ranges, rangeAxes.data(), n, wideKeys.data());
+      LINKGI_CUDA_CHECK_LAUNCH("globalKeysKernel");
+      cuda::sortPairs(wideKeys.data(), wideKeysOut.data(), order.data(), orderOut.data(), n, 32 + positionBits,
+        temp, stream);
+    }
+    else
+    {
+      keysKernel<<<blocks(n), kThreads, 0, stream>>>(points, order.data(), begins.data(), ends.data(), ranges,
+        rangeAxes.data(), n, keys.data());
+      LINKGI_CUDA_CHECK_LAUNCH("keysKernel");
+      // Positions outside the ranges keep their entries: the sort writes only inside them.
+      LINKGI_CUDA_CHECK(cudaMemcpyAsync(orderOut.data(), order.data(), n * sizeof(Index), cudaMemcpyDeviceToDevice,
+        stream));
+      std::size_t bytes = 0;
+      LINKGI_CUDA_CHECK(cub::DeviceSegmentedSort::SortPairs(nullptr, bytes, keys.data(), keysOut.data(),
+        order.data(), orderOut.data(), int(n), int(ranges), begins.data(), ends.data(), stream));
+      temp.resize(std::max<std::size_t>(bytes, 1));
+      LINKGI_CUDA_CHECK(cub::DeviceSegmentedSort::SortPairs(temp.data(), bytes, keys.data(), keysOut.data(),
+        order.data(), orderOut.data(), int(n), int(ranges), begins.data(), ends.data(), stream));
+    }
     order.swapWith(orderOut);
     begins.swapWith(nextBegins);
     ends.swapWith(nextEnds);
@@ -398,12 +473,25 @@ void splitPhotons(const ir::Vpl* hits, std::size_t count, DevicePhotons& out, cu
     cudaMemcpyDeviceToHost, stream));
 }
 
-void estimateSites(const PhotonsView& photons, std::uint32_t stride, std::uint32_t siteCount, std::uint32_t k,
-  Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, cudaStream_t stream)
+void estimateSites(const PhotonsView& photons, std::uint32_t stride, std::uint32_t k, float max2,
+  Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, cuda::GPUBuffer<Index>& scratch,
+  cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, cudaStream_t stream)
 {
+  const std::uint32_t n = photons.tree.count;
+  const std::uint32_t siteCount = (n + stride - 1) / stride;
   if (siteCount)
   {
-    withHeap<SitesLaunch>(k, photons, stride, siteCount, k, sitePositions, siteNormals, siteRadiance, stream);
+    scratch.resize(std::size_t(n) + siteCount);
+    scan.resize(n);
+    Index* flags = scratch.data();
+    Index* siteOrder = scratch.data() + n;
+    siteFlagKernel<<<blocks(n), kThreads, 0, stream>>>(photons.tree.order, n, stride, flags);
+    LINKGI_CUDA_CHECK_LAUNCH("siteFlagKernel");
+    cuda::exclusiveSum(flags, scan.data(), n, temp, stream);
+    siteOrderKernel<<<blocks(n), kThreads, 0, stream>>>(photons.tree.order, n, stride, scan.data(), siteOrder);
+    LINKGI_CUDA_CHECK_LAUNCH("siteOrderKernel");
+    withHeap<SitesLaunch>(k, photons, siteOrder, stride, siteCount, k, max2, sitePositions, siteNormals, siteRadiance,
+      stream);
   }
 }
 

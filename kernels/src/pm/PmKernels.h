@@ -12,7 +12,8 @@ namespace linkgi::pm::gpu
 {
 /// The implicit median kd-tree of PointTree (PmTypes.h) over device points, built level by
 /// level: each range's split axis is the longest side of a sample of its points' box, and
-/// a segmented sort along it puts the median at the range's middle. The split axes can
+/// a sort along it puts the median at the range's middle (one radix sort of the whole array
+/// while the ranges are large, a segmented sort once they are small). The split axes can
 /// differ from PointTree's (it boxes every point); what a search finds does not.
 class DevicePointTree
 {
@@ -28,6 +29,7 @@ private:
   cuda::GPUBuffer<Index> order, orderOut;
   cuda::GPUBuffer<std::uint8_t> axes;
   cuda::GPUBuffer<float> keys, keysOut;
+  cuda::GPUBuffer<std::uint64_t> wideKeys, wideKeysOut; ///< the levels sorted as one array
   cuda::GPUBuffer<std::uint32_t> begins, ends, nextBegins, nextEnds;
   cuda::GPUBuffer<std::uint8_t> rangeAxes; ///< per range of the level being split
   cuda::GPUBuffer<unsigned char> temp;
@@ -47,10 +49,13 @@ struct DevicePhotons
 void splitPhotons(const ir::Vpl* hits, std::size_t count, DevicePhotons& out, cuda::GPUBuffer<Index>& flags,
   cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, Offset* totals, cudaStream_t stream);
 
-/// Radiance estimates (siteRadiance) at every `stride`-th photon: sites s = 0..siteCount-1
-/// at photon s * stride, with k (2 to 1024) photons each.
-void estimateSites(const PhotonsView& photons, std::uint32_t stride, std::uint32_t siteCount, std::uint32_t k,
-  Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, cudaStream_t stream);
+/// Radiance estimates (siteRadiance) at every `stride`-th photon of the tree: sites s =
+/// 0..ceil(count / stride)-1 at photon s * stride, with k (2 to 1024) photons each within
+/// sqrt(max2); searched in the tree's order, so that a warp searches one neighbourhood.
+/// `scratch`, `scan`, `temp`: scratch.
+void estimateSites(const PhotonsView& photons, std::uint32_t stride, std::uint32_t k, float max2,
+  Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, cuda::GPUBuffer<Index>& scratch,
+  cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, cudaStream_t stream);
 
 /// What the final gather reads on the device.
 struct GatherLaunch

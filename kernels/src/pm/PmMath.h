@@ -24,25 +24,32 @@ struct PhotonsView
 };
 
 /// The outgoing radiance a diffuse surface reflects at photon i (Christensen's precomputed
-/// estimate): the k nearest photons within 37 degrees of its normal, sum of flux / (pi r_k^2)
-/// / pi; zero from fewer than two. `heap`: room for k.
-LINKGI_HOST_DEVICE inline Vec3f siteRadiance(const PhotonsView& p, Index i, std::uint32_t k, Neighbour* heap)
+/// estimate) from its k nearest photons, as Jensen estimates it: the flux of those within 37
+/// degrees of its normal / (pi r^2) / pi, r the k-th one's distance, or sqrt(max2) where
+/// fewer are that near; zero from fewer than two. The search takes every photon, not only
+/// those facing its way: a photon on a thin part in a crowd of photons facing elsewhere would
+/// otherwise search all of them. `heap`: room for k.
+LINKGI_HOST_DEVICE inline Vec3f siteRadiance(const PhotonsView& p, Index i, std::uint32_t k, float max2,
+  Neighbour* heap)
 {
   const Vec3f normal = p.normals[i];
   const Vec3f q = p.tree.points[i];
-  const std::uint32_t found = kNearest(p.tree, q, k, 3.4e38f,
-    [&](Index j) { return dot(p.normals[j], normal) > kEstimateCos; }, heap);
-  if (found < 2)
+  const std::uint32_t found = kNearest(p.tree, q, k, max2, [](Index) { return true; }, heap);
+  Vec3f sum(0.f);
+  std::uint32_t facing = 0;
+  for (std::uint32_t j = 0; j < found; ++j)
+  {
+    if (dot(p.normals[heap[j].index], normal) > kEstimateCos)
+    {
+      sum += p.flux[heap[j].index];
+      ++facing;
+    }
+  }
+  if (facing < 2)
   {
     return Vec3f(0.f); // a lone photon says nothing about density
   }
-  Vec3f sum(0.f);
-  float r2 = 0.f;
-  for (std::uint32_t j = 0; j < found; ++j)
-  {
-    sum += p.flux[heap[j].index];
-    r2 = fmaxf(r2, heap[j].d2);
-  }
+  const float r2 = found == k ? heap[0].d2 : max2;
   return r2 > 0.f ? sum * (1.f / (kPi * kPi * r2)) : Vec3f(0.f);
 }
 

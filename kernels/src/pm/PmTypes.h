@@ -184,17 +184,18 @@ struct RadianceSitesView
   PointTreeView tree; ///< over the site positions
   const Vec3f* normals = nullptr;
   const Vec3f* radiance = nullptr;
+  float maxDistance2 = 3.4e38f; ///< a hit with no estimate this near sees none
 };
 
 /// The outgoing radiance a gather ray sees at surface point y (unit normal n): the nearest
-/// estimate facing within 60 degrees of n, zero when there is none.
+/// estimate facing within 60 degrees of n within sqrt(maxDistance2), zero when there is none.
 LINKGI_HOST_DEVICE inline Vec3f lookupRadiance(const RadianceSitesView& s, const Vec3f& y, const Vec3f& n)
 {
   if (s.tree.count == 0)
   {
     return Vec3f(0.f);
   }
-  const Index i = nearestOne(s.tree, y, 3.4e38f, [&](Index j) { return dot(s.normals[j], n) > kLookupCos; });
+  const Index i = nearestOne(s.tree, y, s.maxDistance2, [&](Index j) { return dot(s.normals[j], n) > kLookupCos; });
   return i == kInvalidIndex ? Vec3f(0.f) : s.radiance[i];
 }
 }
