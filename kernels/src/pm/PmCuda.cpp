@@ -19,10 +19,7 @@
 #include "linkgi/Metrics.h"
 #include "linkgi/Sampling.h"
 
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 namespace linkgi::pm
 {
@@ -30,22 +27,6 @@ namespace
 {
 using namespace engine;
 using cuda::GPUBuffer;
-
-struct Tick
-{
-  cudaStream_t stream;
-  const char* what;
-  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
-  static bool on() { static const bool o = std::getenv("LINKGI_PM_PROFILE") != nullptr; return o; }
-  void operator()(const char* step)
-  {
-    if (!on()) return;
-    cudaStreamSynchronize(stream);
-    const auto t = std::chrono::steady_clock::now();
-    std::fprintf(stderr, "PMPROF %s %s %.3f\n", what, step, std::chrono::duration<double, std::milli>(t - t0).count());
-    t0 = t;
-  }
-};
 
 class PmCuda final : public MethodBackend
 {
@@ -124,7 +105,6 @@ private:
 
   void tracePhotons(const StageContext& c)
   {
-    Tick tick{ stream, "photons" };
     const Scene& s = c.scene;
     SolverOptions o = c.options;
     o.instantRadiosity.vplCount = o.photonMapping.photons;
@@ -157,7 +137,6 @@ private:
     ir::PathScene view = pathView;
     const std::size_t found = ir::gpu::traceAllPaths(view, mesh.bvh.view(), setup.targetVpls, paths,
       counters + kFoundSlot, stream);
-    tick("trace");
     // The hits in path order (one subset), then split into photons and caustic photons.
     hits.resize(std::max<std::size_t>(found, 1));
     subsetOffsets.resize(2);
@@ -171,22 +150,29 @@ private:
     photonCount = std::size_t(counters[kPhotonSlot]);
     causticCount = std::size_t(counters[kCausticSlot]);
     checkPhotonCount(photonCount);
-    tick("split");
     photonTree.build(photons.positions.data(), std::uint32_t(photonCount), stream);
-    tick("photon tree");
+    // Searches run on copies in the tree's order: neighbours in neighbouring memory.
+    for (auto* a : { &sorted.positions, &sorted.normals, &sorted.flux })
+    {
+      a->resize(std::max<std::size_t>(photonCount, 1));
+    }
+    const PointTreeView photonView = photonTree.inTreeOrder({ { photons.positions.data(), sorted.positions.data() },
+      { photons.normals.data(), sorted.normals.data() }, { photons.flux.data(), sorted.flux.data() } }, stream);
     const std::uint32_t stride = siteStride(photonCount);
-    const std::uint32_t siteCount = std::uint32_t((photonCount + stride - 1) / stride);
-    sitePositions.resize(std::max<std::uint32_t>(siteCount, 1));
-    siteNormals.resize(std::max<std::uint32_t>(siteCount, 1));
-    siteRadiance.resize(std::max<std::uint32_t>(siteCount, 1));
+    siteCount = std::uint32_t((photonCount + stride - 1) / stride);
+    for (auto* a : { &sitePositions, &siteNormals, &siteRadiance, &sites.positions, &sites.normals, &sites.flux })
+    {
+      a->resize(std::max<std::uint32_t>(siteCount, 1));
+    }
     const float radius = kEstimateRadius * mesh.extent.diagonal;
     estimateMax2 = radius * radius;
-    gpu::estimateSites({ photonTree.view(), photons.normals.data(), photons.flux.data() }, stride,
+    gpu::estimateSites({ photonView, sorted.normals.data(), sorted.flux.data() }, photonTree.view().order, stride,
       o.photonMapping.estimatePhotons, estimateMax2, sitePositions.data(), siteNormals.data(), siteRadiance.data(),
       flags, scan, temp, stream);
-    tick("estimates");
     siteTree.build(sitePositions.data(), siteCount, stream);
-    tick("site tree");
+    // The estimates in the site tree's order (their radiance in `flux`'s place).
+    siteView = siteTree.inTreeOrder({ { sitePositions.data(), sites.positions.data() },
+      { siteNormals.data(), sites.normals.data() }, { siteRadiance.data(), sites.flux.data() } }, stream);
     causticTree.build(photons.causticPositions.data(), std::uint32_t(causticCount), stream);
   }
 
@@ -240,8 +226,6 @@ private:
 
   void gather(const StageContext& c)
   {
-    Tick tick{ stream, "gather" };
-    tick("before");
     const SolverOptions& o = c.options;
     const Index nv = mesh.vertexCount;
     if (directions.size() != o.photonMapping.gatherRays)
@@ -260,7 +244,7 @@ private:
     gpu::GatherLaunch g;
     g.scene = pathView; // the gather runs whenever the photons were traced again for its inputs
     g.bvh = mesh.bvh.view();
-    g.sites = { siteTree.view(), siteNormals.data(), siteRadiance.data(), estimateMax2 };
+    g.sites = { siteView, sites.normals.data(), sites.flux.data(), estimateMax2 };
     g.shifts = mesh.shifts.data();
     g.samples = samples.data();
     g.clusters = std::uint32_t(clusterCount);
@@ -282,14 +266,11 @@ private:
         break;
       }
       g.side = side;
-      tick("caustics");
       gpu::finalGather(g, sampleIrradiance.data(), harmonicDistance.data(), stream);
-      tick("final gather");
       gpu::interpolate(mesh.positions.data(), mesh.normals.data(), nv, neighbours.data(), samples.data(),
         sampleIrradiance.data(), harmonicDistance.data(), side > 0.f && causticCount ? caustics.data() : nullptr,
         gathered.data() + (side > 0.f ? 0 : nv), stream);
       gatherRays += std::uint64_t(clusterCount) * o.photonMapping.gatherRays;
-      tick("interpolate");
     }
     gatherRan = true;
   }
@@ -374,7 +355,10 @@ private:
   GPUBuffer<Offset> scan;
   GPUBuffer<unsigned char> temp;
   gpu::DevicePointTree photonTree, siteTree, causticTree;
+  gpu::DevicePhotons sorted, sites; ///< the photons and the estimates in their trees' orders
   GPUBuffer<Vec3f> sitePositions, siteNormals, siteRadiance;
+  PointTreeView siteView;
+  std::uint32_t siteCount = 0;
   GPUBuffer<Index> samples, neighbours;
   GPUBuffer<Vec3f> directions, sampleIrradiance, caustics;
   GPUBuffer<float> harmonicDistance;

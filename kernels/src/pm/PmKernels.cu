@@ -198,32 +198,41 @@ __global__ void siteFlagKernel(const Index* order, std::uint32_t n, std::uint32_
   }
 }
 
-// The sites in the tree's order: neighbouring threads then search neighbouring photons.
+// The tree positions of the sites' photons, in tree order: neighbouring threads then search
+// neighbouring photons.
 __global__ void siteOrderKernel(const Index* order, std::uint32_t n, std::uint32_t stride, const Offset* at,
   Index* sites)
 {
   const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
   if (t < n && order[t] % stride == 0)
   {
-    sites[at[t]] = order[t] / stride;
+    sites[at[t]] = t;
   }
 }
 
 template <int K>
-__global__ void sitesKernel(PhotonsView photons, const Index* siteOrder, std::uint32_t stride, std::uint32_t siteCount,
-  std::uint32_t k, float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance)
+__global__ void sitesKernel(PhotonsView photons, const Index* sitePhotons, std::uint32_t siteCount, std::uint32_t k,
+  float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance)
 {
-  const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
-  if (t >= siteCount)
+  const std::uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
+  if (s >= siteCount)
   {
     return;
   }
   Neighbour heap[K];
-  const Index s = siteOrder[t];
-  const Index i = s * stride;
+  const Index i = sitePhotons[s];
   sitePositions[s] = photons.tree.points[i];
   siteNormals[s] = photons.normals[i];
   siteRadiance[s] = pm::siteRadiance(photons, i, k, max2, heap);
+}
+
+__global__ void permuteKernel(const Index* order, std::uint32_t n, const Vec3f* in, Vec3f* out)
+{
+  const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t < n)
+  {
+    out[t] = in[order[t]];
+  }
 }
 
 template <int K>
@@ -264,10 +273,10 @@ void withHeap(std::uint32_t k, Args&&... args)
 template <int K>
 struct SitesLaunch
 {
-  static void run(const PhotonsView& p, const Index* siteOrder, std::uint32_t stride, std::uint32_t siteCount,
-    std::uint32_t k, float max2, Vec3f* positions, Vec3f* normals, Vec3f* radiance, cudaStream_t stream)
+  static void run(const PhotonsView& p, const Index* sitePhotons, std::uint32_t siteCount, std::uint32_t k,
+    float max2, Vec3f* positions, Vec3f* normals, Vec3f* radiance, cudaStream_t stream)
   {
-    sitesKernel<K><<<blocks(siteCount), kThreads, 0, stream>>>(p, siteOrder, stride, siteCount, k, max2, positions,
+    sitesKernel<K><<<blocks(siteCount), kThreads, 0, stream>>>(p, sitePhotons, siteCount, k, max2, positions,
       normals, radiance);
     LINKGI_CUDA_CHECK_LAUNCH("sitesKernel");
   }
@@ -441,6 +450,22 @@ PointTreeView DevicePointTree::view() const
   return { points, order.data(), axes.data(), count };
 }
 
+PointTreeView DevicePointTree::inTreeOrder(std::initializer_list<std::pair<const Vec3f*, Vec3f*>> arrays,
+  cudaStream_t stream) const
+{
+  Vec3f* points = nullptr;
+  for (const auto& a : arrays)
+  {
+    if (count)
+    {
+      permuteKernel<<<blocks(count), kThreads, 0, stream>>>(order.data(), count, a.first, a.second);
+      LINKGI_CUDA_CHECK_LAUNCH("permuteKernel");
+    }
+    points = points ? points : a.second;
+  }
+  return { points, nullptr, axes.data(), count };
+}
+
 void splitPhotons(const ir::Vpl* hits, std::size_t count, DevicePhotons& out, cuda::GPUBuffer<Index>& flags,
   cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, Offset* totals, cudaStream_t stream)
 {
@@ -473,8 +498,8 @@ void splitPhotons(const ir::Vpl* hits, std::size_t count, DevicePhotons& out, cu
     cudaMemcpyDeviceToHost, stream));
 }
 
-void estimateSites(const PhotonsView& photons, std::uint32_t stride, std::uint32_t k, float max2,
-  Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, cuda::GPUBuffer<Index>& scratch,
+void estimateSites(const PhotonsView& photons, const Index* order, std::uint32_t stride, std::uint32_t k,
+  float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, cuda::GPUBuffer<Index>& scratch,
   cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, cudaStream_t stream)
 {
   const std::uint32_t n = photons.tree.count;
@@ -484,13 +509,13 @@ void estimateSites(const PhotonsView& photons, std::uint32_t stride, std::uint32
     scratch.resize(std::size_t(n) + siteCount);
     scan.resize(n);
     Index* flags = scratch.data();
-    Index* siteOrder = scratch.data() + n;
-    siteFlagKernel<<<blocks(n), kThreads, 0, stream>>>(photons.tree.order, n, stride, flags);
+    Index* sitePhotons = scratch.data() + n;
+    siteFlagKernel<<<blocks(n), kThreads, 0, stream>>>(order, n, stride, flags);
     LINKGI_CUDA_CHECK_LAUNCH("siteFlagKernel");
     cuda::exclusiveSum(flags, scan.data(), n, temp, stream);
-    siteOrderKernel<<<blocks(n), kThreads, 0, stream>>>(photons.tree.order, n, stride, scan.data(), siteOrder);
+    siteOrderKernel<<<blocks(n), kThreads, 0, stream>>>(order, n, stride, scan.data(), sitePhotons);
     LINKGI_CUDA_CHECK_LAUNCH("siteOrderKernel");
-    withHeap<SitesLaunch>(k, photons, siteOrder, stride, siteCount, k, max2, sitePositions, siteNormals, siteRadiance,
+    withHeap<SitesLaunch>(k, photons, sitePhotons, siteCount, k, max2, sitePositions, siteNormals, siteRadiance,
       stream);
   }
 }

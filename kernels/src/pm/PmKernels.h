@@ -8,6 +8,9 @@
 #include "cuda/GPUBuffer.h"
 #include "cuda/Kernels.h"
 
+#include <initializer_list>
+#include <utility>
+
 namespace linkgi::pm::gpu
 {
 /// The implicit median kd-tree of PointTree (PmTypes.h) over device points, built level by
@@ -21,6 +24,10 @@ public:
   /// Indexes `points` (device, `count` of them; they must outlive the tree). No wait.
   void build(const Vec3f* points, std::uint32_t count, cudaStream_t stream);
   PointTreeView view() const;
+  /// Copies arrays of the points' attributes in the tree's order (out[i] = in[order[i]]),
+  /// the positions first, and returns the view of the tree over the copied positions
+  /// (without `order`): a search then reads neighbours from neighbouring memory. No wait.
+  PointTreeView inTreeOrder(std::initializer_list<std::pair<const Vec3f*, Vec3f*>> arrays, cudaStream_t stream) const;
   std::uint32_t size() const { return count; }
 
 private:
@@ -49,12 +56,13 @@ struct DevicePhotons
 void splitPhotons(const ir::Vpl* hits, std::size_t count, DevicePhotons& out, cuda::GPUBuffer<Index>& flags,
   cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, Offset* totals, cudaStream_t stream);
 
-/// Radiance estimates (siteRadiance) at every `stride`-th photon of the tree: sites s =
-/// 0..ceil(count / stride)-1 at photon s * stride, with k (2 to 1024) photons each within
-/// sqrt(max2); searched in the tree's order, so that a warp searches one neighbourhood.
+/// Radiance estimates (siteRadiance) at every `stride`-th photon, with k (2 to 1024) photons
+/// each within sqrt(max2): ceil(count / stride) sites, written in the tree's order (so that a
+/// warp searches one neighbourhood). `photons`: the map in tree order (inTreeOrder); `order`:
+/// the photon numbers at the tree positions (view().order), which say which are sites.
 /// `scratch`, `scan`, `temp`: scratch.
-void estimateSites(const PhotonsView& photons, std::uint32_t stride, std::uint32_t k, float max2,
-  Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, cuda::GPUBuffer<Index>& scratch,
+void estimateSites(const PhotonsView& photons, const Index* order, std::uint32_t stride, std::uint32_t k,
+  float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, cuda::GPUBuffer<Index>& scratch,
   cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, cudaStream_t stream);
 
 /// What the final gather reads on the device.

@@ -20,13 +20,15 @@ constexpr float kLookupCos = 0.5f;
 /// Depth of the explicit stack: a median tree of 2^32 points with leaves of 8 is 30 deep.
 constexpr int kTreeStack = 64;
 
-/// PointTree's arrays, borrowed: points[order[i]] is the point at tree position i.
+/// PointTree's arrays, borrowed: points[order[i]] is the point at tree position i. Without
+/// `order` the points are stored in tree order (a GPU copies them so, for its caches).
 struct PointTreeView
 {
   const Vec3f* points = nullptr;
   const Index* order = nullptr;
-  const std::uint8_t* axes = nullptr; ///< split axis of the node whose median is order[i]
+  const std::uint8_t* axes = nullptr; ///< split axis of the node whose median is at tree position i
   std::uint32_t count = 0;
+  LINKGI_HOST_DEVICE Index at(std::uint32_t i) const { return order ? order[i] : i; }
 };
 
 /// A found point: its squared distance and index. Searches order them by (d2, index).
@@ -76,12 +78,12 @@ LINKGI_HOST_DEVICE inline void visitNear(const PointTreeView& t, const Vec3f& q,
     {
       for (std::uint32_t i = b; i < e; ++i)
       {
-        consider(t.order[i]);
+        consider(t.at(i));
       }
       continue;
     }
     const std::uint32_t mid = (b + e) / 2;
-    const Index m = t.order[mid];
+    const Index m = t.at(mid);
     const int axis = t.axes[mid];
     const float diff = q[axis] - t.points[m][axis];
     consider(m);
