@@ -511,7 +511,8 @@ public:
    * The processes among which the surface is partitioned (MPI: pvbatch --mpi, pvserver).
    * With more than one, RequestData is collective: every process gathers every partition's
    * surface (without ghost cells), lights the whole, so that shadows and bounced light cross
-   * the partition boundaries, and outputs the light of its own points. The surfaces are
+   * the partition boundaries, and outputs the light of its own points; ghost points
+   * (vtkGhostType's DUPLICATEPOINT) get the values of their owner's copy. The surfaces are
    * exchanged again only when one of them changed: a light move re-runs only the light
    * links and the bounces. LinkGI.Processes and LinkGI.PartitionBytesReceived in the field
    * data say what happened. Refinement is not available with more than one process, and

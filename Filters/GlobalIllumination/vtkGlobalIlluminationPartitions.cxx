@@ -2,6 +2,7 @@
 
 #include "vtkAppendPolyData.h"
 #include "vtkCommunicator.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkFieldData.h"
 #include "vtkIntArray.h"
 #include "vtkMultiProcessController.h"
@@ -12,7 +13,9 @@
 
 #include "linkgi/Error.h"
 
+#include <array>
 #include <cstring>
+#include <map>
 #include <string>
 
 //------------------------------------------------------------------------------
@@ -27,6 +30,7 @@ vtkPolyData* vtkGlobalIlluminationPartitions::Gather(
   {
     this->Global = nullptr;
     this->Offset = 0;
+    this->Owners.clear();
     return local;
   }
   // Every process takes the same branch: the exchange is collective.
@@ -38,14 +42,23 @@ vtkPolyData* vtkGlobalIlluminationPartitions::Gather(
     return this->Global;
   }
 
-  // Ghost cells are another process's cells: sent by their owner only. Their points stay,
+  // Ghost cells are another process's cells: sent by their owner only. Their points stay
+  // (vtkPolyData::RemoveGhostCells would drop the unused ones, and the points' ghost flags),
   // so that this process's point ids are its points' places in the global surface.
   vtkSmartPointer<vtkPolyData> send = local;
-  if (local->GetCellGhostArray())
+  if (vtkUnsignedCharArray* cellGhosts = local->GetCellGhostArray())
   {
     send = vtkSmartPointer<vtkPolyData>::New();
     send->DeepCopy(local);
-    send->RemoveGhostCells();
+    send->BuildCells();
+    for (vtkIdType c = 0; c < send->GetNumberOfCells(); ++c)
+    {
+      if (cellGhosts->GetValue(c) & (vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL))
+      {
+        send->DeleteCell(c);
+      }
+    }
+    send->RemoveDeletedCells();
   }
   std::vector<vtkSmartPointer<vtkDataObject>> all;
   if (!controller->AllGather(send, all) || int(all.size()) != this->Processes)
@@ -84,7 +97,56 @@ vtkPolyData* vtkGlobalIlluminationPartitions::Gather(
   this->LocalInput = local;
   this->LocalTime = local->GetMTime();
   ++this->Generation;
+  this->FindGhostOwners(local);
   return this->Global;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationPartitions::FindGhostOwners(vtkPolyData* local)
+{
+  this->Owners.clear();
+  vtkUnsignedCharArray* ghosts = local->GetPointGhostArray();
+  if (!ghosts)
+  {
+    return;
+  }
+  // The ghost points by their coordinates' bits: an owner's copy is the same point of the
+  // same dataset, split, so its coordinates are equal.
+  using Key = std::array<double, 3>;
+  std::map<Key, vtkIdType> wanted;
+  for (vtkIdType i = 0; i < this->Count; ++i)
+  {
+    if (ghosts->GetValue(i) & vtkDataSetAttributes::DUPLICATEPOINT)
+    {
+      Key k;
+      local->GetPoint(i, k.data());
+      wanted.emplace(k, i);
+    }
+  }
+  if (wanted.empty() || !this->Global)
+  {
+    return;
+  }
+  // Another process's copy that is not a ghost there (any copy where the parts carry no
+  // ghost flags), the first in process order.
+  vtkUnsignedCharArray* globalGhosts = this->Global->GetPointGhostArray();
+  const vtkIdType n = this->Global->GetNumberOfPoints();
+  for (vtkIdType g = 0; g < n && !wanted.empty(); ++g)
+  {
+    if ((g >= this->Offset && g < this->Offset + this->Count) ||
+      (globalGhosts && (globalGhosts->GetValue(g) & vtkDataSetAttributes::DUPLICATEPOINT)))
+    {
+      continue;
+    }
+    Key k;
+    this->Global->GetPoint(g, k.data());
+    const auto found = wanted.find(k);
+    if (found != wanted.end())
+    {
+      this->Owners.emplace_back(found->second, g);
+      wanted.erase(found);
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -107,6 +169,10 @@ void vtkGlobalIlluminationPartitions::Scatter(vtkPolyData* lit, vtkPolyData* loc
     if (this->Count > 0)
     {
       mine->InsertTuples(0, this->Count, this->Offset, source);
+    }
+    for (const auto& owner : this->Owners)
+    {
+      mine->SetTuple(owner.first, owner.second, source);
     }
     to->AddArray(mine);
   }

@@ -14,6 +14,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkMultiProcessController;
@@ -48,13 +49,20 @@ public:
   /// `output` = `local` with every point array of `lit` (the lit global surface) that
   /// `local` lacks, cut to this process's points, and `lit`'s field data, with
   /// LinkGI.Processes, LinkGI.PartitionBytesReceived and LinkGI.RadianceBytesExchanged (what
-  /// the bounces' exchanges moved into this process in the last update). Ghost points that
-  /// no non-ghost cell of this process uses keep the values of their place in the global
-  /// surface, which are those of the owner's copy only where the partition shares no point.
+  /// the bounces' exchanges moved into this process in the last update). Ghost points
+  /// (vtkGhostType's DUPLICATEPOINT) take the values of their owner's copy: the point at the
+  /// same place in another process's part that is not a ghost there.
   void Scatter(vtkPolyData* lit, vtkPolyData* local, vtkPolyData* output) const;
 
+  /// For each of this process's ghost points whose owner's copy was found: (its id here, the
+  /// copy's id in the global surface). Set by Gather.
+  const std::vector<std::pair<vtkIdType, vtkIdType>>& GhostOwners() const { return this->Owners; }
+
 private:
+  void FindGhostOwners(vtkPolyData* local);
+
   vtkSmartPointer<vtkPolyData> Global;
+  std::vector<std::pair<vtkIdType, vtkIdType>> Owners;
   const vtkPolyData* LocalInput = nullptr;
   vtkMTimeType LocalTime = 0;
   int Processes = 1;

@@ -3,12 +3,16 @@
 // the light of all of them: its arrays equal, point for point, those of one process lighting
 // the appended surface (block, then floor); the block's shadow falls on rank 1's floor, which
 // a rank lighting its partition alone does not see; a light move exchanges nothing and re-runs
-// only the light links and the bounces.
+// only the light links and the bounces. Then the floor split between ranks 0 and 1 with a
+// layer of ghost cells each: the ghost points get their owner's values.
 #include "vtkGlobalIlluminationFilter.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkFieldData.h"
 #include "vtkLight.h"
 #include "vtkMPIController.h"
@@ -17,11 +21,14 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkTriangleFilter.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -70,6 +77,66 @@ void Configure(vtkGlobalIlluminationFilter* filter, vtkLight* light)
   filter->SetRaysPerVertex(64);
   filter->SetNumberOfBounces(2);
   filter->AddLight(light);
+}
+
+/// Rank `rank`'s half of `floor` (cells left of x = 0 for rank 0, right of it for rank 1),
+/// with the other half's cells within `layer` of x = 0 as ghost cells (DUPLICATECELL); points
+/// that only ghost cells use are ghost points (DUPLICATEPOINT). Other ranks get nothing.
+vtkSmartPointer<vtkPolyData> Half(vtkPolyData* floor, int rank, double layer)
+{
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  if (rank > 1)
+  {
+    return out;
+  }
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkUnsignedCharArray> cellGhosts, pointGhosts;
+  cellGhosts->SetName(vtkDataSetAttributes::GhostArrayName());
+  pointGhosts->SetName(vtkDataSetAttributes::GhostArrayName());
+  std::map<vtkIdType, vtkIdType> ids; // floor point -> this half's point
+  std::vector<bool> owned;
+  for (vtkIdType c = 0; c < floor->GetNumberOfCells(); ++c)
+  {
+    vtkCell* cell = floor->GetCell(c);
+    double centre = 0.0;
+    for (vtkIdType k = 0; k < 3; ++k)
+    {
+      centre += floor->GetPoint(cell->GetPointId(k))[0] / 3.0;
+    }
+    const bool mine = rank == 0 ? centre < 0.0 : centre > 0.0;
+    if (!mine && std::abs(centre) > layer)
+    {
+      continue;
+    }
+    vtkIdType corners[3];
+    for (vtkIdType k = 0; k < 3; ++k)
+    {
+      const vtkIdType p = cell->GetPointId(k);
+      auto found = ids.find(p);
+      if (found == ids.end())
+      {
+        found = ids.emplace(p, points->InsertNextPoint(floor->GetPoint(p))).first;
+        owned.push_back(false);
+      }
+      corners[k] = found->second;
+      if (mine)
+      {
+        owned[corners[k]] = true;
+      }
+    }
+    polys->InsertNextCell(3, corners);
+    cellGhosts->InsertNextValue(mine ? 0 : vtkDataSetAttributes::DUPLICATECELL);
+  }
+  for (const bool o : owned)
+  {
+    pointGhosts->InsertNextValue(o ? 0 : vtkDataSetAttributes::DUPLICATEPOINT);
+  }
+  out->SetPoints(points);
+  out->SetPolys(polys);
+  out->GetCellData()->AddArray(cellGhosts);
+  out->GetPointData()->AddArray(pointGhosts);
+  return out;
 }
 
 /// Largest relative difference of `name` between `mine` and `reference`'s points from `offset`.
@@ -180,6 +247,102 @@ int main(int argc, char* argv[])
   ok &= Check(rank, Field(out, "LinkGI.PartitionBytesReceived") == 0, "a light move exchanges no surface");
   ok &= Check(rank, Field(out, "LinkGI.LinkBuilds") == links, "a light move builds no links");
   ok &= Check(rank, Field(out, "LinkGI.LightLinkBuilds") == lightLinks + 1, "a light move re-runs the light links");
+
+  // The floor split in two halves with a layer of ghost cells each (rank 2: nothing). The
+  // ghost points take their owner's values: those of the owner's copy in one process's
+  // lighting of the same global surface (each half without its ghost cells, in rank order).
+  {
+    const double layer = 2.0 / 24.0;
+    const vtkSmartPointer<vtkPolyData> half = Half(floor, rank, layer);
+    vtkNew<vtkGlobalIlluminationFilter> split;
+    Configure(split, light);
+    split->SetInputData(half);
+    split->Update();
+    vtkPolyData* lit = split->GetOutput();
+    vtkNew<vtkAppendPolyData> parts;
+    for (int r = 0; r < 2; ++r)
+    {
+      vtkNew<vtkPolyData> noGhostCells;
+      noGhostCells->DeepCopy(Half(floor, r, layer));
+      noGhostCells->BuildCells(); // without the ghost cells, every point kept (as the filter sends it)
+      vtkUnsignedCharArray* cellGhosts = noGhostCells->GetCellGhostArray();
+      for (vtkIdType c = 0; c < noGhostCells->GetNumberOfCells(); ++c)
+      {
+        if (cellGhosts->GetValue(c))
+        {
+          noGhostCells->DeleteCell(c);
+        }
+      }
+      noGhostCells->RemoveDeletedCells();
+      parts->AddInputData(noGhostCells);
+    }
+    parts->Update();
+    vtkNew<vtkGlobalIlluminationFilter> reference;
+    reference->SetController(nullptr);
+    Configure(reference, light);
+    reference->SetInputData(parts->GetOutput());
+    reference->Update();
+    if (rank <= 1)
+    {
+      // Each point against one process's value: its own place for its own points, the
+      // owner's copy (the same place in the other half, not a ghost there) for ghost points.
+      const vtkIdType firstHalf = Half(floor, 0, layer)->GetNumberOfPoints();
+      const vtkIdType halfOffset = rank == 0 ? 0 : firstHalf, otherOffset = rank == 0 ? firstHalf : 0;
+      const vtkSmartPointer<vtkPolyData> other = Half(floor, 1 - rank, layer);
+      vtkUnsignedCharArray* ghosts = half->GetPointGhostArray();
+      vtkUnsignedCharArray* otherGhosts = other->GetPointGhostArray();
+      vtkPolyData* whole = reference->GetOutput();
+      vtkIdType ghostPoints = 0, matched = 0;
+      double worstOwn = 0.0, worstGhost = 0.0, largestGhost = 0.0;
+      for (vtkIdType i = 0; i < half->GetNumberOfPoints(); ++i)
+      {
+        vtkIdType at = halfOffset + i;
+        const bool ghost = (ghosts->GetValue(i) & vtkDataSetAttributes::DUPLICATEPOINT) != 0;
+        if (ghost)
+        {
+          ++ghostPoints;
+          at = -1;
+          const double* p = half->GetPoint(i);
+          for (vtkIdType j = 0; j < other->GetNumberOfPoints() && at < 0; ++j)
+          {
+            const double* q = other->GetPoint(j);
+            if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2] &&
+              !(otherGhosts->GetValue(j) & vtkDataSetAttributes::DUPLICATEPOINT))
+            {
+              at = otherOffset + j;
+            }
+          }
+          if (at < 0)
+          {
+            continue;
+          }
+          ++matched;
+        }
+        for (const char* name : { "DirectIrradiance", "IndirectIrradiance", "Radiance" })
+        {
+          vtkDataArray* a = lit->GetPointData()->GetArray(name);
+          vtkDataArray* b = whole->GetPointData()->GetArray(name);
+          for (int c = 0; c < 3; ++c)
+          {
+            const double x = a->GetComponent(i, c), y = b->GetComponent(at, c);
+            const double d = std::abs(x - y) / std::max(1e-6, std::abs(y));
+            (ghost ? worstGhost : worstOwn) = std::max(ghost ? worstGhost : worstOwn, d);
+            if (ghost)
+            {
+              largestGhost = std::max(largestGhost, std::abs(x));
+            }
+          }
+        }
+      }
+      ok &= Check(rank, ghostPoints > 0 && matched == ghostPoints,
+        std::to_string(ghostPoints) + " ghost points, each with an owner's copy (" + std::to_string(matched) + ")");
+      ok &= Check(rank, largestGhost > 0.0, "the ghost points are lit");
+      ok &= Check(rank, worstGhost <= 1e-4,
+        "ghost points equal their owner's values within 1e-4 (" + std::to_string(worstGhost) + ")");
+      ok &= Check(rank, worstOwn <= 1e-4,
+        "the half's own points equal one process's within 1e-4 (" + std::to_string(worstOwn) + ")");
+    }
+  }
 
   int all = ok ? 1 : 0, every = 0;
   controller->AllReduce(&all, &every, 1, vtkCommunicator::MIN_OP);
