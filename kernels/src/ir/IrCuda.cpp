@@ -7,8 +7,7 @@
 #include "ir/IrBackends.h"
 #include "ir/IrKernels.h"
 
-#include "cuda/DeviceMesh.h"
-#include "cuda/DirectLightStage.h"
+#include "cuda/OneDevice.h"
 #include "cuda/GPUBuffer.h"
 #include "cuda/PinnedStaging.h"
 #include "cuda/Primitives.h"
@@ -80,28 +79,6 @@ gpu::GatherLaunch gatherLaunch(const DeviceMesh& mesh, const DeviceVpls& vpls, B
 class IrCuda final : public MethodBackend
 {
 public:
-  IrCuda()
-  {
-    const int device = cuda::useFirstDevice();
-    cudaDeviceProp prop{};
-    LINKGI_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
-    name = prop.name;
-    LINKGI_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
-    void* pinned = nullptr;
-    LINKGI_CUDA_CHECK(cudaMallocHost(&pinned, (kFoundSlot + 1) * sizeof(unsigned long long)));
-    rayCounts = static_cast<unsigned long long*>(pinned);
-  }
-  ~IrCuda() override
-  {
-    cudaFreeHost(rayCounts);
-    if (stream)
-    {
-      cudaStreamDestroy(stream);
-    }
-  }
-  IrCuda(const IrCuda&) = delete;
-  IrCuda& operator=(const IrCuda&) = delete;
-
   void run(std::size_t stage, const StageContext& c) override
   {
     // Device state is updated in place: a failed update leaves it unusable (discard()).
@@ -126,17 +103,8 @@ public:
 
   void describe(SolverStats& st) const override
   {
-    st.backend = "cuda";
-    st.device = name;
-    st.devices = 1;
-    st.linkedPerDevice.clear();
-    st.batchesPerDevice.clear();
-    st.msTracePerDevice.clear();
-    st.msCompressPerDevice.clear();
-    st.msWallPerDevice.clear();
-    st.gpuBytesAllocated = cuda::MemoryLedger::takePeak();
+    device.describe(st);
     st.rays = gatherRays;
-    st.linksRaw = st.linksCompressed = st.linkBytes = 0;
     st.lightRays = lightRays;
     st.vpls = vpls.count;
   }
@@ -211,12 +179,7 @@ private:
 
   void directLight(const StageContext& c)
   {
-    cuda::queueDirectLight(c.scene, c.options,
-      { mesh.bvh, mesh.positions, mesh.normals, mesh.shifts, mesh.topology, mesh.topology.edgeCount(), mesh.extent.eps },
-      { litLights, vertexVisible, edgeVisible, direct, counter }, stream);
-    // Read by finish, after its wait.
-    LINKGI_CUDA_CHECK(cudaMemcpyAsync(rayCounts + kLightSlot, counter.data(), sizeof(unsigned long long),
-      cudaMemcpyDeviceToHost, stream));
+    direct.queue(c.scene, c.options, mesh, rayCounts + kLightSlot, stream);
     lightPending = true;
   }
 
@@ -255,31 +218,9 @@ private:
 
   void finish(const StageContext& c)
   {
-    const Scene& s = c.scene;
-    const Elements elements{ s.vertexCount(), c.options.twoSided };
-    const std::size_t ne = elements.count();
     // albedo and emission: uploaded by the VPL stage, which every change of them re-runs
-    cuda::FinishParams f;
-    f.bounce.elements = Index(ne);
-    f.bounce.vertexCount = mesh.vertexCount;
-    f.bounce.direct = direct.data();
-    f.bounce.environment = gathered.data(); // finish adds it to the bounced light: here all of E_ind
-    f.bounce.albedo = albedo.data();
-    f.bounce.emission = s.emission.empty() ? nullptr : emission.data();
-    f.indirect = nullptr;
-    f.smoothing = c.options.smoothing;
-    f.cosFeatureAngle = std::cos(c.options.featureAngleDegrees * (kPi / 180.f));
-    f.neighbourOffsets = mesh.topology.neighbourOffsets.data();
-    f.neighbours = mesh.topology.neighbours.data();
-    f.normals = mesh.normals.data();
-    output.resize(3 * ne);
-    cuda::finish(f, output.data(), stream);
-    const std::size_t bytes = ne * sizeof(Vec3f);
-    // room(): a staged copy occupies a multiple of 256 bytes (a tiny mesh's 3 * bytes is less).
-    staging.begin(cuda::PinnedStaging::room(3 * bytes));
-    const auto* at = static_cast<const unsigned char*>(staging.download(output.data(), 3 * bytes, stream));
-    // The update's one wait for the device (besides the VPL count and the proxy's size).
-    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+    done.run(c.scene, c.options, mesh, direct.direct.data(), gathered.data(), albedo.data(),
+      c.scene.emission.empty() ? nullptr : emission.data(), c.solution, {}, stream);
     if (lightPending)
     {
       lightRays = rayCounts[kLightSlot];
@@ -290,39 +231,34 @@ private:
       gatherRays = rayCounts[kGatherSlot];
       gatherPending = false;
     }
-    Solution& sol = c.solution;
-    sol.direct.resize(ne);
-    sol.indirect.resize(ne);
-    sol.radiance.resize(ne);
-    cuda::PinnedStaging::copy(sol.direct.data(), at, bytes);
-    cuda::PinnedStaging::copy(sol.indirect.data(), at + bytes, bytes);
-    cuda::PinnedStaging::copy(sol.radiance.data(), at + 2 * bytes, bytes);
   }
 
-  /// rayCounts' slots: the direct light's and the gather's shadow rays, the VPLs found.
+  /// The pinned counters' slots: the direct light's and the gather's shadow rays, the VPLs
+  /// found.
   static constexpr int kLightSlot = 0, kGatherSlot = 1, kFoundSlot = 2;
 
-  cudaStream_t stream = nullptr;
-  std::string name;
+  cuda::DeviceContext device{ kFoundSlot + 1 };
+  cudaStream_t stream = device.stream;
+  unsigned long long* rayCounts = device.counters;
   DeviceMesh mesh;
+  cuda::DeviceDirectLight direct;
+  cuda::DeviceFinish done;
   gpu::DeviceProxy proxy;
   cuda::DeviceBvh proxyBvh;
   Index proxyTriangles = 0;
   float proxyMargin = 0.f;
   GPUBuffer<Source> sources;
-  GPUBuffer<float> cdf, vertexVisible, edgeVisible;
-  GPUBuffer<Light> lights, litLights;
-  GPUBuffer<Vec3f> albedo, emission, envTexels, direct, output;
+  GPUBuffer<float> cdf;
+  GPUBuffer<Light> lights;
+  GPUBuffer<Vec3f> albedo, emission, envTexels;
   gpu::DevicePaths paths;
   DeviceVpls vpls;
   GPUBuffer<Rgba> gathered;
-  GPUBuffer<unsigned long long> counter, gatherCounter;
+  GPUBuffer<unsigned long long> gatherCounter;
   GPUBuffer<Index> elementOrder, orderIds; ///< the gather's elements by subset, and scratch
   GPUBuffer<std::uint64_t> orderKeys;
   GPUBuffer<unsigned char> orderTemp;
   std::array<std::uint64_t, 4> orderKey{}; ///< what elementOrder was sorted for (0 subsets: none)
-  cuda::PinnedStaging staging;
-  unsigned long long* rayCounts = nullptr; ///< pinned, kFoundSlot + 1 entries
   bool lightPending = false, gatherPending = false;
   std::uint64_t gatherRays = 0, lightRays = 0;
 };

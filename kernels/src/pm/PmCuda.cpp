@@ -11,9 +11,7 @@
 
 #include "ir/IrKernels.h"
 
-#include "cuda/DeviceMesh.h"
-#include "cuda/DirectLightStage.h"
-#include "cuda/PinnedStaging.h"
+#include "cuda/OneDevice.h"
 
 #include "linkgi/Cuda.h"
 #include "linkgi/Metrics.h"
@@ -31,28 +29,6 @@ using cuda::GPUBuffer;
 class PmCuda final : public MethodBackend
 {
 public:
-  PmCuda()
-  {
-    const int device = cuda::useFirstDevice();
-    cudaDeviceProp prop{};
-    LINKGI_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
-    name = prop.name;
-    LINKGI_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
-    void* pinned = nullptr;
-    LINKGI_CUDA_CHECK(cudaMallocHost(&pinned, kSlots * sizeof(unsigned long long)));
-    counters = static_cast<unsigned long long*>(pinned);
-  }
-  ~PmCuda() override
-  {
-    cudaFreeHost(counters);
-    if (stream)
-    {
-      cudaStreamDestroy(stream);
-    }
-  }
-  PmCuda(const PmCuda&) = delete;
-  PmCuda& operator=(const PmCuda&) = delete;
-
   void run(std::size_t stage, const StageContext& c) override
   {
     // Device state is updated in place: a failed update leaves it unusable (discard()).
@@ -77,17 +53,8 @@ public:
 
   void describe(SolverStats& st) const override
   {
-    st.backend = "cuda";
-    st.device = name;
-    st.devices = 1;
-    st.linkedPerDevice.clear();
-    st.batchesPerDevice.clear();
-    st.msTracePerDevice.clear();
-    st.msCompressPerDevice.clear();
-    st.msWallPerDevice.clear();
-    st.gpuBytesAllocated = cuda::MemoryLedger::takePeak();
+    device.describe(st);
     st.rays = gatherRays;
-    st.linksRaw = st.linksCompressed = st.linkBytes = 0;
     st.lightRays = lightRays;
     st.photons = photonCount;
     st.clusters = clusterCount;
@@ -136,7 +103,7 @@ private:
     pathView = deviceView(s, setup.view);
     ir::PathScene view = pathView;
     const std::size_t found = ir::gpu::traceAllPaths(view, mesh.bvh.view(), setup.targetVpls, paths,
-      counters + kFoundSlot, stream);
+      device.counters + kFoundSlot, stream);
     // The hits in path order (one subset), then split into photons and caustic photons.
     hits.resize(std::max<std::size_t>(found, 1));
     subsetOffsets.resize(2);
@@ -145,10 +112,10 @@ private:
       view.bounces + 1, 1, hits.data(), subsetOffsets.data(), subsetScale.data(), stream);
     static_assert(sizeof(Offset) == sizeof(unsigned long long), "photon totals land in counter slots");
     gpu::splitPhotons(hits.data(), found, photons, flags, scan, temp,
-      reinterpret_cast<Offset*>(counters + kPhotonSlot), stream);
+      reinterpret_cast<Offset*>(device.counters + kPhotonSlot), stream);
     LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
-    photonCount = std::size_t(counters[kPhotonSlot]);
-    causticCount = std::size_t(counters[kCausticSlot]);
+    photonCount = std::size_t(device.counters[kPhotonSlot]);
+    causticCount = std::size_t(device.counters[kCausticSlot]);
     checkPhotonCount(photonCount);
     photonTree.build(photons.positions.data(), std::uint32_t(photonCount), stream);
     // Searches run on copies in the tree's order: neighbours in neighbouring memory.
@@ -215,12 +182,7 @@ private:
 
   void directLight(const StageContext& c)
   {
-    cuda::queueDirectLight(c.scene, c.options,
-      { mesh.bvh, mesh.positions, mesh.normals, mesh.shifts, mesh.topology, mesh.topology.edgeCount(), mesh.extent.eps },
-      { litLights, vertexVisible, edgeVisible, direct, lightCounter }, stream);
-    // Read by finish, after its wait.
-    LINKGI_CUDA_CHECK(cudaMemcpyAsync(counters + kLightSlot, lightCounter.data(), sizeof(unsigned long long),
-      cudaMemcpyDeviceToHost, stream));
+    direct.queue(c.scene, c.options, mesh, device.counters + kLightSlot, stream);
     lightPending = true;
   }
 
@@ -277,71 +239,46 @@ private:
 
   void finish(const StageContext& c)
   {
-    const Scene& s = c.scene;
-    const Elements elements{ s.vertexCount(), c.options.twoSided };
-    const std::size_t ne = elements.count();
     // albedo and emission: uploaded by the photon stage, which every change of them re-runs
-    cuda::FinishParams f;
-    f.bounce.elements = Index(ne);
-    f.bounce.vertexCount = mesh.vertexCount;
-    f.bounce.direct = direct.data();
-    f.bounce.environment = gathered.data(); // finish adds it to the bounced light: here all of E_ind
-    f.bounce.albedo = albedo.data();
-    f.bounce.emission = s.emission.empty() ? nullptr : emission.data();
-    f.indirect = nullptr;
-    f.smoothing = c.options.smoothing;
-    f.cosFeatureAngle = std::cos(c.options.featureAngleDegrees * (kPi / 180.f));
-    f.neighbourOffsets = mesh.topology.neighbourOffsets.data();
-    f.neighbours = mesh.topology.neighbours.data();
-    f.normals = mesh.normals.data();
-    output.resize(3 * ne);
-    cuda::finish(f, output.data(), stream);
-    const std::size_t bytes = ne * sizeof(Vec3f);
     const bool newCaustics = gatherRan && causticCount;
-    const std::size_t causticBytes = newCaustics ? mesh.vertexCount * sizeof(Vec3f) : 0;
-    staging.begin(cuda::PinnedStaging::room(3 * bytes) + cuda::PinnedStaging::room(causticBytes));
-    const auto* at = static_cast<const unsigned char*>(staging.download(output.data(), 3 * bytes, stream));
-    const auto* causticsAt =
-      newCaustics ? static_cast<const unsigned char*>(staging.download(caustics.data(), causticBytes, stream)) : nullptr;
-    // The update's one wait for the device (besides the photon counts).
-    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+    std::vector<Vec3f> fronts(newCaustics ? mesh.vertexCount : 0);
+    done.run(c.scene, c.options, mesh, direct.direct.data(), gathered.data(), albedo.data(),
+      c.scene.emission.empty() ? nullptr : emission.data(), c.solution,
+      newCaustics ? std::initializer_list<cuda::DeviceFinish::Extra>{ { caustics.data(),
+                      fronts.size() * sizeof(Vec3f), fronts.data() } }
+                  : std::initializer_list<cuda::DeviceFinish::Extra>{},
+      stream);
     if (lightPending)
     {
-      lightRays = counters[kLightSlot];
+      lightRays = device.counters[kLightSlot];
       lightPending = false;
     }
     if (gatherRan)
     {
       // Caustics per element: the fronts' (backs get none), or none without caustic photons.
-      causticsHost.clear();
+      causticsHost = std::move(fronts);
       if (newCaustics)
       {
-        causticsHost.assign(ne, Vec3f(0.f));
-        cuda::PinnedStaging::copy(causticsHost.data(), causticsAt, causticBytes);
+        causticsHost.resize(c.solution.direct.size(), Vec3f(0.f));
       }
       gatherRan = false;
     }
-    Solution& sol = c.solution;
-    sol.direct.resize(ne);
-    sol.indirect.resize(ne);
-    sol.radiance.resize(ne);
-    cuda::PinnedStaging::copy(sol.direct.data(), at, bytes);
-    cuda::PinnedStaging::copy(sol.indirect.data(), at + bytes, bytes);
-    cuda::PinnedStaging::copy(sol.radiance.data(), at + 2 * bytes, bytes);
-    sol.caustics = causticsHost;
+    c.solution.caustics = causticsHost;
   }
 
   /// counters' slots (pinned): the direct light's shadow rays, the paths' hits found, the
   /// photons and the caustic photons stored.
   static constexpr int kLightSlot = 0, kFoundSlot = 1, kPhotonSlot = 2, kCausticSlot = 3, kSlots = 4;
 
-  cudaStream_t stream = nullptr;
-  std::string name;
+  cuda::DeviceContext device{ kSlots };
+  cudaStream_t stream = device.stream;
   cuda::DeviceMesh mesh;
-  GPUBuffer<float> areas, cdf, vertexVisible, edgeVisible;
+  cuda::DeviceDirectLight direct;
+  cuda::DeviceFinish done;
+  GPUBuffer<float> areas, cdf;
   GPUBuffer<ir::Source> sources;
-  GPUBuffer<Light> lights, litLights;
-  GPUBuffer<Vec3f> albedo, emission, envTexels, direct, output;
+  GPUBuffer<Light> lights;
+  GPUBuffer<Vec3f> albedo, emission, envTexels;
   GPUBuffer<std::uint8_t> materials;
   GPUBuffer<float> ior;
   bool specular = false;
@@ -363,9 +300,6 @@ private:
   GPUBuffer<Vec3f> directions, sampleIrradiance, caustics;
   GPUBuffer<float> harmonicDistance;
   GPUBuffer<cuda::Rgba> gathered;
-  GPUBuffer<unsigned long long> lightCounter;
-  cuda::PinnedStaging staging;
-  unsigned long long* counters = nullptr; ///< pinned, kSlots entries
   std::vector<Vec3f> causticsHost;
   std::size_t photonCount = 0, causticCount = 0, clusterCount = 0;
   float estimateMax2 = 0.f; ///< kEstimateRadius, squared
