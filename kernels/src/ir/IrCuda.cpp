@@ -144,33 +144,8 @@ private:
   {
     const Scene& s = c.scene;
     PathSetup setup = buildPathSetup(s, {}, c.options, &mesh.extent);
-    sources.upload(setup.sources, stream);
-    cdf.upload(setup.cdf, stream);
-    lights.upload(s.lights, stream);
-    // Materials and the sky only when they changed (a light move uploads neither).
-    if (c.changes & (kTopology | kAlbedo))
-    {
-      albedo.upload(s.albedo, stream);
-    }
-    if (c.changes & (kTopology | kEmission))
-    {
-      emission.upload(s.emission, stream);
-    }
-    if (c.changes & (kEnvironmentLayout | kEnvironmentRadiance))
-    {
-      envTexels.upload(s.environment.texels, stream);
-    }
-    PathScene view = setup.view;
-    view.positions = mesh.positions.data();
-    view.normals = mesh.normals.data();
-    view.albedo = albedo.data();
-    view.emission = s.emission.empty() ? nullptr : emission.data();
-    view.triangles = mesh.triangles.data();
-    view.faceNormals = mesh.faceNormals.data();
-    view.lights = lights.data();
-    view.sources = sources.data();
-    view.cdf = cdf.data();
-    view.envTexels = s.environment.texels.empty() ? nullptr : envTexels.data();
+    // Instant radiosity lights mirrors and glass as diffuse surfaces (warned).
+    PathScene view = pathScene.upload(s, setup, c.changes, mesh, false, stream);
     const std::size_t found = gpu::traceAllPaths(view, mesh.bvh.view(), setup.targetVpls, paths,
       rayCounts + kFoundSlot, stream);
     vpls.pack(paths.slots, paths.counts, paths.pathOffsets, view.paths, view.bounces + 1,
@@ -219,8 +194,8 @@ private:
   void finish(const StageContext& c)
   {
     // albedo and emission: uploaded by the VPL stage, which every change of them re-runs
-    done.run(c.scene, c.options, mesh, direct.direct.data(), gathered.data(), albedo.data(),
-      c.scene.emission.empty() ? nullptr : emission.data(), c.solution, {}, stream);
+    done.run(c.scene, c.options, mesh, direct.direct.data(), gathered.data(), pathScene.albedo.data(),
+      c.scene.emission.empty() ? nullptr : pathScene.emission.data(), c.solution, {}, stream);
     if (lightPending)
     {
       lightRays = rayCounts[kLightSlot];
@@ -247,10 +222,7 @@ private:
   cuda::DeviceBvh proxyBvh;
   Index proxyTriangles = 0;
   float proxyMargin = 0.f;
-  GPUBuffer<Source> sources;
-  GPUBuffer<float> cdf;
-  GPUBuffer<Light> lights;
-  GPUBuffer<Vec3f> albedo, emission, envTexels;
+  gpu::DevicePathScene pathScene;
   gpu::DevicePaths paths;
   DeviceVpls vpls;
   GPUBuffer<Rgba> gathered;

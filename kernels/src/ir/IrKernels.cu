@@ -225,6 +225,48 @@ void traceLightPaths(const PathScene& scene, const BvhView& bvh, Vpl* slots, Ind
   LINKGI_CUDA_CHECK_LAUNCH("pathKernel");
 }
 
+PathScene DevicePathScene::upload(const Scene& s, const PathSetup& setup, engine::Changes changes,
+  const cuda::DeviceMesh& mesh, bool passSpecular, cudaStream_t stream)
+{
+  using namespace engine;
+  sources.upload(setup.sources, stream);
+  cdf.upload(setup.cdf, stream);
+  lights.upload(s.lights, stream);
+  // Materials and the sky only when they changed (a light move uploads neither).
+  if (changes & (kTopology | kAlbedo))
+  {
+    albedo.upload(s.albedo, stream);
+    specular = passSpecular && s.hasSpecular();
+    if (specular)
+    {
+      materials.upload(reinterpret_cast<const std::uint8_t*>(s.triangleMaterials.data()), s.triangles.size(), stream);
+      ior.upload(s.triangleIor, stream);
+    }
+  }
+  if (changes & (kTopology | kEmission))
+  {
+    emission.upload(s.emission, stream);
+  }
+  if (changes & (kEnvironmentLayout | kEnvironmentRadiance))
+  {
+    envTexels.upload(s.environment.texels, stream);
+  }
+  PathScene view = setup.view;
+  view.positions = mesh.positions.data();
+  view.normals = mesh.normals.data();
+  view.albedo = albedo.data();
+  view.emission = s.emission.empty() ? nullptr : emission.data();
+  view.triangles = mesh.triangles.data();
+  view.faceNormals = mesh.faceNormals.data();
+  view.lights = lights.data();
+  view.sources = sources.data();
+  view.cdf = cdf.data();
+  view.envTexels = s.environment.texels.empty() ? nullptr : envTexels.data();
+  view.materials = specular ? materials.data() : nullptr;
+  view.ior = specular && !s.triangleIor.empty() ? ior.data() : nullptr;
+  return view;
+}
+
 std::size_t traceAllPaths(PathScene& view, const BvhView& bvh, std::uint32_t targetVpls, DevicePaths& paths,
   unsigned long long* pinnedFound, cudaStream_t stream)
 {

@@ -7,6 +7,7 @@
 
 #include "cuda/GPUBuffer.h"
 #include "cuda/Kernels.h"
+#include "cuda/OneDevice.h"
 
 namespace linkgi::ir::gpu
 {
@@ -14,6 +15,25 @@ namespace linkgi::ir::gpu
 /// its VPL count into counts[p]: one thread per path.
 void traceLightPaths(const PathScene& scene, const BvhView& bvh, Vpl* slots, Index* counts,
   cudaStream_t stream);
+
+/// What light paths read on the device besides the mesh: the source table, the lights, the
+/// materials and the sky, uploaded as they change.
+struct DevicePathScene
+{
+  cuda::GPUBuffer<Source> sources;
+  cuda::GPUBuffer<float> cdf;
+  cuda::GPUBuffer<Light> lights;
+  cuda::GPUBuffer<Vec3f> albedo, emission, envTexels;
+  cuda::GPUBuffer<std::uint8_t> materials; ///< with `specular` only
+  cuda::GPUBuffer<float> ior;
+  bool specular = false; ///< mirrors and glass are passed (photon mapping), not lit as diffuse
+
+  /// Uploads `setup`'s sources and the lights, and what `changes` touched of the albedo,
+  /// the materials (when `passSpecular` and the scene has mirrors or glass), the emission and
+  /// the sky; returns setup.view over the device's arrays and `mesh`. No wait.
+  PathScene upload(const Scene& scene, const PathSetup& setup, engine::Changes changes, const cuda::DeviceMesh& mesh,
+    bool passSpecular, cudaStream_t stream);
+};
 
 /// Light paths' hits on the device: bounces + 1 slots per path, the count each used, and
 /// their exclusive sum.

@@ -77,30 +77,7 @@ private:
     o.instantRadiosity.vplCount = o.photonMapping.photons;
     o.instantRadiosity.russianRoulette = true;
     const ir::PathSetup setup = ir::buildPathSetup(s, {}, o, &mesh.extent);
-    sources.upload(setup.sources, stream);
-    cdf.upload(setup.cdf, stream);
-    lights.upload(s.lights, stream);
-    // Materials and the sky only when they changed (a light move uploads neither).
-    if (c.changes & (kTopology | kAlbedo))
-    {
-      albedo.upload(s.albedo, stream);
-      specular = s.hasSpecular();
-      if (specular)
-      {
-        materials.upload(reinterpret_cast<const std::uint8_t*>(s.triangleMaterials.data()), s.triangles.size(),
-          stream);
-        ior.upload(s.triangleIor, stream);
-      }
-    }
-    if (c.changes & (kTopology | kEmission))
-    {
-      emission.upload(s.emission, stream);
-    }
-    if (c.changes & (kEnvironmentLayout | kEnvironmentRadiance))
-    {
-      envTexels.upload(s.environment.texels, stream);
-    }
-    pathView = deviceView(s, setup.view);
+    pathView = pathScene.upload(s, setup, c.changes, mesh, true, stream);
     ir::PathScene view = pathView;
     const std::size_t found = ir::gpu::traceAllPaths(view, mesh.bvh.view(), setup.targetVpls, paths,
       device.counters + kFoundSlot, stream);
@@ -143,24 +120,6 @@ private:
     causticTree.build(photons.causticPositions.data(), std::uint32_t(causticCount), stream);
   }
 
-  /// The path view over the device's arrays.
-  ir::PathScene deviceView(const Scene& s, ir::PathScene view) const
-  {
-    view.positions = mesh.positions.data();
-    view.normals = mesh.normals.data();
-    view.albedo = albedo.data();
-    view.emission = s.emission.empty() ? nullptr : emission.data();
-    view.triangles = mesh.triangles.data();
-    view.faceNormals = mesh.faceNormals.data();
-    view.lights = lights.data();
-    view.sources = sources.data();
-    view.cdf = cdf.data();
-    view.envTexels = s.environment.texels.empty() ? nullptr : envTexels.data();
-    view.materials = specular ? materials.data() : nullptr;
-    view.ior = specular && !s.triangleIor.empty() ? ior.data() : nullptr;
-    return view;
-  }
-
   static void checkPhotonCount(std::size_t n)
   {
     // The kd-tree's sort counts in int (CUB); PhotonMappingOptions caps photons at 2^24.
@@ -200,8 +159,8 @@ private:
       caustics.resize(nv);
       const float radius = kCausticRadius * mesh.extent.diagonal;
       gpu::causticIrradiance({ causticTree.view(), photons.causticNormals.data(), photons.causticFlux.data() },
-        mesh.positions.data(), mesh.normals.data(), albedo.data(), areas.data(), nv, o.photonMapping.estimatePhotons,
-        radius * radius, caustics.data(), stream);
+        mesh.positions.data(), mesh.normals.data(), pathScene.albedo.data(), areas.data(), nv,
+        o.photonMapping.estimatePhotons, radius * radius, caustics.data(), stream);
     }
     gpu::GatherLaunch g;
     g.scene = pathView; // the gather runs whenever the photons were traced again for its inputs
@@ -242,8 +201,8 @@ private:
     // albedo and emission: uploaded by the photon stage, which every change of them re-runs
     const bool newCaustics = gatherRan && causticCount;
     std::vector<Vec3f> fronts(newCaustics ? mesh.vertexCount : 0);
-    done.run(c.scene, c.options, mesh, direct.direct.data(), gathered.data(), albedo.data(),
-      c.scene.emission.empty() ? nullptr : emission.data(), c.solution,
+    done.run(c.scene, c.options, mesh, direct.direct.data(), gathered.data(), pathScene.albedo.data(),
+      c.scene.emission.empty() ? nullptr : pathScene.emission.data(), c.solution,
       newCaustics ? std::initializer_list<cuda::DeviceFinish::Extra>{ { caustics.data(),
                       fronts.size() * sizeof(Vec3f), fronts.data() } }
                   : std::initializer_list<cuda::DeviceFinish::Extra>{},
@@ -275,13 +234,8 @@ private:
   cuda::DeviceMesh mesh;
   cuda::DeviceDirectLight direct;
   cuda::DeviceFinish done;
-  GPUBuffer<float> areas, cdf;
-  GPUBuffer<ir::Source> sources;
-  GPUBuffer<Light> lights;
-  GPUBuffer<Vec3f> albedo, emission, envTexels;
-  GPUBuffer<std::uint8_t> materials;
-  GPUBuffer<float> ior;
-  bool specular = false;
+  GPUBuffer<float> areas;
+  ir::gpu::DevicePathScene pathScene;
   ir::PathScene pathView; ///< the photon stage's, over the device's arrays
   ir::gpu::DevicePaths paths;
   GPUBuffer<ir::Vpl> hits;
