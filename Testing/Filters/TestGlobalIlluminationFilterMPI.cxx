@@ -3,8 +3,9 @@
 // the light of all of them: its arrays equal, point for point, those of one process lighting
 // the appended surface (block, then floor); the block's shadow falls on rank 1's floor, which
 // a rank lighting its partition alone does not see; a light move exchanges nothing and re-runs
-// only the light links and the bounces. Then the floor split between ranks 0 and 1 with a
-// layer of ghost cells each: the ghost points get their owner's values.
+// only the light links and the bounces. Instant radiosity gathers by rows too. Then the floor
+// split between ranks 0 and 1 with a layer of ghost cells each: the ghost points get their
+// owner's values.
 #include "vtkGlobalIlluminationFilter.h"
 
 #include "vtkAppendPolyData.h"
@@ -247,6 +248,33 @@ int main(int argc, char* argv[])
   ok &= Check(rank, Field(out, "LinkGI.PartitionBytesReceived") == 0, "a light move exchanges no surface");
   ok &= Check(rank, Field(out, "LinkGI.LinkBuilds") == links, "a light move builds no links");
   ok &= Check(rank, Field(out, "LinkGI.LightLinkBuilds") == lightLinks + 1, "a light move re-runs the light links");
+
+  // Instant radiosity splits its gather by rows as well: one exchange of E_ind, the arrays
+  // those of one process.
+  {
+    vtkNew<vtkGlobalIlluminationFilter> rowsIR, wholeIR;
+    for (vtkGlobalIlluminationFilter* f : { rowsIR.Get(), wholeIR.Get() })
+    {
+      Configure(f, light);
+      f->SetMethodToInstantRadiosity();
+    }
+    rowsIR->SetInputData(mine);
+    rowsIR->Update();
+    wholeIR->SetController(nullptr);
+    wholeIR->SetInputData(append->GetOutput());
+    wholeIR->Update();
+    vtkPolyData* ir = rowsIR->GetOutput();
+    ok &= Check(rank, Field(ir, "LinkGI.RadianceBytesExchanged") == 12.0 * elements,
+      "instant radiosity exchanged E_ind once (" + std::to_string(Field(ir, "LinkGI.RadianceBytesExchanged")) + " B)");
+    if (mine->GetNumberOfPoints() > 0)
+    {
+      for (const char* name : { "DirectIrradiance", "IndirectIrradiance", "Radiance" })
+      {
+        const double d = Difference(ir, wholeIR->GetOutput(), offset, name);
+        ok &= Check(rank, d <= 1e-4, std::string("instant radiosity's ") + name + " equals one process's (" + std::to_string(d) + ")");
+      }
+    }
+  }
 
   // The floor split in two halves with a layer of ghost cells each (rank 2: nothing). The
   // ghost points take their owner's values: those of the owner's copy in one process's

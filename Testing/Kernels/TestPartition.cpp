@@ -1,6 +1,6 @@
-// Partitioned solves (SolverOptions::partition, issue 16): processes that each link only their
-// rows and complete every bounce through an exchange give, together, the one-process result
-// bit for bit. Two threads stand in for two MPI ranks.
+// Partitioned solves (SolverOptions::partition, issue 16): processes that each link (or, for
+// instant radiosity, gather) only their rows and complete every bounce through an exchange
+// give, together, the one-process result bit for bit. Two threads stand in for two MPI ranks.
 #include "SceneFixtures.h"
 
 #include "linkgi/Solver.h"
@@ -113,6 +113,47 @@ TEST(TestPartition, TwoProcessesGiveTheOneProcessResultBitForBit)
     EXPECT_FALSE(stats[p].ran("Links")) << "process " << p;
     EXPECT_TRUE(sameBits(result[p].indirect, oneLit.indirect)) << "process " << p;
   }
+}
+
+// Instant radiosity splits its gather by rows too: each process gathers its own elements,
+// one exchange per update completes E_ind (the smoothing then sees every neighbour).
+TEST(TestPartition, InstantRadiosityGathersOnlyItsRows)
+{
+  const Scene s = test::roomWithBlock(0.5f);
+  SolverOptions o = test::quickOptions();
+  o.backend = Backend::Cpu;
+  o.method = Method::InstantRadiosity;
+  o.instantRadiosity.vplCount = 256;
+  Solver whole;
+  const Solution one = whole.update(s, o);
+  SumExchange exchange(2);
+  Solution result[2];
+  SolverStats stats[2];
+  Solver solvers[2];
+  const auto run = [&](int p) {
+    auto part = std::make_shared<Partition>();
+    part->rows.resize(s.vertexCount());
+    for (std::size_t e = 0; e < s.vertexCount(); ++e)
+    {
+      part->rows[e] = std::uint8_t(e % 2 == std::size_t(p));
+    }
+    part->exchange = [&exchange](std::vector<Vec3f>& v) { exchange(v); };
+    SolverOptions mine = o;
+    mine.partition = part;
+    result[p] = solvers[p].update(s, mine);
+    stats[p] = solvers[p].stats();
+  };
+  std::thread other(run, 1);
+  run(0);
+  other.join();
+  EXPECT_EQ(exchange.exchanges, 1) << "one exchange of E_ind";
+  for (int p = 0; p < 2; ++p)
+  {
+    EXPECT_TRUE(sameBits(result[p].indirect, one.indirect)) << "process " << p;
+    EXPECT_TRUE(sameBits(result[p].radiance, one.radiance)) << "process " << p;
+    EXPECT_LT(stats[p].rays, whole.stats().rays * 3 / 4) << "each gathers its rows only";
+  }
+  EXPECT_EQ(stats[0].rays + stats[1].rays, whole.stats().rays);
 }
 
 TEST(TestPartition, AMaskOfTheWrongSizeIsNamed)

@@ -156,6 +156,20 @@ std::uint64_t SolverStats::runs(const std::string& counter) const
 
 namespace engine
 {
+const std::uint8_t* ownRows(const SolverOptions& o, std::size_t elements)
+{
+  if (!o.partition)
+  {
+    return nullptr;
+  }
+  if (o.partition->rows.size() != elements || !o.partition->exchange)
+  {
+    throw Error("The partition marks " + std::to_string(o.partition->rows.size()) + " rows for " +
+      std::to_string(elements) + " elements, or has no exchange; give one flag per element.");
+  }
+  return o.partition->rows.data();
+}
+
 Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& before,
   const SolverOptions& b, Changes knownSame)
 {

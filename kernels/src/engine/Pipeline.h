@@ -143,6 +143,12 @@ public:
   }
 };
 
+/// Under MPI (SolverOptions::partition): this process's rows, one flag per element, or null
+/// (every row); throws Error when the mask does not fit `elements` or has no exchange. A
+/// method that splits its work by rows computes only these and completes the rest with the
+/// partition's exchange.
+const std::uint8_t* ownRows(const SolverOptions& options, std::size_t elements);
+
 /// The registry: the one place that names every method (Methods.cpp).
 const MethodSpec& methodSpec(Method method);
 }

@@ -33,10 +33,11 @@ VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32
 
 /// E_ind per element (both sides when twoSided): each gathers its VPL subset, shadow rays
 /// against `visibility` (the mesh, or the proxy when params.proxyMargin > 0). `rays` gets
-/// the shadow rays traced.
+/// the shadow rays traced. With `rows` (one flag per element), only those elements gather;
+/// the others are zero.
 std::vector<Vec3f> gatherCpu(const Scene& scene, const std::vector<Vec3f>& shifts,
   const VplSet& vpls, const RayTracer* visibility, const GatherParams& params, bool twoSided,
-  std::uint64_t* rays = nullptr, const ProgressCallback& progress = {});
+  std::uint64_t* rays = nullptr, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 
 /// The same gather on the first GPU (mesh, BVH and shifts built there; exact visibility):
 /// for comparing the backends on one VPL set. Throws CudaError without a device or CUDA.

@@ -53,7 +53,7 @@ VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32
 
 std::vector<Vec3f> gatherCpu(const Scene& s, const std::vector<Vec3f>& shifts, const VplSet& set,
   const RayTracer* visibility, const GatherParams& gp, bool twoSided, std::uint64_t* rays,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress, const std::uint8_t* rows)
 {
   const Elements elements{ s.vertexCount(), twoSided };
   std::vector<Vec3f> irradiance(elements.count());
@@ -66,6 +66,10 @@ std::vector<Vec3f> gatherCpu(const Scene& s, const std::vector<Vec3f>& shifts, c
     std::uint64_t count = 0;
     for (std::size_t e = first; e < last; ++e)
     {
+      if (rows && !rows[e])
+      {
+        continue; // another process's row
+      }
       const Index v = elements.vertexOf(e);
       const float sign = elements.sideSign(e);
       const Vec3f n = s.normals[v] * sign;
@@ -215,8 +219,15 @@ private:
     gp.proxyMargin = c.options.instantRadiosity.proxyVisibility ? proxyMargin : 0.f;
     gp.seed = c.options.seed;
     const RayTracer* visibility = gp.proxyMargin > 0.f ? proxyTracer.get() : geometry.tracer.get();
+    // Under MPI each process gathers its rows; one exchange completes E_ind everywhere, so
+    // that the smoothing across partition boundaries sees its neighbours.
+    const std::uint8_t* rows = ownRows(c.options, Elements{ c.scene.vertexCount(), c.options.twoSided }.count());
     nextGathered = gatherCpu(c.scene, geometry.shifts, set, visibility, gp, c.options.twoSided,
-      &nextGatherRays, c.progress);
+      &nextGatherRays, c.progress, rows);
+    if (rows)
+    {
+      c.options.partition->exchange(nextGathered);
+    }
     gatherStaged = true;
   }
 

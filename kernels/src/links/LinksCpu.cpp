@@ -18,21 +18,6 @@ namespace
 {
 using namespace engine;
 
-/// The partition's rows (null: every row), checked against the element count.
-const std::uint8_t* ownRows(const SolverOptions& o, std::size_t elements)
-{
-  if (!o.partition)
-  {
-    return nullptr;
-  }
-  if (o.partition->rows.size() != elements || !o.partition->exchange)
-  {
-    throw Error("The partition marks " + std::to_string(o.partition->rows.size()) + " rows for " +
-      std::to_string(elements) + " elements, or has no exchange; give one flag per element.");
-  }
-  return o.partition->rows.data();
-}
-
 class LinksCpu final : public MethodBackend
 {
 public:
