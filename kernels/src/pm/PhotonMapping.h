@@ -46,8 +46,8 @@ struct PhotonMap
   std::vector<Vec3f> positions, normals; ///< photon i: where, and the side it arrived on
   std::vector<Vec3f> flux;               ///< the flux it reflects (W), albedo applied
   std::vector<Vec3f> sitePositions, siteNormals;
-  /// L = sum of the k nearest photons' flux on the same side / (pi r_k^2) / pi: the radiance
-  /// a diffuse surface reflects there.
+  /// The radiance a diffuse surface reflects there (siteRadiance, PmMath.h: Jensen's
+  /// estimate from the k nearest photons).
   std::vector<Vec3f> siteRadiance;
   PointTree sites;
   float maxDistance2 = 3.4e38f; ///< of the photons an estimate counts, of the estimate a gather ray reads
@@ -72,9 +72,9 @@ ir::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormal
 void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, const RayTracer& tracer,
   const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress = {});
 
-/// Builds the map's estimates from photons already in positions/normals/flux: k nearest
-/// photons within 37 degrees of the site's normal and within `maxRadius`, at every
-/// `siteStride`-th photon (siteRadiance, PmMath.h).
+/// Builds the map's estimates from photons already in positions/normals/flux, at every
+/// `siteStride`-th photon: siteRadiance (PmMath.h) from the k nearest photons within
+/// `maxRadius`, those facing within 37 degrees of the site's normal counted.
 void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride, float maxRadius,
   const ProgressCallback& progress = {});
 

@@ -1,7 +1,7 @@
-// Photon mapping on one GPU: the mesh and its BVH (cuda/DeviceMesh), light paths (instant
-// radiosity's kernels), the photon map, its kd-trees and estimates, the final gather, the
-// interpolation and the caustics stay on the device; the direct light and the finish are the
-// link method's CUDA launchers. The clusters depend on the geometry alone and are the host's
+// Photon mapping on one GPU: light paths (instant radiosity's kernels), the photon map, its
+// kd-trees and estimates, the final gather, the interpolation and the caustics stay on the
+// device; the mesh, the direct light and the finish are the pieces every one-GPU backend
+// shares (cuda/OneDevice.h). The clusters depend on the geometry alone and are the host's
 // (clusterVertices), uploaded: a light move does not rebuild them. One stream: an update
 // waits for the device where the host needs a number (paths' hits, photons stored) and once
 // at the end, for the output.
