@@ -8,8 +8,9 @@
 # OUT: folder for the logs. GTEST_SRC: GoogleTest sources (e.g. a copy of /usr/src/googletest)
 # where no package exists. REFERENCE_DIR: CPU (Embree) solutions written by
 # `linkgi-bench --backend cpu --scenes cornell,tearoom --dump DIR`, to compare against.
-# STEPS: any of "build test sanitize bench partitions scale multi ab profile" (default: build
-# test sanitize bench partitions scale). ab: conference with the shipped defaults against the
+# STEPS: any of "build test sanitize bench photons partitions scale multi ab profile"
+# (default: build test sanitize bench partitions scale). photons: photon mapping's H200
+# benchmark (Methods.md), three rounds, and its CPU/CUDA test under racecheck. ab: conference with the shipped defaults against the
 # testing knobs' variants (the linear BVH, PLOC radii), interleaved, in one run. profile:
 # Nsight Compute's summary of the link, compression and bounce kernels (where ncu exists).
 set -uo pipefail
@@ -67,6 +68,22 @@ if has bench; then
   "$build/bin/linkgi-bench" --backend cuda --scenes torso,iphi,conference --bvh-build sah \
     --repeat 3 --no-gather >> "$out/bench.jsonl" 2>> "$out/steps.log"
   cat "$out/bench.jsonl"
+fi
+if has photons; then
+  # Photon mapping (issue 14): three rounds of the H200 benchmark at 262,144 and 1M photons
+  # asked, then the machine's CPU on the 1M case, and the CPU/CUDA tests under racecheck.
+  stamp photons
+  for round in 1 2 3; do
+    for p in 262144 1048576; do
+      "$build/bin/linkgi-bench" --backend cuda --method photon-mapping --scenes cornell,conference,caustics \
+        --photons $p --clusters 4096 --repeat 5 --no-bare --no-gather >> "$out/bench-pm-h200-$p.jsonl" 2>> "$out/steps.log"
+    done
+  done
+  "$build/bin/linkgi-bench" --backend cpu --method photon-mapping --scenes cornell,conference --photons 1048576 \
+    --clusters 4096 --repeat 3 --no-bare --no-gather > "$out/bench-pm-cpu-1048576.jsonl" 2>> "$out/steps.log"
+  compute-sanitizer --tool racecheck --error-exitcode 3 "$tests" --gtest_filter='TestPhotonMapping.CpuAndCuda*' \
+    > "$out/racecheck-pm.log" 2>&1
+  echo "racecheck exit $?" | tee -a "$out/racecheck-pm.log"
 fi
 if has partitions; then
   stamp partitions
