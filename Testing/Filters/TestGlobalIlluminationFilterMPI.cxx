@@ -3,7 +3,7 @@
 // the light of all of them: its arrays equal, point for point, those of one process lighting
 // the appended surface (block, then floor); the block's shadow falls on rank 1's floor, which
 // a rank lighting its partition alone does not see; a light move exchanges nothing and re-runs
-// only the light links and the bounces. Instant radiosity gathers by rows too. Then the floor
+// only the light links and the bounces. Instant radiosity and photon mapping gather by rows too. Then the floor
 // split between ranks 0 and 1 with a layer of ghost cells each: the ghost points get their
 // owner's values.
 #include "vtkGlobalIlluminationFilter.h"
@@ -249,29 +249,37 @@ int main(int argc, char* argv[])
   ok &= Check(rank, Field(out, "LinkGI.LinkBuilds") == links, "a light move builds no links");
   ok &= Check(rank, Field(out, "LinkGI.LightLinkBuilds") == lightLinks + 1, "a light move re-runs the light links");
 
-  // Instant radiosity splits its gather by rows as well: one exchange of E_ind, the arrays
-  // those of one process.
+  // Instant radiosity and photon mapping split their gathers by rows as well: instant
+  // radiosity exchanges E_ind once, photon mapping its clusters' irradiance and distances;
+  // the arrays are those of one process.
+  for (const int method : { vtkGlobalIlluminationFilter::INSTANT_RADIOSITY, vtkGlobalIlluminationFilter::PHOTON_MAPPING })
   {
-    vtkNew<vtkGlobalIlluminationFilter> rowsIR, wholeIR;
-    for (vtkGlobalIlluminationFilter* f : { rowsIR.Get(), wholeIR.Get() })
+    const std::string label = method == vtkGlobalIlluminationFilter::INSTANT_RADIOSITY ? "instant radiosity" : "photon mapping";
+    vtkNew<vtkGlobalIlluminationFilter> rows, one;
+    for (vtkGlobalIlluminationFilter* f : { rows.Get(), one.Get() })
     {
       Configure(f, light);
-      f->SetMethodToInstantRadiosity();
+      f->SetMethod(method);
+      f->SetNumberOfPhotons(32768);
+      f->SetNumberOfClusters(256);
+      f->SetFinalGatherRays(64);
     }
-    rowsIR->SetInputData(mine);
-    rowsIR->Update();
-    wholeIR->SetController(nullptr);
-    wholeIR->SetInputData(append->GetOutput());
-    wholeIR->Update();
-    vtkPolyData* ir = rowsIR->GetOutput();
-    ok &= Check(rank, Field(ir, "LinkGI.RadianceBytesExchanged") == 12.0 * elements,
-      "instant radiosity exchanged E_ind once (" + std::to_string(Field(ir, "LinkGI.RadianceBytesExchanged")) + " B)");
+    rows->SetInputData(mine);
+    rows->Update();
+    one->SetController(nullptr);
+    one->SetInputData(append->GetOutput());
+    one->Update();
+    vtkPolyData* lit = rows->GetOutput();
+    const double exchanges = method == vtkGlobalIlluminationFilter::INSTANT_RADIOSITY ? 1.0 : 2.0;
+    ok &= Check(rank, Field(lit, "LinkGI.RadianceBytesExchanged") == 12.0 * elements * exchanges,
+      label + " exchanged " + std::to_string(int(exchanges)) + " vectors of 12 B per element (" +
+        std::to_string(Field(lit, "LinkGI.RadianceBytesExchanged")) + " B)");
     if (mine->GetNumberOfPoints() > 0)
     {
       for (const char* name : { "DirectIrradiance", "IndirectIrradiance", "Radiance" })
       {
-        const double d = Difference(ir, wholeIR->GetOutput(), offset, name);
-        ok &= Check(rank, d <= 1e-4, std::string("instant radiosity's ") + name + " equals one process's (" + std::to_string(d) + ")");
+        const double d = Difference(lit, one->GetOutput(), offset, name);
+        ok &= Check(rank, d <= 1e-4, label + "'s " + name + " equals one process's (" + std::to_string(d) + ")");
       }
     }
   }

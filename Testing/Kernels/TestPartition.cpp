@@ -1,8 +1,9 @@
 // Partitioned solves (SolverOptions::partition, issue 16): processes that each link (or, for
-// instant radiosity, gather) only their rows and complete every bounce through an exchange
+// instant radiosity and photon mapping, gather) only their rows and complete every bounce through an exchange
 // give, together, the one-process result bit for bit. Two threads stand in for two MPI ranks.
 #include "SceneFixtures.h"
 
+#include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>
@@ -154,6 +155,54 @@ TEST(TestPartition, InstantRadiosityGathersOnlyItsRows)
     EXPECT_LT(stats[p].rays, whole.stats().rays * 3 / 4) << "each gathers its rows only";
   }
   EXPECT_EQ(stats[0].rays + stats[1].rays, whole.stats().rays);
+}
+
+// Photon mapping splits its final gather by the clusters' samples and its caustics by rows:
+// exchanges complete them, and every process interpolates the whole surface.
+TEST(TestPartition, PhotonMappingGathersOnlyItsClusters)
+{
+  for (const char* name : { "cornell", "caustics" })
+  {
+    const Scene s = makeStandardScene(name);
+    SolverOptions o;
+    o.backend = Backend::Cpu;
+    o.method = Method::PhotonMapping;
+    o.photonMapping.photons = 65536;
+    o.photonMapping.clusters = 512;
+    o.photonMapping.gatherRays = 64;
+    Solver whole;
+    const Solution one = whole.update(s, o);
+    SumExchange exchange(2);
+    Solution result[2];
+    SolverStats stats[2];
+    Solver solvers[2];
+    const auto run = [&](int p) {
+      auto part = std::make_shared<Partition>();
+      part->rows.resize(s.vertexCount());
+      for (std::size_t e = 0; e < s.vertexCount(); ++e)
+      {
+        part->rows[e] = std::uint8_t((e / 64) % 2 == std::size_t(p));
+      }
+      part->exchange = [&exchange](std::vector<Vec3f>& v) { exchange(v); };
+      SolverOptions mine = o;
+      mine.partition = part;
+      result[p] = solvers[p].update(s, mine);
+      stats[p] = solvers[p].stats();
+    };
+    std::thread other(run, 1);
+    run(0);
+    other.join();
+    const bool caustics = !one.caustics.empty();
+    EXPECT_EQ(exchange.exchanges, caustics ? 3 : 2) << name << ": irradiance and distances, then caustics";
+    for (int p = 0; p < 2; ++p)
+    {
+      EXPECT_TRUE(sameBits(result[p].indirect, one.indirect)) << name << ", process " << p;
+      EXPECT_TRUE(sameBits(result[p].radiance, one.radiance)) << name << ", process " << p;
+      EXPECT_TRUE(sameBits(result[p].caustics, one.caustics)) << name << ", process " << p;
+      EXPECT_LT(stats[p].rays, whole.stats().rays * 3 / 4) << name << ": each gathers its clusters only";
+    }
+    EXPECT_EQ(stats[0].rays + stats[1].rays, whole.stats().rays) << name;
+  }
 }
 
 TEST(TestPartition, AMaskOfTheWrongSizeIsNamed)

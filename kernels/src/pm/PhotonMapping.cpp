@@ -8,6 +8,7 @@
 #include "linkgi/Sampling.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -169,7 +170,7 @@ std::vector<Vec3f> causticReference(const Scene& s, const std::vector<Vec3f>& fa
 }
 
 std::vector<Vec3f> causticIrradiance(const Scene& s, const PhotonMap& map, std::uint32_t k, float maxRadius,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress, const std::uint8_t* rows)
 {
   std::vector<Vec3f> out(s.vertexCount(), Vec3f(0.f));
   if (map.causticPositions.empty())
@@ -183,8 +184,11 @@ std::vector<Vec3f> causticIrradiance(const Scene& s, const PhotonMap& map, std::
     std::vector<Neighbour> heap(k);
     for (std::size_t v = begin; v < end; ++v)
     {
-      out[v] = causticEstimate(view, s.positions[v], s.normals[v], s.albedo[v], area[v], k, maxRadius * maxRadius,
-        heap.data());
+      if (!rows || rows[v])
+      {
+        out[v] = causticEstimate(view, s.positions[v], s.normals[v], s.albedo[v], area[v], k,
+          maxRadius * maxRadius, heap.data());
+      }
     }
   }, progress);
   return out;
@@ -412,7 +416,7 @@ Clusters clusterVertices(const Scene& s, std::uint32_t k, float alpha, int itera
 SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
   const std::vector<Vec3f>& faceNormals, const RayTracer& tracer, const PhotonMap& map,
   const Clusters& clusters, const std::vector<Vec3f>& directions, std::uint32_t seed, float side,
-  bool twoSided, const ProgressCallback& progress)
+  bool twoSided, const ProgressCallback& progress, const std::uint8_t* rows)
 {
   const std::size_t nc = clusters.count(), n = directions.size();
   const ir::PathSetup setup = pathSetup(s, faceNormals, SolverOptions());
@@ -422,7 +426,9 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
   SampleIrradiance out;
   out.irradiance.assign(nc, Vec3f(0.f));
   out.harmonicDistance.assign(nc, diagonal);
+  std::atomic<std::uint64_t> samplesGathered{ 0 };
   parallelFor("Gather", nc, 4, [&](std::size_t begin, std::size_t end) {
+    std::uint64_t gathered = 0;
     std::vector<Ray> rays(n);
     std::vector<Hit> hits(n);
     const auto trace = [&tracer](const Ray& ray) {
@@ -433,6 +439,12 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
     for (std::size_t j = begin; j < end; ++j)
     {
       const Index v = clusters.sample[j];
+      if (rows && !rows[v])
+      {
+        out.harmonicDistance[j] = 0.f; // another process's cluster
+        continue;
+      }
+      ++gathered;
       const Vec3f normal = s.normals[v] * side;
       const Frame frame = vertexFrame(normal, true, seed, side > 0.f ? v : Index(v + s.vertexCount()));
       const Vec3f origin = elementRayOrigin(s.positions[v], normal, shifts[v], view.eps);
@@ -464,8 +476,9 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
         out.harmonicDistance[j] = float(double(hitCount) / inverseDistances);
       }
     }
+    samplesGathered += gathered;
   }, progress);
-  out.rays = std::uint64_t(nc) * n;
+  out.rays = samplesGathered * n;
   return out;
 }
 

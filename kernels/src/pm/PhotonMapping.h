@@ -112,16 +112,18 @@ struct SampleIrradiance
 /// Final gather: `directions` (a cosine-weighted set, makeDirectionSet) from the `side`
 /// (+1 front, -1 back) of each sample vertex, twisted per element by `seed`; a hit reads the
 /// photon map's radiance, a miss the environment, the back of a one-sided surface is black.
+/// With `rows` (one flag per vertex, this side's elements), only the clusters whose sample is
+/// such a row gather; the others get zero irradiance and distance.
 SampleIrradiance finalGather(const Scene& scene, const std::vector<Vec3f>& shifts,
   const std::vector<Vec3f>& faceNormals, const RayTracer& tracer, const PhotonMap& map,
   const Clusters& clusters, const std::vector<Vec3f>& directions, std::uint32_t seed, float side,
-  bool twoSided, const ProgressCallback& progress = {});
+  bool twoSided, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 
 /// Caustic irradiance at every vertex: the k nearest caustic photons on its side within
 /// `maxRadius` (the flux each reflects, over pi r^2, divided by the vertex's albedo); zero
-/// without caustic photons.
+/// without caustic photons. With `rows` (one flag per vertex), only those vertices.
 std::vector<Vec3f> causticIrradiance(const Scene& scene, const PhotonMap& map, std::uint32_t k,
-  float maxRadius, const ProgressCallback& progress = {});
+  float maxRadius, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 
 /// The caustic reference: light tracing. `paths` light paths from the point, spot and
 /// directional lights, each to its first diffuse hit through any mirrors and glass; a hit

@@ -109,6 +109,10 @@ private:
     const PhotonMap& photons = mapStaged ? nextMap : map;
     const Clusters& groups = clustersStaged ? nextClusters : clusters;
     const std::vector<Vec3f> directions = makeDirectionSet(o.photonMapping.gatherRays);
+    // Under MPI each process gathers the clusters whose samples are its rows, and exchanges
+    // complete them; every process then interpolates the whole surface.
+    const std::size_t nv = s.vertexCount();
+    const std::uint8_t* rows = ownRows(o, Elements{ nv, o.twoSided }.count());
     nextGathered.clear();
     nextGatherRays = 0;
     for (const float side : { 1.f, -1.f })
@@ -117,8 +121,13 @@ private:
       {
         break;
       }
-      const SampleIrradiance samples = finalGather(s, geometry.shifts, geometry.faceNormals,
-        *geometry.tracer, photons, groups, directions, o.seed, side, o.twoSided, c.progress);
+      const std::uint8_t* sideRows = rows ? rows + (side > 0.f ? 0 : nv) : nullptr;
+      SampleIrradiance samples = finalGather(s, geometry.shifts, geometry.faceNormals,
+        *geometry.tracer, photons, groups, directions, o.seed, side, o.twoSided, c.progress, sideRows);
+      if (rows)
+      {
+        completeSamples(o, groups, Elements{ nv, o.twoSided }.count(), samples);
+      }
       const std::vector<Vec3f> e = interpolate(s, groups, samples);
       nextGathered.insert(nextGathered.end(), e.begin(), e.end());
       nextGatherRays += samples.rays;
@@ -128,14 +137,41 @@ private:
     if (!photons.causticPositions.empty())
     {
       nextCaustics = causticIrradiance(s, photons, o.photonMapping.estimatePhotons,
-        kCausticRadius * boundingDiagonal(s.positions));
+        kCausticRadius * boundingDiagonal(s.positions), {}, rows);
       nextCaustics.resize(nextGathered.size(), Vec3f(0.f)); // backs: none
+      if (rows)
+      {
+        o.partition->exchange(nextCaustics);
+      }
       for (std::size_t e = 0; e < nextGathered.size(); ++e)
       {
         nextGathered[e] += nextCaustics[e];
       }
     }
     gatherStaged = true;
+  }
+
+  /// The processes' samples made whole: each cluster's values travel in its sample vertex's
+  /// element of an exchanged vector (zero elsewhere, so the sums are exact).
+  static void completeSamples(const SolverOptions& o, const Clusters& groups, std::size_t elements,
+    SampleIrradiance& samples)
+  {
+    std::vector<Vec3f> packed(elements, Vec3f(0.f));
+    for (std::size_t j = 0; j < groups.count(); ++j)
+    {
+      packed[groups.sample[j]] = samples.irradiance[j];
+    }
+    o.partition->exchange(packed);
+    for (std::size_t j = 0; j < groups.count(); ++j)
+    {
+      samples.irradiance[j] = packed[groups.sample[j]];
+      packed[groups.sample[j]] = Vec3f(samples.harmonicDistance[j], 0.f, 0.f);
+    }
+    o.partition->exchange(packed);
+    for (std::size_t j = 0; j < groups.count(); ++j)
+    {
+      samples.harmonicDistance[j] = packed[groups.sample[j]].x;
+    }
   }
 
   CpuGeometry geometry;
