@@ -4,7 +4,7 @@ per-rank peak memory for 1, 2 and 4 ranks, and what the ranks exchange.
 Driver (any Python 3; runs pvbatch under mpirun and, if there is no display, Xvfb):
 
     python3 paraview-plugin/examples/benchmark_mpi.py --plugin <LinkGI.so> \
-        [--ranks 1,2,4] [--repeats 5] [--extent 40] [--output result.json]
+        [--ranks 1,2,4] [--repeats 5] [--extent 40] [--method 0] [--output result.json]
 
 with PYTHONPATH holding ParaView's Python modules (as Testing/ParaView/CMakeLists.txt sets
 it). Each run is `mpirun -np N --oversubscribe /usr/bin/time -f ... pvbatch --mpi
@@ -23,7 +23,8 @@ and `/usr/bin/time` gives every rank's peak resident memory (`maxrss_mb`, one pe
 The triangles rank 0 received for its shadow maps (36 bytes each, once per geometry
 change) and the bytes of the others' partitions its filter received at the first render
 come from the representation. `--representation Surface` runs the same without
-LinkGI: pvbatch's own memory per rank, to subtract. The table gives medians, minimum and maximum over
+LinkGI: pvbatch's own memory per rank, to subtract. `--method` picks the representation's
+Method (0 links, 1 instant radiosity, 2 implicit visibility, 3 photon mapping). The table gives medians, minimum and maximum over
 `--repeats` runs and the ratios to one rank. On a machine with fewer cores than ranks the
 ranks share cores: the ratios then show the overhead of the partitioning, not a speed-up.
 """
@@ -72,6 +73,7 @@ def child(arguments):
     if arguments.representation == "Global Illumination":
         display.GlobalIlluminationRays = arguments.rays
         display.GlobalIlluminationBounces = arguments.bounces
+        display.GlobalIlluminationMethod = arguments.method
     simple.ResetCamera(view)
     simple.Render(view)
     first = time.perf_counter() - started
@@ -137,7 +139,7 @@ def try_once(arguments, ranks):
                "/usr/bin/time", "-f", "LINKGI_MAXRSS_KB %M",
                arguments.pvbatch, "--mpi", HERE, "--child", "--plugin", arguments.plugin,
                "--extent", str(arguments.extent), "--rays", str(arguments.rays),
-               "--bounces", str(arguments.bounces),
+               "--bounces", str(arguments.bounces), "--method", str(arguments.method),
                "--representation", arguments.representation]
     if not os.environ.get("DISPLAY") and arguments.xvfb:
         command = [arguments.xvfb] + command
@@ -201,7 +203,7 @@ def driver(arguments):
     out = {
         "benchmark": "benchmark_mpi.py",
         "machine": {"cpu": cpu_name(), "cores": os.cpu_count(), "host": platform.node()},
-        "settings": {"representation": arguments.representation,
+        "settings": {"representation": arguments.representation, "method": arguments.method,
                      "extent": arguments.extent, "rays": arguments.rays,
                      "bounces": arguments.bounces, "repeats": arguments.repeats},
         "results": table,
@@ -234,6 +236,8 @@ def main():
     parser.add_argument("--extent", type=int, default=40)
     parser.add_argument("--rays", type=int, default=64)
     parser.add_argument("--bounces", type=int, default=3)
+    parser.add_argument("--method", type=int, default=0,
+                        help="0 links, 1 instant radiosity, 2 implicit visibility, 3 photon mapping")
     parser.add_argument("--representation", default="Global Illumination",
                         help="Surface: the same runs without LinkGI, for pvbatch's own memory")
     parser.add_argument("--pvbatch", default=shutil.which("pvbatch") or "pvbatch")
