@@ -24,6 +24,9 @@ SolverOptions onCuda(Method method)
   o.raysPerVertex = 16;
   o.bounces = 3;
   o.backend = Backend::Cuda;
+  o.photonMapping.photons = 16384; // small: every stage fails in turn, each an update
+  o.photonMapping.clusters = 256;
+  o.photonMapping.gatherRays = 64;
   return o;
 }
 
@@ -73,7 +76,8 @@ void expectSameBits(const Solution& a, const Solution& b)
   EXPECT_EQ(std::memcmp(a.direct.data(), b.direct.data(), a.direct.size() * sizeof(Vec3f)), 0);
 }
 
-const Method kMethods[] = { Method::Links, Method::InstantRadiosity, Method::ImplicitVisibility };
+const Method kMethods[] = { Method::Links, Method::InstantRadiosity, Method::ImplicitVisibility,
+  Method::PhotonMapping };
 }
 
 TEST(CudaFallback, ABackendThatCannotBeMadeFallsBackToTheCpu)
