@@ -65,7 +65,8 @@ TEST(NearLight, TheIrradianceOfALightAtAVertexIsBounded)
 
 TEST(NearLight, ASolutionWithALightAtAVertexIsFinite)
 {
-  for (const Method method : { Method::Links, Method::InstantRadiosity, Method::ImplicitVisibility })
+  for (const Method method :
+    { Method::Links, Method::InstantRadiosity, Method::ImplicitVisibility, Method::PhotonMapping })
   {
     for (const float d : { 1e-19f, 1e-21f, 1e-22f })
     {
@@ -73,6 +74,8 @@ TEST(NearLight, ASolutionWithALightAtAVertexIsFinite)
       SolverOptions o;
       o.method = method;
       o.raysPerVertex = 16;
+      o.photonMapping.photons = 16384;
+      o.photonMapping.gatherRays = 64;
       o.bounces = 4;
       o.twoSided = method != Method::ImplicitVisibility; // its elements are one-sided
       Solver solver;
