@@ -1,6 +1,7 @@
-// Instant radiosity on one GPU: the mesh, its BVH (cuda/DeviceBvh), the proxy, the VPLs and
-// the gather stay on the device; the direct light and the finish (smoothing, radiance) are
-// the link method's CUDA launchers (cuda/Kernels.h). The host builds the source table; the
+// Instant radiosity on one GPU: the proxy, the VPLs and the gather stay on the device; the
+// mesh and its BVH, the light paths' scene, the direct light and the finish (smoothing,
+// radiance) are the pieces every one-GPU backend shares (cuda/OneDevice.h, ir/IrKernels.h's
+// DevicePathScene). The host builds the source table; the
 // device packs the VPL set in the layout of the CPU's packVpls and clusters the proxy as the
 // CPU's buildProxy does. One stream: an update waits for the device where the host needs a
 // number (the VPLs found, the proxy's size) and once at the end, for the output.
