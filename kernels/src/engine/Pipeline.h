@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace linkgi::engine
@@ -115,6 +116,37 @@ public:
   /// After a commit: "cpu" / "cuda", what it ran on, the GPUs used (0 on the CPU) and the
   /// sizes of its current structures into `stats`.
   virtual void describe(SolverStats& stats) const = 0;
+};
+
+/// One stage's result in a backend: what the last commit kept, and what this update staged.
+/// A stage writes stage(); later stages of the update read now(); commit() keeps the staged
+/// value (and frees the one it replaces), discard() drops it.
+template <typename T>
+class Staged
+{
+public:
+  T& stage()
+  {
+    staged = true;
+    return next;
+  }
+  const T& now() const { return staged ? next : kept; }
+  /// The last commit's value, whatever this update staged (what describe() reports).
+  const T& committed() const { return kept; }
+  void commit()
+  {
+    if (staged)
+    {
+      std::swap(kept, next);
+      next = T();
+      staged = false;
+    }
+  }
+  void discard() { staged = false; }
+
+private:
+  T kept, next;
+  bool staged = false;
 };
 
 /// A solution method: its stages, and its backends.

@@ -136,9 +136,8 @@ public:
       case kVplStage:
         return traceVpls(c);
       case kLightLinkStage:
-        nextDirect = computeDirectLight(c.scene, geometry.topology, geometry.shifts,
+        direct.stage() = computeDirectLight(c.scene, geometry.topology, geometry.shifts,
           *geometry.tracer, c.options.twoSided, c.options.lightOversampling, c.progress);
-        directStaged = true;
         return;
       case kGatherStage:
         return gather(c);
@@ -149,25 +148,17 @@ public:
 
   void commit() override
   {
-    if (vplsStaged)
-    {
-      std::swap(vpls, nextVpls);
-    }
-    if (directStaged)
-    {
-      std::swap(direct, nextDirect);
-    }
-    if (gatherStaged)
-    {
-      std::swap(gathered, nextGathered);
-      gatherRays = nextGatherRays;
-    }
-    vplsStaged = directStaged = gatherStaged = geometryTouched = false;
+    vpls.commit();
+    direct.commit();
+    gathered.commit();
+    geometryTouched = false;
   }
 
   bool discard() override
   {
-    vplsStaged = directStaged = gatherStaged = false;
+    vpls.discard();
+    direct.discard();
+    gathered.discard();
     // The tracers and host geometry are updated in place (see LinksCpu).
     const bool whole = !geometryTouched;
     geometryTouched = false;
@@ -177,10 +168,10 @@ public:
   void describe(SolverStats& st) const override
   {
     geometry.describe(st);
-    st.rays = gatherRays;
+    st.rays = gathered.committed().rays;
     st.linksRaw = st.linksCompressed = st.linkBytes = 0;
-    st.lightRays = direct.shadowRays;
-    st.vpls = vpls.count();
+    st.lightRays = direct.committed().shadowRays;
+    st.vpls = vpls.committed().count();
   }
 
 private:
@@ -206,13 +197,12 @@ private:
   void traceVpls(const StageContext& c)
   {
     const PathSetup setup = buildPathSetup(c.scene, geometry.faceNormals, c.options);
-    nextVpls = traceVplsCpu(setup, *geometry.tracer, c.options.instantRadiosity.interleave, c.progress);
-    vplsStaged = true;
+    vpls.stage() = traceVplsCpu(setup, *geometry.tracer, c.options.instantRadiosity.interleave, c.progress);
   }
 
   void gather(const StageContext& c)
   {
-    const VplSet& set = vplsStaged ? nextVpls : vpls;
+    const VplSet& set = vpls.now();
     GatherParams gp;
     gp.dmin = c.options.instantRadiosity.clampDistance * boundingDiagonal(c.scene.positions);
     gp.eps = rayEpsilon(c.scene);
@@ -222,19 +212,18 @@ private:
     // Under MPI each process gathers its rows; one exchange completes E_ind everywhere, so
     // that the smoothing across partition boundaries sees its neighbours.
     const std::uint8_t* rows = ownRows(c.options, Elements{ c.scene.vertexCount(), c.options.twoSided }.count());
-    nextGathered = gatherCpu(c.scene, geometry.shifts, set, visibility, gp, c.options.twoSided,
-      &nextGatherRays, c.progress, rows);
+    Gathered& out = gathered.stage();
+    out.irradiance = gatherCpu(c.scene, geometry.shifts, set, visibility, gp, c.options.twoSided, &out.rays,
+      c.progress, rows);
     if (rows)
     {
-      c.options.partition->exchange(nextGathered);
+      c.options.partition->exchange(out.irradiance);
     }
-    gatherStaged = true;
   }
 
   void finish(const StageContext& c)
   {
-    finishSolution(c, geometry.topology, gatherStaged ? nextGathered : gathered,
-      directStaged ? nextDirect.irradiance : direct.irradiance);
+    finishSolution(c, geometry.topology, gathered.now().irradiance, direct.now().irradiance);
   }
 
   CpuGeometry geometry;
@@ -242,11 +231,15 @@ private:
   std::unique_ptr<RayTracer> proxyTracer;
   float proxyMargin = 0.f;
   bool geometryTouched = false;
-  VplSet vpls, nextVpls;
-  DirectLightResult direct, nextDirect;
-  std::vector<Vec3f> gathered, nextGathered;
-  std::uint64_t gatherRays = 0, nextGatherRays = 0;
-  bool vplsStaged = false, directStaged = false, gatherStaged = false;
+  /// The gather stage's results: E_ind per element and the shadow rays it traced.
+  struct Gathered
+  {
+    std::vector<Vec3f> irradiance;
+    std::uint64_t rays = 0;
+  };
+  Staged<VplSet> vpls;
+  Staged<DirectLightResult> direct;
+  Staged<Gathered> gathered;
 };
 }
 

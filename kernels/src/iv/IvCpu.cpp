@@ -40,22 +40,15 @@ public:
 
   void commit() override
   {
-    if (linksStaged)
-    {
-      std::swap(links, nextLinks);
-      nextLinks = LeafLinks();
-      nodeLinkCount = nextNodeLinkCount;
-    }
-    if (directStaged)
-    {
-      std::swap(direct, nextDirect);
-    }
-    linksStaged = directStaged = geometryTouched = false;
+    links.commit();
+    direct.commit();
+    geometryTouched = false;
   }
 
   bool discard() override
   {
-    linksStaged = directStaged = false;
+    links.discard();
+    direct.discard();
     // The tree, the tracer and the one-ring are updated in place: after a failure they may
     // belong to the failed scene, and the next update must rebuild them.
     const bool whole = !geometryTouched;
@@ -67,10 +60,11 @@ public:
   {
     geometry.describe(st);
     st.rays = 0; // visibility is implied: no link rays
-    st.linksRaw = nodeLinkCount;
-    st.linksCompressed = links.transport.nonZeros();
-    st.linkBytes = links.transport.bytes() + links.environment.bytes();
-    st.lightRays = direct.shadowRays;
+    const Links& l = links.committed();
+    st.linksRaw = l.nodeLinks;
+    st.linksCompressed = l.leaves.transport.nonZeros();
+    st.linkBytes = l.leaves.transport.bytes() + l.leaves.environment.bytes();
+    st.lightRays = direct.committed().shadowRays;
   }
 
 private:
@@ -107,25 +101,24 @@ private:
     };
     const NodeLinks created = createNodeLinks(tree, bins, lo, within(0.0, 0.6));
     const auto t = std::chrono::steady_clock::now();
-    nextLinks = pushToLeaves(tree, created, bins, c.scene.environment, geometry.shifts, within(0.6, 1.0));
-    nextNodeLinkCount = created.byReceiver.nonZeros();
+    Links& next = links.stage();
+    next.leaves = pushToLeaves(tree, created, bins, c.scene.environment, geometry.shifts, within(0.6, 1.0));
+    next.nodeLinks = created.byReceiver.nonZeros();
     c.part("RefinePush", msSince(t));
-    linksStaged = true;
   }
 
   void lightLinks(const StageContext& c)
   {
-    nextDirect = computeDirectLight(c.scene, geometry.topology, geometry.shifts, *geometry.tracer, false,
+    direct.stage() = computeDirectLight(c.scene, geometry.topology, geometry.shifts, *geometry.tracer, false,
       c.options.lightOversampling, c.progress);
-    directStaged = true;
   }
 
   void bounce(const StageContext& c)
   {
     const Scene& s = c.scene;
     const SolverOptions& o = c.options;
-    const LeafLinks& linksNow = linksStaged ? nextLinks : links;
-    const DirectLightResult& directNow = directStaged ? nextDirect : direct;
+    const LeafLinks& linksNow = links.now().leaves;
+    const DirectLightResult& directNow = direct.now();
     const std::size_t nv = s.vertexCount();
 
     const std::vector<Vec3f> texels = environmentTexelRadiance(s.environment);
@@ -167,10 +160,14 @@ private:
   ClusterTree tree;
   CubeBins bins;
   bool geometryTouched = false;
-  LeafLinks links, nextLinks;
-  std::uint64_t nodeLinkCount = 0, nextNodeLinkCount = 0;
-  DirectLightResult direct, nextDirect;
-  bool linksStaged = false, directStaged = false;
+  /// The link stage's results: the leaves' links, and how many node links made them.
+  struct Links
+  {
+    LeafLinks leaves;
+    std::uint64_t nodeLinks = 0;
+  };
+  Staged<Links> links;
+  Staged<DirectLightResult> direct;
 };
 }
 

@@ -29,51 +29,37 @@ public:
       case kPhotonStage:
         return tracePhotons(c);
       case kClusterStage:
-        nextClusters = clusterVertices(c.scene, c.options.photonMapping.clusters,
+        clusters.stage() = clusterVertices(c.scene, c.options.photonMapping.clusters,
           c.options.photonMapping.alpha, kMeansIterations, c.progress);
-        clustersStaged = true;
         return;
       case kLightLinkStage:
-        nextDirect = computeDirectLight(c.scene, geometry.topology, geometry.shifts,
+        direct.stage() = computeDirectLight(c.scene, geometry.topology, geometry.shifts,
           *geometry.tracer, c.options.twoSided, c.options.lightOversampling, c.progress);
-        directStaged = true;
         return;
       case kGatherStage:
         return gather(c);
       case kFinishStage:
-        finishSolution(c, geometry.topology, gatherStaged ? nextGathered : gathered,
-          directStaged ? nextDirect.irradiance : direct.irradiance);
-        c.solution.caustics = gatherStaged ? nextCaustics : caustics;
+        finishSolution(c, geometry.topology, gathered.now().irradiance, direct.now().irradiance);
+        c.solution.caustics = gathered.now().caustics;
         return;
     }
   }
 
   void commit() override
   {
-    if (mapStaged)
-    {
-      std::swap(map, nextMap);
-    }
-    if (clustersStaged)
-    {
-      std::swap(clusters, nextClusters);
-    }
-    if (directStaged)
-    {
-      std::swap(direct, nextDirect);
-    }
-    if (gatherStaged)
-    {
-      std::swap(gathered, nextGathered);
-      std::swap(caustics, nextCaustics);
-      gatherRays = nextGatherRays;
-    }
-    mapStaged = clustersStaged = directStaged = gatherStaged = geometryTouched = false;
+    map.commit();
+    clusters.commit();
+    direct.commit();
+    gathered.commit();
+    geometryTouched = false;
   }
 
   bool discard() override
   {
-    mapStaged = clustersStaged = directStaged = gatherStaged = false;
+    map.discard();
+    clusters.discard();
+    direct.discard();
+    gathered.discard();
     // The tracer and the host geometry are updated in place (see LinksCpu).
     const bool whole = !geometryTouched;
     geometryTouched = false;
@@ -83,38 +69,46 @@ public:
   void describe(SolverStats& st) const override
   {
     geometry.describe(st);
-    st.rays = gatherRays;
+    st.rays = gathered.committed().rays;
     st.linksRaw = st.linksCompressed = st.linkBytes = 0;
-    st.lightRays = direct.shadowRays;
-    st.photons = map.count();
-    st.clusters = clusters.count();
+    st.lightRays = direct.committed().shadowRays;
+    st.photons = map.committed().count();
+    st.clusters = clusters.committed().count();
   }
 
 private:
+  /// The gather stage's results: E_ind per element (caustics included), the caustics alone
+  /// (front sides; empty without caustic photons) and the rays it traced.
+  struct Gathered
+  {
+    std::vector<Vec3f> irradiance, caustics;
+    std::uint64_t rays = 0;
+  };
+
   void tracePhotons(const StageContext& c)
   {
     const auto half = [&c](double lo) -> ProgressCallback {
       return [&c, lo](const char*, double f) { return !c.progress || c.progress("Photons", lo + 0.5 * f); };
     };
-    linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, *geometry.tracer, c.options, nextMap, half(0.0));
-    estimateRadiance(nextMap, c.options.photonMapping.estimatePhotons, siteStride(nextMap.count()),
+    PhotonMap& next = map.stage();
+    linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, *geometry.tracer, c.options, next, half(0.0));
+    estimateRadiance(next, c.options.photonMapping.estimatePhotons, siteStride(next.count()),
       kEstimateRadius * boundingDiagonal(c.scene.positions), half(0.5));
-    mapStaged = true;
   }
 
   void gather(const StageContext& c)
   {
     const Scene& s = c.scene;
     const SolverOptions& o = c.options;
-    const PhotonMap& photons = mapStaged ? nextMap : map;
-    const Clusters& groups = clustersStaged ? nextClusters : clusters;
+    const PhotonMap& photons = map.now();
+    const Clusters& groups = clusters.now();
     const std::vector<Vec3f> directions = makeDirectionSet(o.photonMapping.gatherRays);
     // Under MPI each process gathers the clusters whose samples are its rows, and exchanges
     // complete them; every process then interpolates the whole surface.
-    const std::size_t nv = s.vertexCount();
-    const std::uint8_t* rows = ownRows(o, Elements{ nv, o.twoSided }.count());
-    nextGathered.clear();
-    nextGatherRays = 0;
+    const std::size_t nv = s.vertexCount(), ne = Elements{ nv, o.twoSided }.count();
+    const std::uint8_t* rows = ownRows(o, ne);
+    Gathered& out = gathered.stage();
+    out = Gathered();
     for (const float side : { 1.f, -1.f })
     {
       if (side < 0.f && !o.twoSided)
@@ -126,29 +120,27 @@ private:
         *geometry.tracer, photons, groups, directions, o.seed, side, o.twoSided, c.progress, sideRows);
       if (rows)
       {
-        completeSamples(o, groups, Elements{ nv, o.twoSided }.count(), samples);
+        completeSamples(o, groups, ne, samples);
       }
       const std::vector<Vec3f> e = interpolate(s, groups, samples);
-      nextGathered.insert(nextGathered.end(), e.begin(), e.end());
-      nextGatherRays += samples.rays;
+      out.irradiance.insert(out.irradiance.end(), e.begin(), e.end());
+      out.rays += samples.rays;
     }
     // Caustics, on the front sides: density estimation at every vertex, part of E_ind.
-    nextCaustics.clear();
     if (!photons.causticPositions.empty())
     {
-      nextCaustics = causticIrradiance(s, photons, o.photonMapping.estimatePhotons,
+      out.caustics = causticIrradiance(s, photons, o.photonMapping.estimatePhotons,
         kCausticRadius * boundingDiagonal(s.positions), {}, rows);
-      nextCaustics.resize(nextGathered.size(), Vec3f(0.f)); // backs: none
+      out.caustics.resize(ne, Vec3f(0.f)); // backs: none
       if (rows)
       {
-        o.partition->exchange(nextCaustics);
+        o.partition->exchange(out.caustics);
       }
-      for (std::size_t e = 0; e < nextGathered.size(); ++e)
+      for (std::size_t e = 0; e < ne; ++e)
       {
-        nextGathered[e] += nextCaustics[e];
+        out.irradiance[e] += out.caustics[e];
       }
     }
-    gatherStaged = true;
   }
 
   /// The processes' samples made whole: each cluster's values travel in its sample vertex's
@@ -176,12 +168,10 @@ private:
 
   CpuGeometry geometry;
   bool geometryTouched = false;
-  PhotonMap map, nextMap;
-  Clusters clusters, nextClusters;
-  DirectLightResult direct, nextDirect;
-  std::vector<Vec3f> gathered, nextGathered, caustics, nextCaustics;
-  std::uint64_t gatherRays = 0, nextGatherRays = 0;
-  bool mapStaged = false, clustersStaged = false, directStaged = false, gatherStaged = false;
+  Staged<PhotonMap> map;
+  Staged<Clusters> clusters;
+  Staged<DirectLightResult> direct;
+  Staged<Gathered> gathered;
 };
 }
 
