@@ -1,4 +1,5 @@
 #include "vtkGlobalIlluminationRepresentation.h"
+#include "vtkGlobalIlluminationRepresentationInternals.h"
 
 #include "vtkCamera.h"
 #include "vtkCommand.h"
@@ -40,6 +41,8 @@
 #include <string>
 #include <vector>
 
+using namespace vtkGlobalIlluminationRepresentationHelpers;
+
 namespace
 {
 /// `point` (x, y, z) moved by the homogeneous `matrix`.
@@ -51,17 +54,6 @@ void Transform(vtkMatrix4x4* matrix, double point[3])
   {
     point[i] = out[3] != 0.0 ? out[i] / out[3] : out[i];
   }
-}
-
-vtkGlobalIlluminationShading* Shading(vtkMapper* mapper)
-{
-  return static_cast<vtkGlobalIlluminationCompositeMapper*>(mapper)->GetShading();
-}
-
-int FieldInt(vtkDataObject* data, const char* name)
-{
-  vtkAbstractArray* array = data ? data->GetFieldData()->GetAbstractArray(name) : nullptr;
-  return array && array->GetNumberOfTuples() > 0 ? array->GetVariantValue(0).ToInt() : 0;
 }
 
 /// The registered representation proxy whose active representation in this process is
@@ -105,33 +97,6 @@ void AnyOverProcesses(bool& a, bool& b)
   b = global[1] != 0;
 }
 }
-
-//------------------------------------------------------------------------------
-struct vtkGlobalIlluminationRepresentation::vtkInternals
-{
-  vtkNew<vtkGlobalIlluminationFilter> Filter;
-  std::vector<vtkSmartPointer<vtkLight>> Lights; // world-space copies of the view's lights
-  std::set<std::string> Warnings;                // each shown once
-
-  vtkNew<vtkGlobalIlluminationDrawnAlbedo> DrawnAlbedo; // the albedo is what is drawn
-
-  // In a parallel run, the other processes' triangles for the shadow maps.
-  vtkNew<vtkGlobalIlluminationGlobalCasters> GlobalCasters;
-  vtkNew<vtkPolyData> EmptyPartition; // the filter's input where nothing was delivered
-
-  // What the mapper drew last (its block attributes are per block object).
-  vtkDataObject* Drawn = nullptr;
-  vtkMTimeType DrawnTime = 0;
-
-  int ShownRequest = 0; // the worker's request whose solution is drawn
-  vtkMTimeType SolvedTime = 0; // the drawn solution's, where the filter is synchronous
-
-  // Where renders do not wait, on the process with the view's interactor (the GUI's
-  // client): polls the representation proxy, this object or its copy on the server.
-  vtkNew<vtkGlobalIlluminationAsyncWatcher> Watcher;
-  vtkWeakPointer<vtkSMProxy> Proxy;
-  bool ToldServers = false;
-};
 
 vtkStandardNewMacro(vtkGlobalIlluminationRepresentation);
 
@@ -475,168 +440,6 @@ void vtkGlobalIlluminationRepresentation::GatherLights(vtkRenderer* renderer)
       filter->AddLight(internals.Lights[i]);
     }
   }
-}
-
-//------------------------------------------------------------------------------
-
-void vtkGlobalIlluminationRepresentation::SetRaysPerVertex(int rays)
-{
-  this->Internals->Filter->SetRaysPerVertex(rays);
-}
-
-void vtkGlobalIlluminationRepresentation::SetNumberOfBounces(int bounces)
-{
-  this->Internals->Filter->SetNumberOfBounces(bounces);
-}
-
-void vtkGlobalIlluminationRepresentation::SetMethod(int method)
-{
-  this->Internals->Filter->SetMethod(method);
-}
-
-void vtkGlobalIlluminationRepresentation::SetSmoothing(int smoothing)
-{
-  this->Internals->Filter->SetSmoothing(smoothing);
-}
-
-void vtkGlobalIlluminationRepresentation::SetEnvironmentColor(double r, double g, double b)
-{
-  this->Internals->Filter->SetEnvironmentColor(r, g, b);
-}
-
-void vtkGlobalIlluminationRepresentation::SetLightIntensityScale(double scale)
-{
-  this->Internals->Filter->SetLightIntensityScale(scale);
-  Shading(this->Mapper)->SetLightIntensityScale(scale);
-}
-
-void vtkGlobalIlluminationRepresentation::SetDisplayMode(int mode)
-{
-  Shading(this->Mapper)->SetDisplayMode(mode);
-}
-
-void vtkGlobalIlluminationRepresentation::SetExposure(double exposure)
-{
-  Shading(this->Mapper)->SetExposure(exposure);
-}
-
-void vtkGlobalIlluminationRepresentation::SetToneMapping(int toneMapping)
-{
-  Shading(this->Mapper)->SetToneMapping(toneMapping);
-}
-
-void vtkGlobalIlluminationRepresentation::SetShadows(int shadows)
-{
-  Shading(this->Mapper)->SetShadows(shadows);
-}
-
-void vtkGlobalIlluminationRepresentation::SetUseKeyLight(bool use)
-{
-  this->UseKeyLight = use;
-}
-
-void vtkGlobalIlluminationRepresentation::SetTemporalBlend(double factor)
-{
-  this->Internals->Filter->SetTemporalBlend(factor);
-}
-
-double vtkGlobalIlluminationRepresentation::GetTemporalBlend()
-{
-  return this->Internals->Filter->GetTemporalBlend();
-}
-
-//------------------------------------------------------------------------------
-double vtkGlobalIlluminationRepresentation::GetPartitionBytesReceived()
-{
-  vtkDataObject* output = this->Internals->Filter->GetOutputDataObject(0);
-  vtkAbstractArray* array =
-    output ? output->GetFieldData()->GetAbstractArray("LinkGI.PartitionBytesReceived") : nullptr;
-  return array && array->GetNumberOfTuples() > 0 ? array->GetVariantValue(0).ToDouble() : 0.0;
-}
-
-//------------------------------------------------------------------------------
-int vtkGlobalIlluminationRepresentation::GetLinkBuilds()
-{
-  return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.LinkBuilds");
-}
-
-int vtkGlobalIlluminationRepresentation::GetLightLinkBuilds()
-{
-  return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.LightLinkBuilds");
-}
-
-int vtkGlobalIlluminationRepresentation::GetBounceRuns()
-{
-  return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.BounceRuns");
-}
-
-int vtkGlobalIlluminationRepresentation::GetNewestRequest()
-{
-  return static_cast<int>(this->Internals->Filter->GetAsynchronousRequest());
-}
-
-int vtkGlobalIlluminationRepresentation::GetShownRequest()
-{
-  return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.ShownRequest");
-}
-
-int vtkGlobalIlluminationRepresentation::GetSolvingRequest()
-{
-  return static_cast<int>(this->Internals->Filter->GetAsynchronousSolving());
-}
-
-int vtkGlobalIlluminationRepresentation::GetShadowMapRenders()
-{
-  return static_cast<vtkGlobalIlluminationCompositeMapper*>(this->Mapper)->GetShadowMapRenderCount();
-}
-
-//------------------------------------------------------------------------------
-int vtkGlobalIlluminationRepresentation::GetGlobalCasterTriangles()
-{
-  return static_cast<int>(this->Internals->GlobalCasters->GetNumberOfTriangles());
-}
-
-//------------------------------------------------------------------------------
-int vtkGlobalIlluminationRepresentation::GetGlobalCasterGathers()
-{
-  return this->Internals->GlobalCasters->GetNumberOfGathers();
-}
-
-//------------------------------------------------------------------------------
-void vtkGlobalIlluminationRepresentation::SetMaximumGlobalCasterTriangles(int triangles)
-{
-  this->Internals->GlobalCasters->SetMaximumTriangles(triangles);
-  this->Modified();
-}
-
-int vtkGlobalIlluminationRepresentation::GetNumberOfLights()
-{
-  return this->Internals->Filter->GetNumberOfLights();
-}
-
-double vtkGlobalIlluminationRepresentation::GetMeanIndirectIrradiance()
-{
-  double sum = 0.0;
-  vtkIdType values = 0;
-  vtkDataObject* lit = this->Internals->Filter->GetOutputDataObject(0);
-  for (vtkDataSet* leaf : vtkCompositeDataSet::GetDataSets<vtkDataSet>(lit))
-  {
-    vtkDataArray* indirect = leaf->GetPointData()->GetArray("IndirectIrradiance");
-    for (vtkIdType i = 0; indirect && i < indirect->GetNumberOfTuples(); ++i)
-    {
-      for (int c = 0; c < indirect->GetNumberOfComponents(); ++c)
-      {
-        sum += indirect->GetComponent(i, c);
-      }
-    }
-    values += indirect ? indirect->GetNumberOfValues() : 0;
-  }
-  return values > 0 ? sum / values : 0.0;
-}
-
-vtkGlobalIlluminationFilter* vtkGlobalIlluminationRepresentation::GetFilter()
-{
-  return this->Internals->Filter;
 }
 
 //------------------------------------------------------------------------------
