@@ -58,6 +58,41 @@ private:
   std::uint64_t generation = 0;
   std::vector<Vec3f> sum, result;
 };
+
+/// Two processes (threads) solving `s` once, process p owning the vertices v with
+/// owner(v) == p, through one SumExchange.
+struct TwoProcesses
+{
+  Solution result[2];
+  SolverStats stats[2];
+  int exchanges = 0;
+};
+
+template <typename Owner>
+TwoProcesses solveAsTwo(const Scene& s, const SolverOptions& o, Owner owner)
+{
+  SumExchange exchange(2);
+  TwoProcesses out;
+  Solver solvers[2];
+  const auto run = [&](int p) {
+    auto part = std::make_shared<Partition>();
+    part->rows.resize(s.vertexCount());
+    for (std::size_t e = 0; e < s.vertexCount(); ++e)
+    {
+      part->rows[e] = std::uint8_t(owner(e) == p);
+    }
+    part->exchange = [&exchange](std::vector<Vec3f>& v) { exchange(v); };
+    SolverOptions mine = o;
+    mine.partition = part;
+    out.result[p] = solvers[p].update(s, mine);
+    out.stats[p] = solvers[p].stats();
+  };
+  std::thread other(run, 1);
+  run(0);
+  other.join();
+  out.exchanges = exchange.exchanges;
+  return out;
+}
 }
 
 TEST(TestPartition, TwoProcessesGiveTheOneProcessResultBitForBit)
@@ -127,27 +162,10 @@ TEST(TestPartition, InstantRadiosityGathersOnlyItsRows)
   o.instantRadiosity.vplCount = 256;
   Solver whole;
   const Solution one = whole.update(s, o);
-  SumExchange exchange(2);
-  Solution result[2];
-  SolverStats stats[2];
-  Solver solvers[2];
-  const auto run = [&](int p) {
-    auto part = std::make_shared<Partition>();
-    part->rows.resize(s.vertexCount());
-    for (std::size_t e = 0; e < s.vertexCount(); ++e)
-    {
-      part->rows[e] = std::uint8_t(e % 2 == std::size_t(p));
-    }
-    part->exchange = [&exchange](std::vector<Vec3f>& v) { exchange(v); };
-    SolverOptions mine = o;
-    mine.partition = part;
-    result[p] = solvers[p].update(s, mine);
-    stats[p] = solvers[p].stats();
-  };
-  std::thread other(run, 1);
-  run(0);
-  other.join();
-  EXPECT_EQ(exchange.exchanges, 1) << "one exchange of E_ind";
+  const TwoProcesses two = solveAsTwo(s, o, [](std::size_t v) { return int(v % 2); });
+  const Solution* result = two.result;
+  const SolverStats* stats = two.stats;
+  EXPECT_EQ(two.exchanges, 1) << "one exchange of E_ind";
   for (int p = 0; p < 2; ++p)
   {
     EXPECT_TRUE(sameBits(result[p].indirect, one.indirect)) << "process " << p;
@@ -172,28 +190,11 @@ TEST(TestPartition, PhotonMappingGathersOnlyItsClusters)
     o.photonMapping.gatherRays = 64;
     Solver whole;
     const Solution one = whole.update(s, o);
-    SumExchange exchange(2);
-    Solution result[2];
-    SolverStats stats[2];
-    Solver solvers[2];
-    const auto run = [&](int p) {
-      auto part = std::make_shared<Partition>();
-      part->rows.resize(s.vertexCount());
-      for (std::size_t e = 0; e < s.vertexCount(); ++e)
-      {
-        part->rows[e] = std::uint8_t((e / 64) % 2 == std::size_t(p));
-      }
-      part->exchange = [&exchange](std::vector<Vec3f>& v) { exchange(v); };
-      SolverOptions mine = o;
-      mine.partition = part;
-      result[p] = solvers[p].update(s, mine);
-      stats[p] = solvers[p].stats();
-    };
-    std::thread other(run, 1);
-    run(0);
-    other.join();
+    const TwoProcesses two = solveAsTwo(s, o, [](std::size_t v) { return int((v / 64) % 2); });
+    const Solution* result = two.result;
+    const SolverStats* stats = two.stats;
     const bool caustics = !one.caustics.empty();
-    EXPECT_EQ(exchange.exchanges, caustics ? 3 : 2) << name << ": irradiance and distances, then caustics";
+    EXPECT_EQ(two.exchanges, caustics ? 3 : 2) << name << ": irradiance and distances, then caustics";
     for (int p = 0; p < 2; ++p)
     {
       EXPECT_TRUE(sameBits(result[p].indirect, one.indirect)) << name << ", process " << p;
