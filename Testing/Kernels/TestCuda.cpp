@@ -285,6 +285,7 @@ TEST(Cuda, PartitionsOnOneGpuGiveTheOneGpuSolution)
   lamp.position = Vec3f(0.4f, 0.6f, 0.5f);
   twoSided.lights.push_back(lamp);
   SolverOptions o = onBackend(Backend::Cuda, fast());
+  o.cudaDevices = 1; // the partitions share the first GPU, however many the machine has
   for (Scene* s : { &room, &twoSided })
   {
     o.twoSided = s == &twoSided;

@@ -148,17 +148,16 @@ __global__ void finishKernel(FinishParams p, Vec3f* out)
     outgoingRadiance(albedoOf(b, e), direct, indirect, emissionOf(b, e));
 }
 
-/// Threads per row from the mean row length: a full warp for long rows.
-int lanesFor(const CsrView& m)
-{
-  const double mean = m.rows ? double(m.nonZeros) / m.rows : 0.0;
-  return mean >= 48 ? 32 : mean >= 12 ? 16 : 8;
-}
-
 unsigned blocksForRows(Index rows, int lanes)
 {
   return unsigned((std::size_t(rows) * lanes + kThreads - 1) / kThreads);
 }
+}
+
+int lanesForRows(Offset nonZeros, std::uint64_t rows)
+{
+  const double mean = rows ? double(nonZeros) / double(rows) : 0.0;
+  return mean >= 48 ? 32 : mean >= 12 ? 16 : 8;
 }
 
 void gatherRgb(const CsrView& m, const Rgba* x, Rgba* y, cudaStream_t stream)
@@ -167,7 +166,7 @@ void gatherRgb(const CsrView& m, const Rgba* x, Rgba* y, cudaStream_t stream)
   {
     return;
   }
-  const int lanes = lanesFor(m);
+  const int lanes = m.lanes;
   const unsigned blocks = blocksForRows(m.rows, lanes);
   if (lanes == 32)
     gatherKernel<32><<<blocks, kThreads, 0, stream>>>(m, x, y);
@@ -195,7 +194,7 @@ void bounce(const CsrView& w, const BounceParams& p, const Rgba* fixedIrradiance
   {
     return;
   }
-  const int lanes = lanesFor(w);
+  const int lanes = w.lanes;
   const unsigned blocks = blocksForRows(w.rows, lanes);
   if (lanes == 32)
     bounceKernel<32><<<blocks, kThreads, 0, stream>>>(w, p, fixedIrradiance, radiance, indirect, nextRadiance);

@@ -67,26 +67,31 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
   const bool shading = (c.changes & (engine::kTopology | engine::kAlbedo | engine::kEmission)) != 0;
   // Every partition computes its rows of each bounce from the whole radiance vector: E_env
   // and the start for its rows, then after each bounce the rows move between partitions.
+  // Albedo and emission go up once, to the first partition, with room for the outputs'
+  // download; the others copy them, and E_d of the light links, from it.
+  d0.use();
+  d0.staging.begin((shading ? PinnedStaging::room(s.albedo.size() * sizeof(Vec3f)) +
+      PinnedStaging::room(s.emission.size() * sizeof(Vec3f)) : 0) +
+    PinnedStaging::room(3 * std::size_t(ne) * sizeof(Vec3f)));
+  if (shading)
+  {
+    d0.staging.upload(d0.albedo, s.albedo, d0.stream);
+    d0.staging.upload(d0.emission, s.emission, d0.stream);
+  }
+  LINKGI_CUDA_CHECK(cudaEventRecord(d0.ready, d0.stream)); // after the light links' E_d
   for (const auto& dp : devices)
   {
     EngineDevice& d = *dp;
-    d.use();
-    // Room for the shading uploads, and on the first partition for the outputs' download.
-    d.staging.begin((shading ? PinnedStaging::room(s.albedo.size() * sizeof(Vec3f)) +
-        PinnedStaging::room(s.emission.size() * sizeof(Vec3f)) : 0) +
-      (&d == &d0 ? PinnedStaging::room(3 * std::size_t(ne) * sizeof(Vec3f)) : 0));
-    if (shading)
-    {
-      d.staging.upload(d.albedo, s.albedo, d.stream);
-      d.staging.upload(d.emission, s.emission, d.stream);
-    }
     if (&d != &d0)
     {
-      d.direct.resize(ne);
-      LINKGI_CUDA_CHECK(cudaStreamWaitEvent(d.stream, d0.ready, 0)); // E_d of the light links
-      LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(d.direct.data(), d.id, d0.direct.data(), d0.id,
-        std::size_t(ne) * sizeof(Vec3f), d.stream));
+      if (shading)
+      {
+        copyFrom(d0, d, &EngineDevice::albedo);
+        copyFrom(d0, d, &EngineDevice::emission);
+      }
+      copyFrom(d0, d, &EngineDevice::direct);
     }
+    d.use();
     d.texelRadiance.upload(texels, d.stream);
     for (GPUBuffer<Rgba>* b : { &d.envIrradiance, &d.fixedIrradiance, &d.radiance[0], &d.radiance[1], &d.indirect })
     {
@@ -105,6 +110,19 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
     p.emission = s.emission.empty() ? nullptr : d.emission.data();
     return p;
   };
+  // Threads per row from the whole matrices: each row sums in one order however the rows
+  // are split between batches and GPUs, so the result does not depend on the split.
+  Offset transportEntries = 0, environmentEntries = 0;
+  for (const auto& d : devices)
+  {
+    for (const MatrixBlock& m : d->blocks)
+    {
+      transportEntries += m.transport.nonZeros;
+      environmentEntries += m.environment.nonZeros;
+    }
+  }
+  const int transportLanes = lanesForRows(transportEntries, std::uint64_t(ne));
+  const int environmentLanes = lanesForRows(environmentEntries, std::uint64_t(ne));
   for (const auto& dp : devices)
   {
     EngineDevice& d = *dp;
@@ -112,7 +130,7 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
     const BounceParams p = paramsOf(d);
     for (const MatrixBlock& m : d.blocks)
     {
-      gatherRgb(m.environment.view(m.first), d.texelRadiance.data(), d.envIrradiance.data(), d.stream);
+      gatherRgb(m.environment.view(m.first, environmentLanes), d.texelRadiance.data(), d.envIrradiance.data(), d.stream);
       startBounces(p, m.first, m.count, d.fixedIrradiance.data(), d.radiance[0].data(), d.stream);
     }
   }
@@ -128,7 +146,7 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
       const BounceParams p = paramsOf(d);
       for (const MatrixBlock& m : d.blocks)
       {
-        bounce(m.transport.view(m.first), p, d.fixedIrradiance.data(), d.radiance[i % 2].data(),
+        bounce(m.transport.view(m.first, transportLanes), p, d.fixedIrradiance.data(), d.radiance[i % 2].data(),
           d.indirect.data(), last ? nullptr : d.radiance[(i + 1) % 2].data(), d.stream);
       }
     }

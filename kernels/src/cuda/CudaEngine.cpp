@@ -106,7 +106,7 @@ void DeviceWorker::loop()
   }
 }
 
-CsrView DeviceCsr::view(Index firstElement) const
+CsrView DeviceCsr::view(Index firstElement, int lanes) const
 {
   CsrView v;
   v.rowStarts = rowStarts.data();
@@ -116,6 +116,7 @@ CsrView DeviceCsr::view(Index firstElement) const
   v.rows = Index(rowStarts.size());
   v.firstElement = firstElement;
   v.nonZeros = nonZeros;
+  v.lanes = lanes;
   return v;
 }
 
@@ -204,7 +205,8 @@ CsrView Engine::transport() const
   {
     throw Error("The transport matrix is not one block on the first GPU.");
   }
-  return d0.blocks[0].transport.view(d0.blocks[0].first);
+  const DeviceCsr& w = d0.blocks[0].transport;
+  return w.view(d0.blocks[0].first, lanesForRows(w.nonZeros, w.rowStarts.size()));
 }
 
 void Engine::linkProfile(SolverStats& stats) const
@@ -303,61 +305,66 @@ void Engine::updateGeometry(const engine::StageContext& c)
   {
     eps = rayEpsilon(s); // a pass over the positions: once per geometry, not per light change
   }
-  // Uploads through pinned memory, all queued before the GPU work that reads them.
+  // The input goes up once, to the first partition, through pinned memory; the others copy
+  // it from there (one host copy however many GPUs).
   const auto t = std::chrono::steady_clock::now();
-  for (const auto& dp : devices)
-  {
-    EngineDevice& d = *dp;
-    d.use();
-    d.staging.begin(PinnedStaging::room(s.triangles.size() * sizeof(Triangle)) +
-      2 * PinnedStaging::room(s.positions.size() * sizeof(Vec3f)));
-    if (mask.topology)
-    {
-      d.staging.upload(d.triangles, s.triangles, d.stream);
-    }
-    if (mask.positions)
-    {
-      d.staging.upload(d.positions, s.positions, d.stream);
-    }
-    if (mask.geometry)
-    {
-      d.staging.upload(d.normals, s.normals, d.stream);
-    }
-  }
-  // What the link rays need besides the BVH, derived on the first GPU: no host topology on
-  // the critical path (it took 5.6 ms of conference's update on 16 cores).
   EngineDevice& d0 = *devices[0];
   d0.use();
+  d0.staging.begin(PinnedStaging::room(s.triangles.size() * sizeof(Triangle)) +
+    2 * PinnedStaging::room(s.positions.size() * sizeof(Vec3f)));
   if (mask.topology)
   {
-    d0.topology.build(d0.triangles.data(), nt, nv, d0.stream);
+    d0.staging.upload(d0.triangles, s.triangles, d0.stream);
+  }
+  if (mask.positions)
+  {
+    d0.staging.upload(d0.positions, s.positions, d0.stream);
   }
   if (mask.geometry)
   {
-    d0.shifts.resize(nv);
-    d0.faceNormals.resize(nt);
-    originShifts(d0.positions.data(), d0.normals.data(), d0.topology.neighbourOffsets.data(),
-      d0.topology.neighbours.data(), nv, d0.shifts.data(), d0.stream);
-    frontFaceNormals(d0.positions.data(), d0.normals.data(), d0.triangles.data(), nt, d0.faceNormals.data(), d0.stream);
-    LINKGI_CUDA_CHECK(cudaEventRecord(d0.ready, d0.stream));
-    for (std::size_t i = 1; i < devices.size(); ++i)
-    {
-      EngineDevice& d = *devices[i];
-      d.use();
-      d.shifts.resize(nv);
-      d.faceNormals.resize(nt);
-      LINKGI_CUDA_CHECK(cudaStreamWaitEvent(d.stream, d0.ready, 0));
-      LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(d.shifts.data(), d.id, d0.shifts.data(), d0.id, nv * sizeof(Vec3f), d.stream));
-      LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(d.faceNormals.data(), d.id, d0.faceNormals.data(), d0.id,
-        nt * sizeof(Vec3f), d.stream));
-    }
+    d0.staging.upload(d0.normals, s.normals, d0.stream);
   }
-  c.part("Topology", msSince(t)); // the host's part: queueing uploads and kernels
-  HostBvh sah; // CudaBvhBuild::HostSah: built once here, uploaded to every device
-  for (std::size_t i = 0; i < devices.size(); ++i)
+  LINKGI_CUDA_CHECK(cudaEventRecord(d0.ready, d0.stream));
+  for (std::size_t i = 1; i < devices.size(); ++i)
   {
     EngineDevice& d = *devices[i];
+    if (mask.topology)
+    {
+      copyFrom(d0, d, &EngineDevice::triangles);
+    }
+    if (mask.positions)
+    {
+      copyFrom(d0, d, &EngineDevice::positions);
+    }
+    if (mask.geometry)
+    {
+      copyFrom(d0, d, &EngineDevice::normals);
+    }
+  }
+  HostBvh sah; // CudaBvhBuild::HostSah: built once, uploaded to every device
+  std::once_flag sahBuilt;
+  // Every partition's BVH at once, each from its own thread: a build waits for its GPU
+  // between rounds, so building them in turn from one thread added the builds up.
+  runOnAllDevices([&](EngineDevice& d, std::size_t i) {
     d.use();
+    if (i == 0)
+    {
+      // What the link rays need besides the BVH, derived on the first GPU: no host
+      // topology on the critical path (it took 5.6 ms of conference's update on 16 cores).
+      if (mask.topology)
+      {
+        d.topology.build(d.triangles.data(), nt, nv, d.stream);
+      }
+      if (mask.geometry)
+      {
+        d.shifts.resize(nv);
+        d.faceNormals.resize(nt);
+        originShifts(d.positions.data(), d.normals.data(), d.topology.neighbourOffsets.data(),
+          d.topology.neighbours.data(), nv, d.shifts.data(), d.stream);
+        frontFaceNormals(d.positions.data(), d.normals.data(), d.triangles.data(), nt, d.faceNormals.data(), d.stream);
+      }
+      c.part("Topology", msSince(t)); // the host's part: queueing uploads and kernels
+    }
     bool rebuild = mask.topology || (mask.positions && options.cudaBvhUpdate == CudaBvhUpdate::Rebuild);
     if (!rebuild && mask.positions)
     {
@@ -367,10 +374,7 @@ void Engine::updateGeometry(const engine::StageContext& c)
     }
     if (rebuild && options.cudaBvhBuild == CudaBvhBuild::HostSah)
     {
-      if (sah.triangles.empty())
-      {
-        sah.buildSah(s.positions, s.triangles);
-      }
+      std::call_once(sahBuilt, [&] { sah.buildSah(s.positions, s.triangles); });
       d.bvh.upload(sah, d.positions.data(), d.triangles.data(), d.stream);
       d.bvhBuildCost = options.cudaBvhUpdate == CudaBvhUpdate::Auto ? d.bvh.cost(d.stream) : 0.0;
     }
@@ -385,6 +389,16 @@ void Engine::updateGeometry(const engine::StageContext& c)
       stats.refitBvh = !rebuild && mask.positions;
       stats.bvhBuilds += rebuild;
       stats.bvhRefits += stats.refitBvh;
+    }
+  });
+  if (mask.geometry && devices.size() > 1)
+  {
+    d0.use();
+    LINKGI_CUDA_CHECK(cudaEventRecord(d0.ready, d0.stream));
+    for (std::size_t i = 1; i < devices.size(); ++i)
+    {
+      copyFrom(d0, *devices[i], &EngineDevice::shifts);
+      copyFrom(d0, *devices[i], &EngineDevice::faceNormals);
     }
   }
   for (const auto& d : devices)

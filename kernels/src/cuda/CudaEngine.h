@@ -25,7 +25,7 @@ struct DeviceCsr
   GPUBuffer<Index> rowCounts, columns;
   GPUBuffer<float> weights;
   Offset nonZeros = 0;
-  CsrView view(Index firstElement) const;
+  CsrView view(Index firstElement, int lanes) const;
   /// The bytes of the matrix itself (what a bounce reads).
   std::size_t usedBytes() const { return nonZeros * 8ull + rowStarts.size() * 12ull; }
 };

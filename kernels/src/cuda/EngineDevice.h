@@ -110,4 +110,22 @@ struct EngineDevice
   void use() const { LINKGI_CUDA_CHECK(cudaSetDevice(id)); }
   void sync() const { LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream)); }
 };
+
+/// Makes `to`'s copy of a buffer equal to `from`'s: resized, then copied on to's stream once
+/// the work `from` queued before its last `ready` record is done (over NVLink where peer
+/// access is on). Inputs go up once, to the first partition, and reach the others this way.
+template <typename T>
+void copyFrom(const EngineDevice& from, EngineDevice& to, GPUBuffer<T> EngineDevice::*buffer)
+{
+  const GPUBuffer<T>& source = from.*buffer;
+  GPUBuffer<T>& target = to.*buffer;
+  to.use();
+  target.resize(source.size());
+  if (source.size())
+  {
+    LINKGI_CUDA_CHECK(cudaStreamWaitEvent(to.stream, from.ready, 0));
+    LINKGI_CUDA_CHECK(cudaMemcpyPeerAsync(target.data(), to.id, source.data(), from.id,
+      source.size() * sizeof(T), to.stream));
+  }
+}
 }

@@ -42,7 +42,15 @@ struct CsrView
   Index rows = 0;
   Index firstElement = 0;
   Offset nonZeros = 0;
+  /// Threads that sum one row (8, 16 or 32), from the mean row length of the whole matrix
+  /// (lanesForRows), not of this block: a row then sums in the same order however the
+  /// rows are split into batches and GPUs.
+  int lanes = 8;
 };
+
+/// The threads per row for a matrix of `rows` rows and `nonZeros` entries in all: a full
+/// warp for long rows.
+int lanesForRows(Offset nonZeros, std::uint64_t rows);
 
 // ---- rays (generic, for the RayTracer interface) ----
 void traceRays(const BvhView& bvh, const Ray* rays, Hit* hits, std::size_t count, cudaStream_t stream);
