@@ -29,6 +29,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <memory>
 #include <string>
 #include <vector>
@@ -232,7 +233,23 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
       vtkPolyData* target = distributed ? internals.GlobalLit.Get() : lit;
       const linkgi::Scene& scene = internals.UpdateScene(this, solved);
       internals.ActivePartition = internals.Partitions.Rows(this->Controller, internals.Mesh.ElementPoint, this->TwoSided);
-      internals.Update(this, scene);
+      std::exception_ptr failure;
+      try
+      {
+        internals.Update(this, scene);
+      }
+      catch (...)
+      {
+        failure = std::current_exception();
+      }
+      if (distributed)
+      {
+        internals.Partitions.Agree(this->Controller, failure);
+      }
+      else if (failure)
+      {
+        std::rethrow_exception(failure);
+      }
       internals.ShapeOutput(solved, target);
       const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
       internals.AttachResults(this, target, elapsed.count(), internals.Solution(), internals.Stats());

@@ -225,6 +225,11 @@ std::shared_ptr<const linkgi::Partition> vtkGlobalIlluminationPartitions::Rows(
   {
     return this->Partition; // the surfaces were exchanged again, but the rows are the same
   }
+  partition->smallest = [controller](std::uint64_t value) {
+    vtkTypeUInt64 mine = value, least = value;
+    controller->AllReduce(&mine, &least, 1, vtkCommunicator::MIN_OP);
+    return static_cast<std::uint64_t>(least);
+  };
   std::shared_ptr<std::uint64_t> exchanged = this->Exchanged;
   partition->exchange = [controller, exchanged](std::vector<linkgi::Vec3f>& values) {
     const vtkIdType n = static_cast<vtkIdType>(3 * values.size());
@@ -236,4 +241,23 @@ std::shared_ptr<const linkgi::Partition> vtkGlobalIlluminationPartitions::Rows(
   this->Partition = partition;
   this->PartitionElements = elements;
   return this->Partition;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationPartitions::Agree(
+  vtkMultiProcessController* controller, std::exception_ptr failure) const
+{
+  const int failed = failure ? 1 : 0;
+  int failures = 0;
+  controller->AllReduce(&failed, &failures, 1, vtkCommunicator::SUM_OP);
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
+  if (failures > 0)
+  {
+    throw linkgi::Error("This update failed on " + std::to_string(failures) + " of the " +
+      std::to_string(this->Processes) + " processes that share the surface (the error is in " +
+      (failures == 1 ? "its" : "their") + " output); the previous result is kept.");
+  }
 }

@@ -12,6 +12,7 @@
 
 #include "linkgi/SolverTypes.h"
 
+#include <exception>
 #include <memory>
 #include <string>
 #include <utility>
@@ -45,6 +46,12 @@ public:
   /// (another object would make the engine relink). Null with one process.
   std::shared_ptr<const linkgi::Partition> Rows(vtkMultiProcessController* controller,
     const std::vector<vtkIdType>& elementPoint, bool twoSided);
+
+  /// Collective, after an update of a distributed surface: when no process failed, nothing;
+  /// else `failure` is rethrown on the processes that had one, and the others throw an error
+  /// that says another process failed. So all processes leave a failed update together, and
+  /// none waits in Scatter's or the next update's exchanges for one that left.
+  void Agree(vtkMultiProcessController* controller, std::exception_ptr failure) const;
 
   /// `output` = `local` with every point array of `lit` (the lit global surface) that
   /// `local` lacks, cut to this process's points, and `lit`'s field data, with

@@ -5,10 +5,12 @@
 // a rank lighting its partition alone does not see; a light move exchanges nothing and re-runs
 // only the light links and the bounces. Instant radiosity and photon mapping gather by rows too. Then the floor
 // split between ranks 0 and 1 with a layer of ghost cells each: the ghost points get their
-// owner's values.
+// owner's values. Memory budgets that differ between the ranks: all take the smallest.
 #include "vtkGlobalIlluminationFilter.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCubeSource.h"
@@ -248,6 +250,29 @@ int main(int argc, char* argv[])
   ok &= Check(rank, Field(out, "LinkGI.PartitionBytesReceived") == 0, "a light move exchanges no surface");
   ok &= Check(rank, Field(out, "LinkGI.LinkBuilds") == links, "a light move builds no links");
   ok &= Check(rank, Field(out, "LinkGI.LightLinkBuilds") == lightLinks + 1, "a light move re-runs the light links");
+
+  // Rank 0's memory budget (64 KiB) is too small for the update, the others' (the machine's)
+  // is not: every rank takes the smallest, so all refuse the update with an error, instead
+  // of rank 0 refusing alone while the others wait for it in the first exchange.
+  {
+    vtkNew<vtkGlobalIlluminationFilter> budgeted;
+    Configure(budgeted, light);
+    budgeted->SetInputData(mine);
+    budgeted->SetMemoryBudget(rank == 0 ? 1.0 / 16.0 : 0.0);
+    std::string error;
+    vtkNew<vtkCallbackCommand> onError;
+    onError->SetClientData(&error);
+    onError->SetCallback([](vtkObject*, unsigned long, void* clientData, void* callData) {
+      *static_cast<std::string*>(clientData) += static_cast<const char*>(callData);
+    });
+    budgeted->AddObserver(vtkCommand::ErrorEvent, onError);
+    budgeted->Update();
+    ok &= Check(rank, error.find("Not enough memory") != std::string::npos,
+      "every rank refuses the update over rank 0's budget (" + error + ")");
+    ok &= Check(rank, rank == 0 || error.find("the smallest of the budgets") != std::string::npos,
+      "the other ranks say whose budget it was");
+    ok &= Check(rank, budgeted->GetOutput()->GetNumberOfPoints() == 0, "a refused first update outputs nothing");
+  }
 
   // Instant radiosity and photon mapping split their gathers by rows as well: instant
   // radiosity exchanges E_ind once, photon mapping its clusters' irradiance and distances;

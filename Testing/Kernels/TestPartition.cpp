@@ -3,12 +3,16 @@
 // give, together, the one-process result bit for bit. Two threads stand in for two MPI ranks.
 #include "SceneFixtures.h"
 
+#include "linkgi/Memory.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <condition_variable>
+#include <functional>
+#include <stdexcept>
 #include <mutex>
 #include <thread>
 
@@ -16,47 +20,60 @@ using namespace linkgi;
 
 namespace
 {
-/// A sum over `parties` threads: each adds its vector, waits for the others, takes the sum.
-class SumExchange
+/// An allreduce over `parties` threads: each brings its values, waits for the others and
+/// takes the reduction. A thread that waits more than ten seconds throws instead of hanging:
+/// a process that never comes is a test failure.
+template <typename T>
+class AllReduce
 {
 public:
-  explicit SumExchange(int parties) : parties(parties) {}
+  AllReduce(int parties, std::function<T(const T&, const T&)> op) : parties(parties), op(std::move(op)) {}
 
-  void operator()(std::vector<Vec3f>& v)
+  void operator()(std::vector<T>& v)
   {
     std::unique_lock<std::mutex> lock(mutex);
     const std::uint64_t round = generation;
     if (arrived == 0)
     {
-      sum.assign(v.size(), Vec3f(0.f));
+      reduced = v;
     }
-    for (std::size_t i = 0; i < v.size(); ++i)
+    else
     {
-      sum[i] += v[i];
+      for (std::size_t i = 0; i < v.size(); ++i)
+      {
+        reduced[i] = op(reduced[i], v[i]);
+      }
     }
     if (++arrived == parties)
     {
-      result = sum;
+      result = reduced;
       arrived = 0;
       ++generation;
       ++exchanges;
       done.notify_all();
     }
-    else
+    else if (!done.wait_for(lock, std::chrono::seconds(10), [&] { return generation != round; }))
     {
-      done.wait(lock, [&] { return generation != round; });
+      throw std::runtime_error("the other process never came to the exchange");
     }
     v = result;
   }
-  int exchanges = 0;
+  int exchanges = 0; ///< completed rounds
 
 private:
   const int parties;
+  const std::function<T(const T&, const T&)> op;
   std::mutex mutex;
   std::condition_variable done;
   int arrived = 0;
   std::uint64_t generation = 0;
-  std::vector<Vec3f> sum, result;
+  std::vector<T> reduced, result;
+};
+
+/// The partition's exchange: a sum of per-element RGB vectors.
+struct SumExchange : AllReduce<Vec3f>
+{
+  explicit SumExchange(int parties) : AllReduce<Vec3f>(parties, [](const Vec3f& a, const Vec3f& b) { return a + b; }) {}
 };
 
 /// Two processes (threads) solving `s` once, process p owning the vertices v with
@@ -217,4 +234,52 @@ TEST(TestPartition, AMaskOfTheWrongSizeIsNamed)
   o.partition = part;
   Solver solver;
   EXPECT_NE(test::errorOf([&] { solver.update(s, o); }).find("one flag per element"), std::string::npos);
+}
+
+TEST(TestPartition, ProcessesAgreeOnTheMemoryBudget)
+{
+  // Process 0 has a budget too small for the update, process 1 the machine's: both must
+  // refuse it. Had process 1 gone on alone, it would have waited in the first exchange.
+  const Scene s = test::roomWithBlock(0.5f);
+  SolverOptions o = test::quickOptions();
+  o.backend = Backend::Cpu;
+  SumExchange exchange(2);
+  AllReduce<std::uint64_t> least(2, [](std::uint64_t a, std::uint64_t b) { return std::min(a, b); });
+  std::string refused[2];
+  const auto run = [&](int p) {
+    auto part = std::make_shared<Partition>();
+    part->rows.resize(s.vertexCount());
+    for (std::size_t e = 0; e < s.vertexCount(); ++e)
+    {
+      part->rows[e] = std::uint8_t(e % 2 == std::size_t(p));
+    }
+    part->exchange = [&exchange](std::vector<Vec3f>& v) { exchange(v); };
+    part->smallest = [&least](std::uint64_t x) {
+      std::vector<std::uint64_t> v{ x };
+      least(v);
+      return v[0];
+    };
+    SolverOptions mine = o;
+    mine.partition = part;
+    mine.memoryBudget = p == 0 ? 64 * 1024 : 0;
+    Solver solver;
+    try
+    {
+      solver.update(s, mine);
+    }
+    catch (const OutOfMemoryBudget& e)
+    {
+      refused[p] = e.what();
+    }
+    catch (const std::exception& e)
+    {
+      refused[p] = std::string("wrong error: ") + e.what();
+    }
+  };
+  std::thread other(run, 1);
+  run(0);
+  other.join();
+  EXPECT_EQ(exchange.exchanges, 0) << "nobody solved";
+  EXPECT_NE(refused[0].find("Not enough memory"), std::string::npos) << refused[0];
+  EXPECT_NE(refused[1].find("the smallest of the budgets of the processes"), std::string::npos) << refused[1];
 }

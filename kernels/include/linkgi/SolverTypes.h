@@ -25,6 +25,11 @@ struct Partition
   /// the others (an allreduce of the sum over the processes). Collective: every process
   /// calls it at the same points of an update.
   std::function<void(std::vector<Vec3f>&)> exchange;
+  /// The smallest of a value over the processes (an allreduce of the minimum). Collective,
+  /// called once per update: the processes agree on the memory budget, so that they all
+  /// refuse an update or all run it (one refusing while the others went on would leave them
+  /// waiting in an exchange). Empty: this process's own value.
+  std::function<std::uint64_t(std::uint64_t)> smallest;
 };
 
 /// How the indirect light is computed. Every method writes the same Solution.

@@ -52,7 +52,9 @@ void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverO
   std::uint32_t stale, bool cuda, SolverStats& stats)
 {
   const MemoryShape shape = MemoryShape::of(scene);
-  const std::uint64_t budget = hostMemoryBudget(options.memoryBudget);
+  const std::uint64_t own = hostMemoryBudget(options.memoryBudget);
+  // Under MPI every process takes the smallest budget, so all give the same verdict.
+  const std::uint64_t budget = options.partition && options.partition->smallest ? options.partition->smallest(own) : own;
   const MemoryVerdict v = judgeMemory(spec, shape, options, stale, cuda, budget);
   stats.hostBytesEstimated = v.estimate.hostBytes;
   stats.deviceBytesEstimated = v.estimate.deviceBytes;
@@ -66,9 +68,10 @@ void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverO
     " method would need about " + formatBytes(v.estimate.hostBytes) + " of host memory (" +
     std::to_string(shape.vertices) + " vertices, " + rays + " rays per vertex), over the memory budget of " +
     formatBytes(budget) +
-    (options.memoryBudget ? " (MemoryBudget)" :
-                            " (what the machine has available, " + formatBytes(availableHostBytes()) +
-        ", less a margin)") +
+    (budget < own             ? " (the smallest of the budgets of the processes that share the surface)" :
+        options.memoryBudget ? " (MemoryBudget)" :
+                               " (what the machine has available, " + formatBytes(availableHostBytes()) +
+          ", less a margin)") +
     ". What would fit:";
   if (v.raysThatFit > 0)
   {
