@@ -1,11 +1,13 @@
 // The implicit-visibility method (Method::ImplicitVisibility): its cube bins and cluster
 // tree, closed-form answers, agreement with the path-traced reference, and the engine's
 // caching of its stages.
+#include "CudaFixtures.h"
 #include "SceneFixtures.h"
 
 #include "iv/ClusterTree.h"
 #include "iv/ImplicitLinks.h"
 
+#include "linkgi/Cuda.h"
 #include "linkgi/Error.h"
 #include "linkgi/Metrics.h"
 #include "linkgi/Reference.h"
@@ -15,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 using namespace linkgi;
@@ -335,10 +338,12 @@ TEST(TestImplicitVisibility, BadOptionsAreErrors)
   EXPECT_THROW(solver.update(s, o), Error);
 }
 
-TEST(TestImplicitVisibility, CudaRequestRunsOnTheCpu)
+TEST(TestImplicitVisibility, CudaRequestWithoutADeviceRunsOnTheCpu)
 {
-  // There is no CUDA backend for this method: a CUDA request says so and gives the CPU's
-  // answer (with or without a GPU).
+  if (!cuda::devices().empty())
+  {
+    GTEST_SKIP() << "this machine has a CUDA device";
+  }
   const Scene s = test::roomWithBlock(0.5f);
   Solver cpu, cuda;
   const Solution& a = cpu.update(s, ivOptions(8));
@@ -349,6 +354,72 @@ TEST(TestImplicitVisibility, CudaRequestRunsOnTheCpu)
   EXPECT_FALSE(cuda.stats().warnings.empty());
   EXPECT_EQ(a.indirect, b.indirect);
   EXPECT_EQ(a.direct, b.direct);
+}
+
+TEST(TestImplicitVisibility, CpuAndCudaAgree)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  // The same tree, links and bins on both (one copy of the formulas, iv/IvShared.h): the
+  // GPU differs by rounding (fused multiply-adds, another order of some sums), which can
+  // flip a bin between two nearly equal distances.
+  for (const char* name : { "cornell", "torso" })
+  {
+    for (std::uint32_t n : { 8u, 12u, 16u })
+    {
+      const Scene s = makeStandardScene(name);
+      Solver cpu, gpu;
+      const Solution& a = cpu.update(s, ivOptions(n));
+      const Solution& b = gpu.update(s, test::onBackend(Backend::Cuda, ivOptions(n)));
+      ASSERT_EQ(gpu.stats().backend, "cuda") << (gpu.stats().warnings.empty() ? "" : gpu.stats().warnings[0]);
+      const float direct = test::relativeError(b.direct, a.direct), indirect = test::relativeError(b.indirect, a.indirect);
+      std::printf("%s, N = %u: CPU/GPU relative RMSE direct %.2e, indirect %.2e; links %llu / %llu\n", name, n,
+        direct, indirect, (unsigned long long)cpu.stats().linksCompressed, (unsigned long long)gpu.stats().linksCompressed);
+      EXPECT_LT(direct, 1e-3f) << name << " N = " << n;
+      EXPECT_LT(indirect, 2e-3f) << name << " N = " << n;
+      EXPECT_LT(test::relativeError(b.radiance, a.radiance), 2e-3f) << name << " N = " << n;
+      EXPECT_NEAR(double(gpu.stats().linksCompressed), double(cpu.stats().linksCompressed),
+        1e-3 * double(cpu.stats().linksCompressed)) << name << " N = " << n;
+    }
+  }
+}
+
+TEST(TestImplicitVisibility, CudaRefitsAndMatchesAFreshSolve)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  // As SolverRefitsAndMatchesAFreshSolve on the GPU: a deformation refits the hierarchy and
+  // relinks, and moving back gives exactly a fresh solve of the rest pose. The GPU's choices
+  // are minima of ordered keys and its rows are sorted, so the result does not depend on the
+  // order in which its threads found the links, nor on the buffers a level outgrew.
+  const Scene rest = makeStandardScene("torso");
+  SceneParams bent;
+  bent.deformation = 1.f;
+  const Scene moved = makeStandardScene("torso", bent);
+  const SolverOptions o = test::onBackend(Backend::Cuda, ivOptions(12));
+  Solver solver;
+  solver.update(rest, o);
+  ASSERT_EQ(solver.stats().backend, "cuda");
+  solver.update(moved, o);
+  EXPECT_TRUE(solver.stats().ran("HierarchyRefit"));
+  EXPECT_TRUE(solver.stats().ran("ImplicitLinks"));
+  const Solution back = solver.update(rest, o);
+  Solver fresh;
+  const Solution& expected = fresh.update(rest, o);
+  EXPECT_EQ(back.direct, expected.direct);
+  EXPECT_EQ(back.indirect, expected.indirect);
+  EXPECT_EQ(back.radiance, expected.radiance);
+}
+
+TEST(TestImplicitVisibility, MoreBinsThanTheGpuHoldsRunOnTheCpu)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  const Scene s = test::roomWithBlock(0.5f);
+  Solver cpu, gpu;
+  const Solution& a = cpu.update(s, ivOptions(20));
+  const Solution& b = gpu.update(s, test::onBackend(Backend::Cuda, ivOptions(20)));
+  EXPECT_EQ(gpu.stats().backend, "cpu");
+  ASSERT_FALSE(gpu.stats().warnings.empty());
+  EXPECT_NE(gpu.stats().warnings[0].find("bins per side"), std::string::npos) << gpu.stats().warnings[0];
+  EXPECT_EQ(a.indirect, b.indirect);
 }
 
 TEST(TestImplicitVisibility, ProgressRisesAndAnAbortKeepsThePreviousSolution)

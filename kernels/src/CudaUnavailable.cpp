@@ -2,6 +2,7 @@
 #include "linkgi/Cuda.h"
 
 #include "ir/IrBackends.h"
+#include "iv/IvBackends.h"
 #include "pm/PmBackends.h"
 #include "links/LinksBackends.h"
 
@@ -43,6 +44,14 @@ std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
 }
 
 std::vector<Vec3f> gatherCuda(const Scene&, const VplSet&, const GatherParams&, bool)
+{
+  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
+}
+}
+
+namespace linkgi::iv
+{
+std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
 {
   throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
 }

@@ -9,131 +9,11 @@ namespace linkgi::iv
 {
 namespace
 {
-/// Clusters whose normals agree within this (radians) are flat: one normal for all.
-constexpr float kFlatCone = 1e-3f;
-
 /// Solid angle of the cube-face rectangle [0, x] x [0, y] at distance 1.
 double cornerSolidAngle(double x, double y)
 {
   return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
 }
-
-/// What the pair recursion reads of a node, in one 48-byte record: each visited pair reads
-/// two nodes at random, and the tree's separate arrays cost six cache lines per node.
-struct NodeBounds
-{
-  Vec3f position;
-  float radius;
-  Vec3f normal;
-  float planeDeviation;
-  float coneAngle, coneSin, coneCos;
-  Index firstChild; ///< left child, kInvalidIndex for a leaf
-};
-
-std::vector<NodeBounds> nodeBounds(const ClusterTree& t)
-{
-  std::vector<NodeBounds> nodes(t.nodeCount());
-  parallelRanges(nodes.size(), 4096, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      nodes[i] = { t.position[i], t.radius[i], t.normal[i], t.planeDeviation[i], t.coneAngle[i],
-        std::sin(t.coneAngle[i]), std::cos(t.coneAngle[i]),
-        t.isLeaf(Index(i)) ? kInvalidIndex : t.left[i - t.leafCount] };
-    }
-  });
-  return nodes;
-}
-
-/// Whether some disc point of `a` can see some disc point of `b` in front of it (a can
-/// receive from b); conservative, from the nodes' bounds. d = p_b - p_a, r2 = |d|^2.
-inline bool canReceive(const NodeBounds& a, const NodeBounds& b, const Vec3f& d, float r2, float eps)
-{
-  if (a.coneAngle < kFlatCone)
-  {
-    // Every receiving normal is n_a: q in b is in front of p in a when n_a.(q - p) > 0,
-    // i.e. n_a.d + rise + deviation_a > eps, where rise in [0, radius_b] is how far b's
-    // points rise above the plane through b's centre with a's normal. Most pairs are
-    // decided by the bounds of rise, without its square root.
-    const float front = dot(a.normal, d) + a.planeDeviation - eps;
-    if (front > 0.f || front + b.radius <= 0.f)
-    {
-      return front > 0.f;
-    }
-    const float along = std::abs(dot(a.normal, b.normal));
-    const float across = std::sqrt(std::max(0.f, 1.f - along * along));
-    return front + std::min(b.radius, along * b.planeDeviation + across * b.radius) > 0.f;
-  }
-  const float reach = a.radius + b.radius;
-  if (r2 <= reach * reach || a.coneCos <= 0.f)
-  {
-    return true;
-  }
-  // Some direction between the two lies within cone + asin(reach / r) of n_a's horizon:
-  // cos(n_a, d) > -sin(cone + asin(reach / r)).
-  const float r = std::sqrt(r2);
-  const float sinB = reach / r, cosB = std::sqrt(1.f - sinB * sinB);
-  const float cosSpread = a.coneCos * cosB - a.coneSin * sinB;
-  return cosSpread <= 0.f || dot(a.normal, d) > -r * (a.coneSin * cosB + a.coneCos * sinB);
-}
-
-struct PairVisitor
-{
-  const ClusterTree& t;
-  const std::vector<NodeBounds>& nodes;
-  float binSolidAngle;
-  const LinkCreationOptions& o;
-
-  /// One step of the recursion over the pair (a, b): links it, prunes it, or pushes the
-  /// pairs of a subdivision.
-  template <typename Emit, typename Push>
-  void operator()(Index a, Index b, Emit&& emit, Push&& push) const
-  {
-    const NodeBounds& na = nodes[a];
-    if (a == b)
-    {
-      if (na.firstChild != kInvalidIndex)
-      {
-        const std::size_t i = a - t.leafCount;
-        push(t.left[i], t.left[i]);
-        push(t.right[i], t.right[i]);
-        push(t.left[i], t.right[i]);
-      }
-      return;
-    }
-    const NodeBounds& nb = nodes[b];
-    const Vec3f d = nb.position - na.position;
-    const float r2 = dot(d, d);
-    const bool aReceives = canReceive(na, nb, d, r2, o.planeEpsilon);
-    const bool bReceives = canReceive(nb, na, -d, r2, o.planeEpsilon);
-    if (!aReceives && !bReceives)
-    {
-      return;
-    }
-    // pi R^2 / r^2 > bin solid angle: the node covers more than a bin from the other end.
-    const float limit = binSolidAngle * r2 * (1.f / kPi);
-    const auto tooBig = [&](const NodeBounds& x) {
-      return x.firstChild != kInvalidIndex && (x.radius * x.radius > limit || x.coneAngle > o.maxConeAngle);
-    };
-    const bool bigA = tooBig(na), bigB = tooBig(nb);
-    if (bigA || bigB)
-    {
-      const Index split = bigA && (!bigB || na.radius >= nb.radius) ? a : b;
-      const Index other = split == a ? b : a;
-      const std::size_t i = split - t.leafCount;
-      push(t.left[i], other);
-      push(t.right[i], other);
-      return;
-    }
-    if (aReceives)
-    {
-      emit(a, b);
-    }
-    if (bReceives)
-    {
-      emit(b, a);
-    }
-  }
-};
 
 using Pair = std::pair<Index, Index>;
 
@@ -228,6 +108,34 @@ void keepShortestPerBin(const ClusterTree& t, const CubeBins& bins, SparseMatrix
 }
 }
 
+std::vector<NodeBounds> nodeBounds(const ClusterTree& t)
+{
+  std::vector<NodeBounds> nodes(t.nodeCount());
+  parallelRanges(nodes.size(), 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      nodes[i] = { t.position[i], t.radius[i], t.normal[i], t.planeDeviation[i], t.coneAngle[i],
+        std::sin(t.coneAngle[i]), std::cos(t.coneAngle[i]),
+        t.isLeaf(Index(i)) ? kInvalidIndex : t.left[i - t.leafCount] };
+    }
+  });
+  return nodes;
+}
+
+PairRules pairRules(const ClusterTree& tree, const std::vector<NodeBounds>& nodes, const CubeBins& bins,
+  const LinkCreationOptions& options)
+{
+  PairRules r;
+  r.nodes = nodes.data();
+  r.left = tree.left.data();
+  r.right = tree.right.data();
+  r.leafCount = Index(tree.leafCount);
+  r.binSolidAngle = bins.meanSolidAngle();
+  r.planeEpsilon = options.planeEpsilon;
+  r.maxConeAngle = options.maxConeAngle;
+  return r;
+}
+
 CubeBins CubeBins::make(int n)
 {
   if (n < 1 || n > 64)
@@ -263,7 +171,7 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
   const LinkCreationOptions& options, const ProgressCallback& progress)
 {
   const std::vector<NodeBounds> nodes = nodeBounds(tree);
-  const PairVisitor visit{ tree, nodes, bins.meanSolidAngle(), options };
+  const PairRules rules = pairRules(tree, nodes, bins, options);
   NodeLinks out;
   // Breadth-first from (root, root) until there are enough independent pairs for every
   // core; the links found on the way are the first part.
@@ -273,10 +181,11 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
   while (!frontier.empty() && frontier.size() < target)
   {
     next.clear();
+    auto emit = [&](Index r, Index s) { parts[0].emplace_back(r, s); };
+    auto push = [&](Index a, Index b) { next.emplace_back(a, b); };
     for (const Pair& p : frontier)
     {
-      visit(p.first, p.second, [&](Index r, Index s) { parts[0].emplace_back(r, s); },
-        [&](Index a, Index b) { next.emplace_back(a, b); });
+      rules.visit(p.first, p.second, emit, push);
     }
     out.pairsVisited += frontier.size();
     std::swap(frontier, next);
@@ -289,9 +198,11 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
   std::vector<std::uint64_t> visited(slices, 0);
   parallelFor("ImplicitLinks", slices, 1, [&](std::size_t begin, std::size_t end) {
     std::vector<Pair> stack;
+    auto push = [&](Index a, Index b) { stack.emplace_back(a, b); };
     for (std::size_t s = begin; s < end; ++s)
     {
       std::vector<Pair>& part = parts[1 + s];
+      auto emit = [&](Index r, Index src) { part.emplace_back(r, src); };
       std::uint64_t count = 0; // a local count: neighbouring slices' counters share a cache line
       for (std::size_t i = s * frontier.size() / slices; i < (s + 1) * frontier.size() / slices; ++i)
       {
@@ -301,8 +212,7 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
           const Pair p = stack.back();
           stack.pop_back();
           ++count;
-          visit(p.first, p.second, [&](Index r, Index src) { part.emplace_back(r, src); },
-            [&](Index a, Index b) { stack.emplace_back(a, b); });
+          rules.visit(p.first, p.second, emit, push);
         }
       }
       visited[s] = count;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "iv/ClusterTree.h"
+#include "iv/IvShared.h"
 
 #include "linkgi/Bounce.h"
 
@@ -82,6 +83,12 @@ struct NodeLinks
   std::uint64_t pairsVisited = 0;
   std::uint64_t created = 0; ///< links before each node's bins kept only their shortest
 };
+
+/// The pair recursion's record of every node (positions, bounds, first child).
+std::vector<NodeBounds> nodeBounds(const ClusterTree& tree);
+/// The pair recursion's rules over `tree` (pointers into `tree` and `nodes`).
+PairRules pairRules(const ClusterTree& tree, const std::vector<NodeBounds>& nodes, const CubeBins& bins,
+  const LinkCreationOptions& options);
 
 NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
   const LinkCreationOptions& options, const ProgressCallback& progress = {});

@@ -16,7 +16,7 @@ enum Stage : std::size_t
 };
 
 std::unique_ptr<engine::MethodBackend> createCpuBackend(const SolverOptions& options);
-/// There is no CUDA backend yet: throws CudaError, and the orchestrator runs the CPU.
+/// One GPU (IvCuda.cpp); CudaError where the build or the machine has none.
 std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions& options);
 
 const engine::MethodSpec& implicitVisibilityMethod();

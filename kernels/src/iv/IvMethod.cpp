@@ -1,9 +1,7 @@
 // The implicit-visibility method (Dong, Kautz, Theobalt & Seidel 2007): its stages and what
 // makes each stale. Formulas in ClusterTree.h and ImplicitLinks.h; the CPU backend in
-// IvCpu.cpp. Documentation/Methods.md, "Implicit visibility".
+// IvCpu.cpp, the CUDA backend in IvCuda.cpp. Documentation/Methods.md, "Implicit visibility".
 #include "iv/IvBackends.h"
-
-#include "linkgi/Cuda.h"
 
 namespace linkgi::iv
 {
@@ -30,11 +28,6 @@ public:
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
 };
-}
-
-std::unique_ptr<MethodBackend> createCudaBackend(const SolverOptions&)
-{
-  throw CudaError("The implicit-visibility method has no CUDA backend yet.", false);
 }
 
 const MethodSpec& implicitVisibilityMethod()

@@ -62,33 +62,6 @@ void concatenate(const std::vector<RowSlice>& slices, bool environment, SparseMa
   }
 }
 
-/// A leaf disc wider than a bin as seen from the receiver (it cannot be subdivided), at a
-/// distance r of more than twice its radius: offers points on rings of the disc, spaced a
-/// bin apart as seen from the receiver, so that every bin it covers holds it.
-template <typename Offer>
-void splatDisc(const ClusterTree& t, Index leaf, float r, float binAngle, Offer&& offer)
-{
-  const Frame f = Frame::fromNormal(t.normal[leaf]);
-  const float radius = t.radius[leaf], step = binAngle * r;
-  const int rings = std::min(8, int(std::ceil(radius / step)));
-  for (int i = 1; i <= rings; ++i)
-  {
-    const float ringRadius = radius * float(i) / float(rings);
-    const int points = std::min(64, std::max(6, int(std::ceil(2.f * kPi * ringRadius / step))));
-    // The ring's points by rotating one step at a time (one sincos per ring, not per point).
-    const float stepAngle = 2.f * kPi / float(points), phase = 0.5f * float(i % 2) * stepAngle;
-    const float cosStep = std::cos(stepAngle), sinStep = std::sin(stepAngle);
-    float c = std::cos(phase) * ringRadius, s = std::sin(phase) * ringRadius;
-    for (int k = 0; k < points; ++k)
-    {
-      offer(t.position[leaf] + f.toWorld(Vec3f(c, s, 0.f)));
-      const float next = c * cosStep - s * sinStep;
-      s = s * cosStep + c * sinStep;
-      c = next;
-    }
-  }
-}
-
 /// Leaf discs nearer than twice their radius (neighbours; a disc across a contact) cover
 /// many bins of the receiver at p: each is drawn into every bin whose centre ray hits it, at
 /// the hit's distance, so that the bins beside close neighbours and across a contact do
@@ -109,19 +82,11 @@ void rasterizeNearDiscs(const ClusterTree& t, const std::vector<Index>& discs, c
     }
     for (Index src : discs)
     {
-      const Vec3f& c = t.position[src];
-      const float denom = dot(dir, t.normal[src]);
-      if (denom == 0.f)
+      const float d2 = nearDiscHit(p, dir, t.position[src], t.normal[src], t.radius[src]);
+      if (d2 < 0.f)
       {
         continue;
       }
-      const float along = dot(c - p, t.normal[src]) / denom;
-      const Vec3f off = p + dir * along - c;
-      if (!(along > 0.f) || dot(off, off) > t.radius[src] * t.radius[src])
-      {
-        continue;
-      }
-      const float d2 = along * along;
       if (bestSource[b] == kInvalidIndex || d2 < bestDistance[b] || (d2 == bestDistance[b] && src < bestSource[b]))
       {
         bestDistance[b] = d2;
@@ -207,13 +172,15 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
             {
               const Vec3f toSource = tree.position[src] - p;
               const float r2 = dot(toSource, toSource), radius = tree.radius[src];
-              if (4.f * radius * radius > r2)
+              const DiscReach reach = discReach(radius, r2, binAngle);
+              if (reach == DiscReach::Near)
               {
                 nearDiscs.push_back(src); // a neighbour, or a disc across a contact
               }
-              else if (radius * radius > 0.25f * binAngle * binAngle * r2)
+              else if (reach == DiscReach::Splat)
               {
-                splatDisc(tree, src, std::sqrt(r2), binAngle, [&](const Vec3f& q) { offer(q, -1); });
+                auto point = [&](const Vec3f& q) { offer(q, -1); };
+                splatDisc(tree.position[src], tree.normal[src], radius, std::sqrt(r2), binAngle, point);
               }
             }
           }

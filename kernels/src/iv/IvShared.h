@@ -1,0 +1,206 @@
+// The implicit-visibility method's per-item formulas, host and device code: one step of the
+// pair recursion that creates the node links, and the geometry of pushing a link to a leaf
+// (the discs drawn into several bins). The CPU backend (ImplicitLinks.cpp, PushToLeaves.cpp)
+// and the CUDA backend (IvKernels.cu) both call them.
+#pragma once
+
+#include "linkgi/Math.h"
+#include "linkgi/Scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace linkgi::iv
+{
+/// Clusters whose normals agree within this (radians) are flat: one normal for all.
+constexpr float kFlatCone = 1e-3f;
+
+/// What the pair recursion reads of a node, in one 48-byte record: each visited pair reads
+/// two nodes at random, and the tree's separate arrays cost six cache lines per node.
+struct NodeBounds
+{
+  Vec3f position;
+  float radius;
+  Vec3f normal;
+  float planeDeviation;
+  float coneAngle, coneSin, coneCos;
+  Index firstChild; ///< left child, kInvalidIndex for a leaf
+};
+
+/// Whether some disc point of `a` can see some disc point of `b` in front of it (a can
+/// receive from b); conservative, from the nodes' bounds. d = p_b - p_a, r2 = |d|^2.
+LINKGI_HOST_DEVICE inline bool canReceive(const NodeBounds& a, const NodeBounds& b, const Vec3f& d, float r2, float eps)
+{
+  if (a.coneAngle < kFlatCone)
+  {
+    // Every receiving normal is n_a: q in b is in front of p in a when n_a.(q - p) > 0,
+    // i.e. n_a.d + rise + deviation_a > eps, where rise in [0, radius_b] is how far b's
+    // points rise above the plane through b's centre with a's normal. Most pairs are
+    // decided by the bounds of rise, without its square root.
+    const float front = dot(a.normal, d) + a.planeDeviation - eps;
+    if (front > 0.f || front + b.radius <= 0.f)
+    {
+      return front > 0.f;
+    }
+    const float along = std::abs(dot(a.normal, b.normal));
+    const float across = std::sqrt(std::max(0.f, 1.f - along * along));
+    return front + std::min(b.radius, along * b.planeDeviation + across * b.radius) > 0.f;
+  }
+  const float reach = a.radius + b.radius;
+  if (r2 <= reach * reach || a.coneCos <= 0.f)
+  {
+    return true;
+  }
+  // Some direction between the two lies within cone + asin(reach / r) of n_a's horizon:
+  // cos(n_a, d) > -sin(cone + asin(reach / r)).
+  const float r = std::sqrt(r2);
+  const float sinB = reach / r, cosB = std::sqrt(1.f - sinB * sinB);
+  const float cosSpread = a.coneCos * cosB - a.coneSin * sinB;
+  return cosSpread <= 0.f || dot(a.normal, d) > -r * (a.coneSin * cosB + a.coneCos * sinB);
+}
+
+/// The pair recursion's rules over a tree (ClusterTree's numbering: leaves first, interior
+/// node leafCount + i has children left[i], right[i]).
+struct PairRules
+{
+  const NodeBounds* nodes = nullptr;
+  const Index* left = nullptr;
+  const Index* right = nullptr;
+  Index leafCount = 0;
+  float binSolidAngle = 0.f; ///< the subdivision threshold (CubeBins::meanSolidAngle)
+  float planeEpsilon = 0.f;
+  float maxConeAngle = 0.f;
+
+  /// One step of the recursion over the pair (a, b): links it (emit(receiver, source), for
+  /// each end that can receive), prunes it, or pushes the pairs of a subdivision.
+  template <typename Emit, typename Push>
+  LINKGI_HOST_DEVICE void visit(Index a, Index b, Emit& emit, Push& push) const
+  {
+    const NodeBounds& na = nodes[a];
+    if (a == b)
+    {
+      if (na.firstChild != kInvalidIndex)
+      {
+        const Index i = a - leafCount;
+        push(left[i], left[i]);
+        push(right[i], right[i]);
+        push(left[i], right[i]);
+      }
+      return;
+    }
+    const NodeBounds& nb = nodes[b];
+    const Vec3f d = nb.position - na.position;
+    const float r2 = dot(d, d);
+    const bool aReceives = canReceive(na, nb, d, r2, planeEpsilon);
+    const bool bReceives = canReceive(nb, na, -d, r2, planeEpsilon);
+    if (!aReceives && !bReceives)
+    {
+      return;
+    }
+    // pi R^2 / r^2 > bin solid angle: the node covers more than a bin from the other end.
+    const float limit = binSolidAngle * r2 * (1.f / kPi);
+    const bool bigA = tooBig(na, limit), bigB = tooBig(nb, limit);
+    if (bigA || bigB)
+    {
+      const Index split = bigA && (!bigB || na.radius >= nb.radius) ? a : b;
+      const Index other = split == a ? b : a;
+      const Index i = split - leafCount;
+      push(left[i], other);
+      push(right[i], other);
+      return;
+    }
+    if (aReceives)
+    {
+      emit(a, b);
+    }
+    if (bReceives)
+    {
+      emit(b, a);
+    }
+  }
+
+  LINKGI_HOST_DEVICE bool tooBig(const NodeBounds& x, float limit) const
+  {
+    return x.firstChild != kInvalidIndex && (x.radius * x.radius > limit || x.coneAngle > maxConeAngle);
+  }
+};
+
+/// A leaf disc wider than a bin as seen from the receiver (it cannot be subdivided), at a
+/// distance r of more than twice its radius: offers points on rings of the disc, spaced a
+/// bin apart as seen from the receiver, so that every bin it covers holds it.
+template <typename Offer>
+LINKGI_HOST_DEVICE void splatDisc(const Vec3f& center, const Vec3f& normal, float radius, float r,
+  float binAngle, Offer& offer)
+{
+  const Frame f = Frame::fromNormal(normal);
+  const float step = binAngle * r;
+  const int rings = std::min(8, int(std::ceil(radius / step)));
+  for (int i = 1; i <= rings; ++i)
+  {
+    const float ringRadius = radius * float(i) / float(rings);
+    const int points = std::min(64, std::max(6, int(std::ceil(2.f * kPi * ringRadius / step))));
+    // The ring's points by rotating one step at a time (one sincos per ring, not per point).
+    const float stepAngle = 2.f * kPi / float(points), phase = 0.5f * float(i % 2) * stepAngle;
+    const float cosStep = std::cos(stepAngle), sinStep = std::sin(stepAngle);
+    float c = std::cos(phase) * ringRadius, s = std::sin(phase) * ringRadius;
+    for (int k = 0; k < points; ++k)
+    {
+      offer(center + f.toWorld(Vec3f(c, s, 0.f)));
+      const float next = c * cosStep - s * sinStep;
+      s = s * cosStep + c * sinStep;
+      c = next;
+    }
+  }
+}
+
+/// How a source leaf disc at squared distance r2 from the receiver enters its bins: near
+/// (closer than twice its radius: drawn into every bin whose centre ray hits it), splatted
+/// (wider than a bin: points on rings), or as its centre alone.
+enum class DiscReach
+{
+  Centre,
+  Splat,
+  Near
+};
+
+LINKGI_HOST_DEVICE inline DiscReach discReach(float radius, float r2, float binAngle)
+{
+  return 4.f * radius * radius > r2 ? DiscReach::Near
+    : radius * radius > 0.25f * binAngle * binAngle * r2 ? DiscReach::Splat
+                                                         : DiscReach::Centre;
+}
+
+/// The squared distance along `dir` from p to the disc (centre c, normal nc, radius), or a
+/// negative value when the ray misses it.
+LINKGI_HOST_DEVICE inline float nearDiscHit(const Vec3f& p, const Vec3f& dir, const Vec3f& c, const Vec3f& nc, float radius)
+{
+  const float denom = dot(dir, nc);
+  if (denom == 0.f)
+  {
+    return -1.f;
+  }
+  const float along = dot(c - p, nc) / denom;
+  const Vec3f off = p + dir * along - c;
+  if (!(along > 0.f) || dot(off, off) > radius * radius)
+  {
+    return -1.f;
+  }
+  return along * along;
+}
+
+/// A bin's candidate as one ordered key: the shorter distance wins, then the smaller
+/// source (distances are positive, so their bits order as the values do).
+LINKGI_HOST_DEVICE inline std::uint64_t binKey(float d2, Index source)
+{
+#ifdef __CUDA_ARCH__
+  const std::uint32_t bits = __float_as_uint(d2);
+#else
+  std::uint32_t bits;
+  std::memcpy(&bits, &d2, sizeof bits);
+#endif
+  return (std::uint64_t(bits) << 32) | source;
+}
+constexpr std::uint64_t kEmptyBin = ~std::uint64_t(0);
+}
