@@ -177,7 +177,8 @@ public:
   /**
    * IMPLICIT_VISIBILITY: N, the bins per side of each face of every element's cube map of
    * directions (6 N^2 bins; the paper uses 8, 12, 16). More bins: finer shadows of the
-   * bounced light and less light through silhouettes, at about N^2 the cost.
+   * bounced light and less light through silhouettes, at about N^2 the cost. The GPU
+   * holds up to 16; a larger N runs on the CPU, with a warning.
    * The default value is 12.
    */
   vtkSetClampMacro(ImplicitVisibilityBins, int, 2, 32);
