@@ -328,6 +328,40 @@ TEST(Cuda, PartitionsOnOneGpuGiveTheOneGpuSolution)
   }
 }
 
+TEST(Cuda, PartitionsTakeOneRangeEachOnTheNextRelink)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  // The first link stage measures (batches sized by speed); a relink of the same elements
+  // then gives each partition one contiguous range of equal cost. The solution stays the
+  // one-partition one.
+  const Scene room = makeStandardScene("tearoom");
+  Scene moved = room;
+  for (Vec3f& p : moved.positions)
+  {
+    p.y *= 1.01f;
+  }
+  SolverOptions o = onBackend(Backend::Cuda, fast());
+  o.cudaDevices = 1;
+  Solver one;
+  const Solution single = one.update(moved, o);
+  const Partitions partitions(3);
+  Solver many;
+  many.update(room, o);
+  const Solution& split = many.update(moved, o);
+  ASSERT_TRUE(many.stats().ran("Links"));
+  ASSERT_EQ(many.stats().batchesPerDevice.size(), 3u);
+  std::uint64_t rows = 0;
+  for (std::size_t d = 0; d < 3; ++d)
+  {
+    EXPECT_EQ(many.stats().batchesPerDevice[d], 1u) << "partition " << d;
+    EXPECT_GT(many.stats().linkedPerDevice[d], 0u) << "partition " << d;
+    rows += many.stats().linkedPerDevice[d];
+  }
+  EXPECT_EQ(rows, moved.vertexCount());
+  EXPECT_EQ(many.stats().linksCompressed, one.stats().linksCompressed);
+  expectClose(split, single, 1e-5f);
+}
+
 TEST(Cuda, GpuMemoryIsWhatTheEngineAllocated)
 {
   LINKGI_REQUIRE_CUDA_DEVICE();

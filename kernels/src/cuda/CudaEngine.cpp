@@ -167,6 +167,12 @@ Engine::Engine(int maxDevices)
     devices.push_back(std::make_unique<EngineDevice>(found[i % use].index));
   }
   physicalDevices = int(use);
+  identicalDevices = true;
+  for (std::size_t i = 1; i < use; ++i)
+  {
+    identicalDevices = identicalDevices && found[i].name == found[0].name &&
+      found[i].multiprocessors == found[0].multiprocessors;
+  }
   name = (use > 1 ? std::to_string(use) + " x " : std::string()) + found[0].name;
   if (partitions > use)
   {

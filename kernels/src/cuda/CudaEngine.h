@@ -34,6 +34,18 @@ struct DeviceCsr
 /// that needs the whole mesh (topology, light links, smoothing, output).
 struct EngineDevice;
 
+/// What one link batch cost: elements [first, first + count) in `ms` of its GPU's time.
+struct BatchCost
+{
+  Index first = 0, count = 0;
+  double ms = 0.0;
+};
+
+/// Boundaries b_0 = 0 < ... < b_parts = elements of contiguous ranges of about equal cost,
+/// from the batches of the last link stage over the same elements (their cost spread evenly
+/// over each batch's elements); empty when they do not cover [0, elements) exactly.
+std::vector<Index> equalCostSplit(std::vector<BatchCost> last, Index elements, std::size_t parts);
+
 class Engine final : public engine::MethodBackend
 {
 public:
@@ -80,6 +92,10 @@ private:
   float eps = 0.f; ///< rayEpsilon of the positions, set by the geometry stage (not per stage)
   std::string name;
   int physicalDevices = 0;
+  /// Every partition is the same kind of GPU (the same model, or shares of one): the next
+  /// link stage then splits the elements by the last one's cost, one range per partition.
+  bool identicalDevices = false;
+  std::vector<BatchCost> lastBatches; ///< of the last link stage, over all partitions
   std::uint64_t rawLinks = 0, rays = 0;
 };
 }

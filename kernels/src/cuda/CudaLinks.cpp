@@ -23,9 +23,15 @@ namespace
 class BatchScheduler
 {
 public:
-  BatchScheduler(Index total, std::vector<EngineDevice*> devices)
-    : total(total), devices(std::move(devices)), maxBatch(this->devices.size(), total)
+  /// `plan`: boundaries of one contiguous range per device (equalCostSplit), or empty for
+  /// batches sized by the devices' speeds.
+  BatchScheduler(Index total, std::vector<EngineDevice*> devices, std::vector<Index> plan)
+    : total(total), devices(std::move(devices)), maxBatch(this->devices.size(), total), plan(std::move(plan))
   {
+    if (!this->plan.empty())
+    {
+      planned.assign(this->plan.begin(), this->plan.end() - 1);
+    }
   }
 
   /// The largest batch `device` has memory for.
@@ -38,6 +44,19 @@ public:
   bool next(std::size_t device, Index& first, Index& count)
   {
     std::lock_guard<std::mutex> lock(mutex);
+    if (!plan.empty())
+    {
+      // The device's own range, in batches its memory holds.
+      const Index end = plan[device + 1];
+      if (planned[device] >= end || stop)
+      {
+        return false;
+      }
+      first = planned[device];
+      count = std::min(end - first, maxBatch[device]);
+      planned[device] += count;
+      return true;
+    }
     if (cursor >= total || stop)
     {
       return false;
@@ -92,6 +111,7 @@ private:
   Index total, cursor = 0, finalLeft = 0;
   std::vector<EngineDevice*> devices;
   std::vector<Index> maxBatch;
+  std::vector<Index> plan, planned; ///< boundaries, and each device's next element in its range
   bool stop = false;
 };
 
@@ -188,6 +208,7 @@ void linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
   LINKGI_CUDA_CHECK(cudaEventElapsedTime(&compress, d.events[1], d.events[2]));
   d.msTrace += trace;
   d.msCompress += compress;
+  d.batchCosts.push_back({ first, count, double(trace + compress) });
   // Elements cost differently in different parts of a scene, so one batch's speed is a
   // noisy estimate; averaging with the previous one keeps splits from oscillating.
   const double speed = count / std::max(1e-3, double(trace + compress));
@@ -245,6 +266,7 @@ struct LinkStage
       d.msTrace = d.msCompress = 0.0;
       d.linked = 0;
       d.batches = 0;
+      d.batchCosts.clear();
       d.blocksUsed = 0;
       scheduler.limit(i, maxBatchFor(d, n));
       Index first = 0, count = 0;
@@ -269,6 +291,42 @@ struct LinkStage
     d.msWall = std::chrono::duration<double, std::milli>(clock::now() - began).count();
   }
 };
+}
+
+std::vector<Index> equalCostSplit(std::vector<BatchCost> last, Index elements, std::size_t parts)
+{
+  std::sort(last.begin(), last.end(), [](const BatchCost& a, const BatchCost& b) { return a.first < b.first; });
+  double total = 0.0;
+  Index covered = 0;
+  for (const BatchCost& b : last)
+  {
+    if (b.first != covered || b.count == 0 || !(b.ms > 0.0))
+    {
+      return {};
+    }
+    covered += b.count;
+    total += b.ms;
+  }
+  if (covered != elements || parts < 2 || elements < parts)
+  {
+    return {};
+  }
+  std::vector<Index> bounds{ 0 };
+  double before = 0.0; // the cost of the batches before `b`
+  std::size_t b = 0;
+  for (std::size_t k = 1; k < parts; ++k)
+  {
+    const double target = total * double(k) / double(parts);
+    while (b + 1 < last.size() && before + last[b].ms < target)
+    {
+      before += last[b++].ms;
+    }
+    const double within = std::clamp((target - before) / last[b].ms, 0.0, 1.0);
+    const Index at = last[b].first + Index(std::llround(within * last[b].count));
+    bounds.push_back(std::clamp(at, Index(bounds.back() + 1), Index(elements - (parts - k))));
+  }
+  bounds.push_back(elements);
+  return bounds;
 }
 
 void Engine::runOnAllDevices(const std::function<void(EngineDevice&, std::size_t)>& work)
@@ -316,9 +374,18 @@ void Engine::buildLinks(const engine::StageContext& c)
   {
     all.push_back(d.get());
   }
-  BatchScheduler scheduler(ne, all);
+  // Identical GPUs take one contiguous range each, of equal cost by the last link stage
+  // (elements cost differently in different parts of a scene); the first stage, or GPUs of
+  // different kinds, take batches sized by each GPU's measured speed.
+  BatchScheduler scheduler(ne, all,
+    identicalDevices && devices.size() > 1 ? equalCostSplit(lastBatches, ne, devices.size()) : std::vector<Index>{});
   LinkStage stage{ job, dirs, scheduler, c };
+  lastBatches.clear();
   runOnAllDevices([&stage](EngineDevice& d, std::size_t i) { stage.run(d, i); });
+  for (auto& d : devices)
+  {
+    lastBatches.insert(lastBatches.end(), d->batchCosts.begin(), d->batchCosts.end());
+  }
 
   rawLinks = 0;
   double msCompress = 0.0;

@@ -87,6 +87,7 @@ struct EngineDevice
   double elementsPerMs = 0.0; ///< speed of the last link batch, for the scheduler
   double msTrace = 0.0, msCompress = 0.0, msWall = 0.0;
   std::size_t linked = 0; ///< elements linked in the last link stage
+  std::vector<BatchCost> batchCosts; ///< the last link stage's batches on this partition
   unsigned long long rawLinks = 0; ///< links before merging, last link stage
   std::uint32_t batches = 0;
 
