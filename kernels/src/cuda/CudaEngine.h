@@ -34,7 +34,7 @@ struct DeviceCsr
 /// that needs the whole mesh (topology, light links, smoothing, output).
 struct EngineDevice;
 
-/// What one link batch cost: elements [first, first + count) in `ms` of its GPU's time.
+/// What one link batch cost: elements [first, first + count) in `ms` of its GPU's tracing.
 struct BatchCost
 {
   Index first = 0, count = 0;

@@ -208,7 +208,10 @@ void linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
   LINKGI_CUDA_CHECK(cudaEventElapsedTime(&compress, d.events[1], d.events[2]));
   d.msTrace += trace;
   d.msCompress += compress;
-  d.batchCosts.push_back({ first, count, double(trace + compress) });
+  // The split of the next relink weighs elements by their trace time alone: the kernels'
+  // own time, whereas the time up to the packing also holds the host's allocations when a
+  // batch outgrew its block (which would make the grown range look costly, and shrink it).
+  d.batchCosts.push_back({ first, count, double(trace) });
   // Elements cost differently in different parts of a scene, so one batch's speed is a
   // noisy estimate; averaging with the previous one keeps splits from oscillating.
   const double speed = count / std::max(1e-3, double(trace + compress));
