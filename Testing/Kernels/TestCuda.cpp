@@ -264,11 +264,18 @@ void expectClose(const Solution& a, const Solution& b, float tolerance)
   }
 }
 
-/// LINKGI_CUDA_PARTITIONS while it lives.
-struct Partitions
+/// An environment variable (a testing knob of the engine) while it lives.
+struct Knob
 {
-  explicit Partitions(int p) { setenv("LINKGI_CUDA_PARTITIONS", std::to_string(p).c_str(), 1); }
-  ~Partitions() { unsetenv("LINKGI_CUDA_PARTITIONS"); }
+  Knob(const char* name, int value) : name(name) { setenv(name, std::to_string(value).c_str(), 1); }
+  ~Knob() { unsetenv(name); }
+  const char* name;
+};
+
+/// LINKGI_CUDA_PARTITIONS while it lives.
+struct Partitions : Knob
+{
+  explicit Partitions(int p) : Knob("LINKGI_CUDA_PARTITIONS", p) {}
 };
 }
 
@@ -277,7 +284,8 @@ struct Partitions
 TEST(Cuda, PartitionsOnOneGpuGiveTheOneGpuSolution)
 {
   LINKGI_REQUIRE_CUDA_DEVICE();
-  // Large enough for several batches per partition (the first batches have 1024 elements).
+  // Several batches, so several blocks of rows, per partition (batches of at most 1000).
+  const Knob batches("LINKGI_CUDA_MAX_BATCH", 1000);
   Scene room = makeStandardScene("tearoom");
   Scene twoSided = twoSquares(false, 40);
   twoSided.environment.color = Vec3f(0.6f, 0.7f, 0.9f);
@@ -311,6 +319,10 @@ TEST(Cuda, PartitionsOnOneGpuGiveTheOneGpuSolution)
       }
       EXPECT_EQ(rows, elements);
       EXPECT_GE(holding, 2);
+      for (std::uint32_t batches : many.stats().batchesPerDevice)
+      {
+        EXPECT_GT(batches, 1u) << "batches of at most 1000 elements";
+      }
       EXPECT_EQ(many.stats().linksCompressed, one.stats().linksCompressed);
       expectClose(split, single, 1e-5f);
       // A light-only update reuses the partitions' rows.

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <exception>
 #include <mutex>
 
@@ -121,15 +122,21 @@ struct LinkJob
   Index elements = 0;
 };
 
-/// Largest batch whose scratch fits in about half of the device's free memory.
+/// Largest batch whose scratch fits in about half of the device's free memory; at most
+/// LINKGI_CUDA_MAX_BATCH elements where that is set (a testing knob: several batches, and
+/// so several blocks of rows, per partition on a small scene).
 Index maxBatchFor(const EngineDevice& d, Index raysPerVertex)
 {
   std::size_t freeBytes = 0, totalBytes = 0;
   LINKGI_CUDA_CHECK(cudaMemGetInfo(&freeBytes, &totalBytes));
   const std::size_t perElement = std::size_t(raysPerVertex) *
       (sizeof(LinkHit) + 4 * (sizeof(Index) + sizeof(float))) + 64;
-  return Index(std::min<std::size_t>(kInvalidIndex - 1,
-    std::max<std::size_t>(256, (freeBytes + d.scratch.bytes()) / 2 / perElement)));
+  std::size_t most = std::max<std::size_t>(256, (freeBytes + d.scratch.bytes()) / 2 / perElement);
+  if (const char* knob = std::getenv("LINKGI_CUDA_MAX_BATCH"))
+  {
+    most = std::min<std::size_t>(most, std::max<std::size_t>(1, std::strtoull(knob, nullptr, 10)));
+  }
+  return Index(std::min<std::size_t>(kInvalidIndex - 1, most));
 }
 
 /// Packs a batch's rows of W (or Wenv) from the fixed-capacity scratch into its block.
@@ -377,11 +384,19 @@ void Engine::buildLinks(const engine::StageContext& c)
   {
     all.push_back(d.get());
   }
-  // Identical GPUs take one contiguous range each, of equal cost by the last link stage
-  // (elements cost differently in different parts of a scene); the first stage, or GPUs of
-  // different kinds, take batches sized by each GPU's measured speed.
-  BatchScheduler scheduler(ne, all,
-    identicalDevices && devices.size() > 1 ? equalCostSplit(lastBatches, ne, devices.size()) : std::vector<Index>{});
+  // Identical GPUs take one contiguous range each: of equal cost by the last link stage
+  // (elements cost differently in different parts of a scene), or of equal size when there
+  // is none. GPUs of different kinds take batches sized by each one's measured speed.
+  std::vector<Index> plan;
+  if (identicalDevices && devices.size() > 1 && ne >= devices.size())
+  {
+    plan = equalCostSplit(lastBatches, ne, devices.size());
+    if (plan.empty())
+    {
+      plan = equalCostSplit({ { 0, ne, 1.0 } }, ne, devices.size());
+    }
+  }
+  BatchScheduler scheduler(ne, all, plan);
   LinkStage stage{ job, dirs, scheduler, c };
   lastBatches.clear();
   runOnAllDevices([&stage](EngineDevice& d, std::size_t i) { stage.run(d, i); });
