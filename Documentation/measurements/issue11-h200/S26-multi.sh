@@ -34,7 +34,7 @@ tail -3 $O/steps.log
 fi
 if [ -n "${SAN:-}" ]; then
 export CUDA_VISIBLE_DEVICES=0,1
-[ -n "${MEMCHECK:-}" ] && { compute-sanitizer --tool memcheck --leak-check full --error-exitcode 3 $T --gtest_filter='Cuda.AllGpus*:Cuda.BackendsAgreeOnARoom:Cuda.DeformationRefits*' > $O/memcheck2.log 2>&1; echo "memcheck exit $?"; }
-timeout ${RACE_S:-240} compute-sanitizer --tool racecheck --error-exitcode 3 $T --gtest_filter='Cuda.BackendsAgreeOnARoom' > $O/racecheck2.log 2>&1; echo "racecheck exit $?"
+[ -n "${MEMCHECK:-}" ] && { timeout ${MEM_S:-200} compute-sanitizer --tool memcheck --leak-check full --error-exitcode 3 $T --gtest_filter="${MEMCHECK}" > $O/memcheck2.log 2>&1; echo "memcheck exit $?"; }
+[ -n "${RACE_S:-}" ] && timeout ${RACE_S} compute-sanitizer --tool racecheck --error-exitcode 3 $T --gtest_filter='Cuda.BackendsAgreeOnARoom' > $O/racecheck2.log 2>&1; echo "racecheck exit $?"
 grep -h -E "ERROR SUMMARY|LEAK SUMMARY|RACECHECK SUMMARY|PASSED|FAILED|SKIPPED" $O/memcheck2.log $O/racecheck2.log
 fi
