@@ -3,7 +3,8 @@
 // the light of all of them: its arrays equal, point for point, those of one process lighting
 // the appended surface (block, then floor); the block's shadow falls on rank 1's floor, which
 // a rank lighting its partition alone does not see; a light move exchanges nothing and re-runs
-// only the light links and the bounces. Instant radiosity and photon mapping gather by rows too. Then the floor
+// only the light links and the bounces. Instant radiosity, photon mapping and implicit
+// visibility gather by rows too. Then the floor
 // split between ranks 0 and 1 with a layer of ghost cells each: the ghost points get their
 // owner's values. Memory budgets that differ between the ranks: all take the smallest.
 #include "vtkGlobalIlluminationFilter.h"
@@ -274,12 +275,16 @@ int main(int argc, char* argv[])
     ok &= Check(rank, budgeted->GetOutput()->GetNumberOfPoints() == 0, "a refused first update outputs nothing");
   }
 
-  // Instant radiosity and photon mapping split their gathers by rows as well: instant
-  // radiosity exchanges E_ind once, photon mapping its clusters' irradiance and distances;
+  // Instant radiosity, photon mapping and implicit visibility split their gathers by rows as
+  // well: instant radiosity exchanges E_ind once, photon mapping its clusters' irradiance and
+  // distances, implicit visibility the sky's irradiance and each bounce's E_ind (2 bounces);
   // the arrays are those of one process.
-  for (const int method : { vtkGlobalIlluminationFilter::INSTANT_RADIOSITY, vtkGlobalIlluminationFilter::PHOTON_MAPPING })
+  for (const int method : { vtkGlobalIlluminationFilter::INSTANT_RADIOSITY, vtkGlobalIlluminationFilter::PHOTON_MAPPING,
+         vtkGlobalIlluminationFilter::IMPLICIT_VISIBILITY })
   {
-    const std::string label = method == vtkGlobalIlluminationFilter::INSTANT_RADIOSITY ? "instant radiosity" : "photon mapping";
+    const std::string label = method == vtkGlobalIlluminationFilter::INSTANT_RADIOSITY ? "instant radiosity"
+      : method == vtkGlobalIlluminationFilter::PHOTON_MAPPING                          ? "photon mapping"
+                                                                                        : "implicit visibility";
     vtkNew<vtkGlobalIlluminationFilter> rows, one;
     for (vtkGlobalIlluminationFilter* f : { rows.Get(), one.Get() })
     {
@@ -295,7 +300,9 @@ int main(int argc, char* argv[])
     one->SetInputData(append->GetOutput());
     one->Update();
     vtkPolyData* lit = rows->GetOutput();
-    const double exchanges = method == vtkGlobalIlluminationFilter::INSTANT_RADIOSITY ? 1.0 : 2.0;
+    const double exchanges = method == vtkGlobalIlluminationFilter::INSTANT_RADIOSITY ? 1.0
+      : method == vtkGlobalIlluminationFilter::PHOTON_MAPPING                          ? 2.0
+                                                                                        : 3.0;
     ok &= Check(rank, Field(lit, "LinkGI.RadianceBytesExchanged") == 12.0 * elements * exchanges,
       label + " exchanged " + std::to_string(int(exchanges)) + " vectors of 12 B per element (" +
         std::to_string(Field(lit, "LinkGI.RadianceBytesExchanged")) + " B)");

@@ -192,6 +192,29 @@ TEST(TestPartition, InstantRadiosityGathersOnlyItsRows)
   EXPECT_EQ(stats[0].rays + stats[1].rays, whole.stats().rays);
 }
 
+// Implicit visibility pushes its node links to its own leaves only and gathers those rows of
+// every bounce: the sky's irradiance and each bounce's E_ind are completed by exchanges
+// before the tree pulls the radiance up. The node links are still created on every process.
+TEST(TestPartition, ImplicitVisibilityPushesAndGathersOnlyItsRows)
+{
+  const Scene s = test::roomWithBlock(0.5f);
+  SolverOptions o = test::quickOptions();
+  o.backend = Backend::Cpu;
+  o.method = Method::ImplicitVisibility;
+  o.implicitVisibility.binsPerSide = 8;
+  Solver whole;
+  const Solution one = whole.update(s, o);
+  const TwoProcesses two = solveAsTwo(s, o, [](std::size_t v) { return int((v / 5) % 2); });
+  EXPECT_EQ(two.exchanges, int(o.bounces) + 1) << "the sky's irradiance, then one per bounce";
+  for (int p = 0; p < 2; ++p)
+  {
+    EXPECT_TRUE(sameBits(two.result[p].indirect, one.indirect)) << "process " << p;
+    EXPECT_TRUE(sameBits(two.result[p].radiance, one.radiance)) << "process " << p;
+    EXPECT_LT(two.stats[p].linksCompressed, whole.stats().linksCompressed * 3 / 4) << "each pushes to its rows only";
+  }
+  EXPECT_EQ(two.stats[0].linksCompressed + two.stats[1].linksCompressed, whole.stats().linksCompressed);
+}
+
 // Photon mapping splits its final gather by the clusters' samples and its caustics by rows:
 // exchanges complete them, and every process interpolates the whole surface.
 TEST(TestPartition, PhotonMappingGathersOnlyItsClusters)

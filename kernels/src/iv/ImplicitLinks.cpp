@@ -231,7 +231,7 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
 
 std::vector<Vec3f> iterateHierarchicalBounces(const ClusterTree& tree,
   const SparseMatrix& transport, const BounceInputs& inputs, std::uint32_t bounces,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress, const std::function<void(std::vector<Vec3f>&)>& exchange)
 {
   const std::size_t leaves = tree.leafCount;
   std::vector<Vec3f> indirect(leaves, Vec3f(0.f)), radiance(tree.nodeCount());
@@ -258,6 +258,10 @@ std::vector<Vec3f> iterateHierarchicalBounces(const ClusterTree& tree,
         : Vec3f(0.f);
     }
     gatherRgb(transport, radiance.data(), indirect.data());
+    if (exchange)
+    {
+      exchange(indirect);
+    }
   }
   return indirect;
 }

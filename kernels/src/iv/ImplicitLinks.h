@@ -9,6 +9,7 @@
 #include "linkgi/Bounce.h"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace linkgi::iv
@@ -116,14 +117,18 @@ struct LeafLinks
 /// the whole hemisphere weighs pi (a closed surface gathers exactly). `receiverOffsets`
 /// (per leaf, or empty): where a leaf looks from, relative to its vertex (the ray-origin
 /// shift towards its one-ring, so a vertex on a contact line looks from inside the room).
+/// `rows` (per leaf, or null for all): the leaves to push to; the others get empty rows
+/// (a process's share under MPI, SolverOptions::partition).
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
   const Environment& environment, const std::vector<Vec3f>& receiverOffsets,
-  const ProgressCallback& progress = {});
+  const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 
 /// (Each function reports its own fraction in [0, 1] through `progress`.)
 /// n_B gather iterations: L at the leaves, pulled up the tree (area-weighted), gathered at
 /// the leaves through `transport`; as iterateBounces, from E_ind = 0, returns E_ind.
+/// With `exchange` (a partition's), `transport` holds this process's rows only and each
+/// gather is completed by the other processes' rows before the next bounce pulls it up.
 std::vector<Vec3f> iterateHierarchicalBounces(const ClusterTree& tree,
   const SparseMatrix& transport, const BounceInputs& inputs, std::uint32_t bounces,
-  const ProgressCallback& progress = {});
+  const ProgressCallback& progress = {}, const std::function<void(std::vector<Vec3f>&)>& exchange = {});
 }

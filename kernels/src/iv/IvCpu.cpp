@@ -102,7 +102,9 @@ private:
     const NodeLinks created = createNodeLinks(tree, bins, lo, within(0.0, 0.6));
     const auto t = std::chrono::steady_clock::now();
     Links& next = links.stage();
-    next.leaves = pushToLeaves(tree, created, bins, c.scene.environment, geometry.shifts, within(0.6, 1.0));
+    // Under MPI each process pushes to its own leaves only (its rows of the bounces).
+    next.leaves = pushToLeaves(tree, created, bins, c.scene.environment, geometry.shifts, within(0.6, 1.0),
+      ownRows(c.options, c.scene.vertexCount()));
     next.nodeLinks = created.byReceiver.nonZeros();
     c.part("RefinePush", msSince(t));
   }
@@ -124,6 +126,11 @@ private:
     const std::vector<Vec3f> texels = environmentTexelRadiance(s.environment);
     std::vector<Vec3f> envIrradiance(nv);
     gatherRgb(linksNow.environment, texels.data(), envIrradiance.data());
+    const bool partitioned = ownRows(o, nv) != nullptr;
+    if (partitioned)
+    {
+      o.partition->exchange(envIrradiance); // the other processes' rows
+    }
     BounceInputs inputs;
     inputs.fixedIrradiance.resize(nv);
     for (std::size_t v = 0; v < nv; ++v)
@@ -132,7 +139,8 @@ private:
     }
     inputs.albedo = s.albedo;
     inputs.emission = s.emission;
-    std::vector<Vec3f> indirect = iterateHierarchicalBounces(tree, linksNow.transport, inputs, o.bounces, c.progress);
+    std::vector<Vec3f> indirect = iterateHierarchicalBounces(tree, linksNow.transport, inputs, o.bounces, c.progress,
+      partitioned ? o.partition->exchange : std::function<void(std::vector<Vec3f>&)>());
     for (std::size_t v = 0; v < nv; ++v)
     {
       indirect[v] += envIrradiance[v];

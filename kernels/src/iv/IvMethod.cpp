@@ -16,10 +16,12 @@ public:
   const std::vector<StageSpec>& stages() const override
   {
     // The links are rebuilt whenever the geometry moves: that is the method (no rays, so
-    // a new structure per frame is affordable). Shares: torso on the CPU at N = 12.
+    // a new structure per frame is affordable). kSampling holds the partition's rows under
+    // MPI (which leaves a process pushes to); the method reads none of its rays, twist and
+    // seed. Shares: torso on the CPU at N = 12.
     static const std::vector<StageSpec> table = {
       { "Elements", "ElementUpdates", kGeometry, 0u, 5.0 },
-      { "ImplicitLinks", "ImplicitLinkBuilds", kMethodOptions | kEnvironmentLayout, 1u << kElementStage, 80.0 },
+      { "ImplicitLinks", "ImplicitLinkBuilds", kMethodOptions | kEnvironmentLayout | kSampling, 1u << kElementStage, 80.0 },
       { "LightLinks", "LightLinkBuilds", kLights | kLightSampling | kSides, 1u << kElementStage, 10.0 },
       { "Bounces", "BounceRuns", kEverything, (1u << kElementStage) | (1u << kLinkStage) | (1u << kLightLinkStage), 5.0 },
     };

@@ -99,7 +99,7 @@ void rasterizeNearDiscs(const ClusterTree& t, const std::vector<Index>& discs, c
 
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
   const Environment& environment, const std::vector<Vec3f>& receiverOffsets,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress, const std::uint8_t* rows)
 {
   const std::size_t leaves = tree.leafCount, nb = bins.count();
   const std::size_t sliceCount = std::min<std::size_t>(leaves, std::size_t(workerCount()) * 16);
@@ -137,6 +137,12 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
       std::uint64_t occupiedHere = 0, emptyHere = 0;
       for (std::size_t leaf = s * leaves / sliceCount; leaf < (s + 1) * leaves / sliceCount; ++leaf)
       {
+        if (rows && !rows[leaf])
+        {
+          out.counts.push_back(0); // another process's row
+          out.envCounts.push_back(0);
+          continue;
+        }
         const Vec3f n = tree.normal[leaf];
         const Vec3f p = receiverOffsets.empty() ? tree.position[leaf] : tree.position[leaf] + receiverOffsets[leaf];
         for (Index node = Index(leaf); node != kInvalidIndex; node = tree.parent[node])
