@@ -192,9 +192,9 @@ TEST(TestPartition, InstantRadiosityGathersOnlyItsRows)
   EXPECT_EQ(stats[0].rays + stats[1].rays, whole.stats().rays);
 }
 
-// Implicit visibility pushes its node links to its own leaves only and gathers those rows of
-// every bounce: the sky's irradiance and each bounce's E_ind are completed by exchanges
-// before the tree pulls the radiance up. The node links are still created on every process.
+// Implicit visibility creates only the node links into its own leaves' ancestors, pushes them
+// to its own leaves and gathers those rows of every bounce: the sky's irradiance and each
+// bounce's E_ind are completed by exchanges before the tree pulls the radiance up.
 TEST(TestPartition, ImplicitVisibilityPushesAndGathersOnlyItsRows)
 {
   const Scene s = test::roomWithBlock(0.5f);
@@ -211,6 +211,7 @@ TEST(TestPartition, ImplicitVisibilityPushesAndGathersOnlyItsRows)
     EXPECT_TRUE(sameBits(two.result[p].indirect, one.indirect)) << "process " << p;
     EXPECT_TRUE(sameBits(two.result[p].radiance, one.radiance)) << "process " << p;
     EXPECT_LT(two.stats[p].linksCompressed, whole.stats().linksCompressed * 3 / 4) << "each pushes to its rows only";
+    EXPECT_LT(two.stats[p].linksRaw, whole.stats().linksRaw) << "each links into its leaves' ancestors only";
   }
   EXPECT_EQ(two.stats[0].linksCompressed + two.stats[1].linksCompressed, whole.stats().linksCompressed);
 }

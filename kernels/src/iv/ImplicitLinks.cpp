@@ -168,10 +168,22 @@ CubeBins CubeBins::make(int n)
 }
 
 NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
-  const LinkCreationOptions& options, const ProgressCallback& progress)
+  const LinkCreationOptions& options, const ProgressCallback& progress, const std::uint8_t* rows)
 {
   const std::vector<NodeBounds> nodes = nodeBounds(tree);
-  const PairRules rules = pairRules(tree, nodes, bins, options);
+  PairRules rules = pairRules(tree, nodes, bins, options);
+  std::vector<std::uint8_t> ownBelow;
+  if (rows)
+  {
+    // Children precede their parent: one pass in index order.
+    ownBelow.assign(rows, rows + tree.leafCount);
+    ownBelow.resize(tree.nodeCount(), 0);
+    for (std::size_t i = 0; i < tree.left.size(); ++i)
+    {
+      ownBelow[tree.leafCount + i] = ownBelow[tree.left[i]] | ownBelow[tree.right[i]];
+    }
+    rules.ownBelow = ownBelow.data();
+  }
   NodeLinks out;
   // Breadth-first from (root, root) until there are enough independent pairs for every
   // core; the links found on the way are the first part.

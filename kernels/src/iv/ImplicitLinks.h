@@ -91,8 +91,10 @@ std::vector<NodeBounds> nodeBounds(const ClusterTree& tree);
 PairRules pairRules(const ClusterTree& tree, const std::vector<NodeBounds>& nodes, const CubeBins& bins,
   const LinkCreationOptions& options);
 
+/// `rows` (per leaf, or null for all): only the links that reach these leaves' ancestors
+/// (a process's share under MPI); pairs of which neither holds such a leaf are not followed.
 NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
-  const LinkCreationOptions& options, const ProgressCallback& progress = {});
+  const LinkCreationOptions& options, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 
 /// What the leaves gather after refinement and push-down.
 struct LeafLinks

@@ -99,12 +99,13 @@ private:
     const auto within = [&c](double lo, double hi) -> ProgressCallback {
       return [&c, lo, hi](const char*, double f) { return !c.progress || c.progress("ImplicitLinks", lo + (hi - lo) * f); };
     };
-    const NodeLinks created = createNodeLinks(tree, bins, lo, within(0.0, 0.6));
+    // Under MPI each process creates the links into its own leaves' ancestors only and
+    // pushes them to its own leaves (its rows of the bounces).
+    const std::uint8_t* rows = ownRows(c.options, c.scene.vertexCount());
+    const NodeLinks created = createNodeLinks(tree, bins, lo, within(0.0, 0.6), rows);
     const auto t = std::chrono::steady_clock::now();
     Links& next = links.stage();
-    // Under MPI each process pushes to its own leaves only (its rows of the bounces).
-    next.leaves = pushToLeaves(tree, created, bins, c.scene.environment, geometry.shifts, within(0.6, 1.0),
-      ownRows(c.options, c.scene.vertexCount()));
+    next.leaves = pushToLeaves(tree, created, bins, c.scene.environment, geometry.shifts, within(0.6, 1.0), rows);
     next.nodeLinks = created.byReceiver.nonZeros();
     c.part("RefinePush", msSince(t));
   }

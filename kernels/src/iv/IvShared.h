@@ -72,12 +72,20 @@ struct PairRules
   float binSolidAngle = 0.f; ///< the subdivision threshold (CubeBins::meanSolidAngle)
   float planeEpsilon = 0.f;
   float maxConeAngle = 0.f;
+  /// Per node, or null for all: whether a leaf below it is this process's (a partition's
+  /// row). Links are then made only into such nodes, and a pair of which neither is one is
+  /// not followed: what the process pushes to its leaves is unchanged.
+  const std::uint8_t* ownBelow = nullptr;
 
   /// One step of the recursion over the pair (a, b): links it (emit(receiver, source), for
   /// each end that can receive), prunes it, or pushes the pairs of a subdivision.
   template <typename Emit, typename Push>
   LINKGI_HOST_DEVICE void visit(Index a, Index b, Emit& emit, Push& push) const
   {
+    if (ownBelow && !ownBelow[a] && !ownBelow[b])
+    {
+      return;
+    }
     const NodeBounds& na = nodes[a];
     if (a == b)
     {
@@ -111,11 +119,11 @@ struct PairRules
       push(right[i], other);
       return;
     }
-    if (aReceives)
+    if (aReceives && (!ownBelow || ownBelow[a]))
     {
       emit(a, b);
     }
-    if (bReceives)
+    if (bReceives && (!ownBelow || ownBelow[b]))
     {
       emit(b, a);
     }
