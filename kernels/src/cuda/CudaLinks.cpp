@@ -18,9 +18,10 @@ namespace linkgi::cuda
 {
 namespace
 {
-/// Hands out element ranges. A device's batch takes about `targetMs` at its last measured
-/// speed; once what is left would not fill one more round, the rest is split in proportion
-/// to the speeds so all devices finish together.
+/// Hands out element ranges. With a plan (identical GPUs), each device takes its own
+/// contiguous range, in batches its memory holds. Without one, a device's batch takes about
+/// `targetMs` at its last measured speed; once what is left would not fill one more round,
+/// the rest is split in proportion to the speeds so all devices finish together.
 class BatchScheduler
 {
 public:
