@@ -10,15 +10,6 @@ namespace
 {
 constexpr int kThreads = 256;
 
-__device__ inline Vec3f toVec(const Rgba& c)
-{
-  return { c.r, c.g, c.b };
-}
-__device__ inline Rgba toRgba(const Vec3f& v)
-{
-  return { v.x, v.y, v.z, 0.f };
-}
-
 /// Sum over row `row` of M x with `Lanes` threads; every lane returns the full sum. All
 /// lanes of the warp must call it (the shuffles name the whole warp); rows past the end
 /// take part with an empty range.

@@ -62,7 +62,7 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
   std::vector<Rgba> texels;
   for (const Vec3f& r : environmentTexelRadiance(s.environment))
   {
-    texels.push_back({ r.x, r.y, r.z, 0.f });
+    texels.push_back(toRgba(r));
   }
   const bool shading = (c.changes & (engine::kTopology | engine::kAlbedo | engine::kEmission)) != 0;
   // Every partition computes its rows of each bounce from the whole radiance vector: E_env

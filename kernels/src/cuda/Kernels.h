@@ -21,6 +21,15 @@ struct alignas(16) Rgba
   float r, g, b, a;
 };
 
+LINKGI_HOST_DEVICE inline Vec3f toVec(const Rgba& c)
+{
+  return { c.r, c.g, c.b };
+}
+LINKGI_HOST_DEVICE inline Rgba toRgba(const Vec3f& v)
+{
+  return { v.x, v.y, v.z, 0.f };
+}
+
 /// One link ray's result as the link stage stores it.
 struct LinkHit
 {

@@ -1,6 +1,7 @@
 #include "iv/ImplicitLinks.h"
 
 #include "linkgi/Error.h"
+#include "linkgi/Links.h"
 
 #include <algorithm>
 #include <cmath>
@@ -122,14 +123,21 @@ std::vector<NodeBounds> nodeBounds(const ClusterTree& t)
   return nodes;
 }
 
-PairRules pairRules(const ClusterTree& tree, const std::vector<NodeBounds>& nodes, const CubeBins& bins,
-  const LinkCreationOptions& options)
+LinkCreationOptions LinkCreationOptions::of(const Scene& scene)
+{
+  LinkCreationOptions o;
+  o.planeEpsilon = 0.1f * rayEpsilon(scene);
+  return o;
+}
+
+PairRules pairRules(const NodeBounds* nodes, const Index* left, const Index* right, std::size_t leafCount,
+  const CubeBins& bins, const LinkCreationOptions& options)
 {
   PairRules r;
-  r.nodes = nodes.data();
-  r.left = tree.left.data();
-  r.right = tree.right.data();
-  r.leafCount = Index(tree.leafCount);
+  r.nodes = nodes;
+  r.left = left;
+  r.right = right;
+  r.leafCount = Index(leafCount);
   r.binSolidAngle = bins.meanSolidAngle();
   r.planeEpsilon = options.planeEpsilon;
   r.maxConeAngle = options.maxConeAngle;
@@ -171,7 +179,7 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
   const LinkCreationOptions& options, const ProgressCallback& progress, const std::uint8_t* rows)
 {
   const std::vector<NodeBounds> nodes = nodeBounds(tree);
-  PairRules rules = pairRules(tree, nodes, bins, options);
+  PairRules rules = pairRules(nodes.data(), tree.left.data(), tree.right.data(), tree.leafCount, bins, options);
   std::vector<std::uint8_t> ownBelow;
   if (rows)
   {

@@ -72,6 +72,9 @@ struct LinkCreationOptions
   /// Clusters whose normals spread by more than this half angle (radians) are subdivided
   /// before they are linked, so that which side a source shows is decided per narrow cone.
   float maxConeAngle = 0.785398f;
+
+  /// The options for `scene`: the plane epsilon a tenth of its ray epsilon.
+  static LinkCreationOptions of(const Scene& scene);
 };
 
 /// Links as created between tree nodes, before refinement: row = receiving node, columns
@@ -87,9 +90,10 @@ struct NodeLinks
 
 /// The pair recursion's record of every node (positions, bounds, first child).
 std::vector<NodeBounds> nodeBounds(const ClusterTree& tree);
-/// The pair recursion's rules over `tree` (pointers into `tree` and `nodes`).
-PairRules pairRules(const ClusterTree& tree, const std::vector<NodeBounds>& nodes, const CubeBins& bins,
-  const LinkCreationOptions& options);
+/// The pair recursion's rules over a tree: `nodes`, `left`, `right` (ClusterTree's, or
+/// their copies on a GPU) and the thresholds of `bins` and `options`.
+PairRules pairRules(const NodeBounds* nodes, const Index* left, const Index* right, std::size_t leafCount,
+  const CubeBins& bins, const LinkCreationOptions& options);
 
 /// `rows` (per leaf, or null for all): only the links that reach these leaves' ancestors
 /// (a process's share under MPI); pairs of which neither holds such a leaf are not followed.

@@ -94,8 +94,7 @@ private:
     {
       bins = CubeBins::make(n);
     }
-    LinkCreationOptions lo;
-    lo.planeEpsilon = 0.1f * rayEpsilon(c.scene);
+    const LinkCreationOptions lo = LinkCreationOptions::of(c.scene);
     const auto within = [&c](double lo, double hi) -> ProgressCallback {
       return [&c, lo, hi](const char*, double f) { return !c.progress || c.progress("ImplicitLinks", lo + (hi - lo) * f); };
     };

@@ -11,7 +11,6 @@
 #include "cuda/OneDevice.h"
 
 #include "linkgi/Cuda.h"
-#include "linkgi/Links.h"
 #include "linkgi/Metrics.h"
 
 #include <algorithm>
@@ -58,14 +57,6 @@ public:
   }
 
 private:
-  /// One side of the sides this method lights: the fronts (as on the CPU).
-  static SolverOptions frontsOnly(const SolverOptions& o)
-  {
-    SolverOptions f = o;
-    f.twoSided = false;
-    return f;
-  }
-
   void updateElements(const StageContext& c)
   {
     const Scene& s = c.scene;
@@ -85,7 +76,7 @@ private:
     }
     nodes.upload(nodeBounds(tree), stream);
     area.upload(tree.area, stream);
-    planeEpsilon = 0.1f * rayEpsilon(s);
+    linkOptions = LinkCreationOptions::of(s); // a pass over the positions: once per geometry
   }
 
   /// What does not move with the vertices: children, parents, and the interior nodes by
@@ -150,16 +141,7 @@ private:
 
     // The pair recursion, breadth first: one launch per level of pairs, each level's
     // links and next pairs appended; a level that overflows its buffers runs again.
-    LinkCreationOptions lo;
-    lo.planeEpsilon = planeEpsilon;
-    PairRules rules;
-    rules.nodes = nodes.data();
-    rules.left = left.data();
-    rules.right = right.data();
-    rules.leafCount = Index(tree.leafCount);
-    rules.binSolidAngle = bins.meanSolidAngle();
-    rules.planeEpsilon = lo.planeEpsilon;
-    rules.maxConeAngle = lo.maxConeAngle;
+    const PairRules rules = pairRules(nodes.data(), left.data(), right.data(), tree.leafCount, bins, linkOptions);
     const gpu::NodePair root{ tree.root(), tree.root() };
     frontier.upload(&root, 1, stream);
     std::size_t frontierCount = 1, linkCount = 0;
@@ -236,7 +218,7 @@ private:
 
   void lightLinks(const StageContext& c)
   {
-    direct.queue(c.scene, frontsOnly(c.options), mesh, device.counters + kLightSlot, stream);
+    direct.queue(c.scene, c.options, mesh, device.counters + kLightSlot, stream);
     lightPending = true;
   }
 
@@ -271,7 +253,7 @@ private:
     std::vector<Rgba> texels;
     for (const Vec3f& r : environmentTexelRadiance(s.environment))
     {
-      texels.push_back({ r.x, r.y, r.z, 0.f });
+      texels.push_back(cuda::toRgba(r));
     }
     texelRadiance.upload(texels, stream);
     for (GPUBuffer<Rgba>* b : { &envIrradiance, &fixed, &indirect })
@@ -299,7 +281,7 @@ private:
       cuda::gatherRgb(w, radiance.data(), indirect.data(), stream);
     }
     gpu::addTo(envIrradiance.data(), nv, indirect.data(), stream);
-    done.run(s, frontsOnly(o), mesh, direct.direct.data(), indirect.data(), albedo.data(), le, c.solution, {}, stream);
+    done.run(s, o, mesh, direct.direct.data(), indirect.data(), albedo.data(), le, c.solution, {}, stream);
     if (lightPending)
     {
       lightRays = device.counters[kLightSlot];
@@ -319,7 +301,7 @@ private:
 
   ClusterTree tree;
   CubeBins bins;
-  float planeEpsilon = 0.f;
+  LinkCreationOptions linkOptions;
   std::vector<Index> levelOffsets;
   GPUBuffer<NodeBounds> nodes;
   GPUBuffer<float> area, binSolidAngles;

@@ -10,6 +10,8 @@ namespace linkgi::iv::gpu
 namespace
 {
 using cuda::Rgba;
+using cuda::toRgba;
+using cuda::toVec;
 constexpr int kThreads = 128;
 /// Threads of the push's block per leaf.
 constexpr int kPushThreads = 128;
@@ -19,15 +21,6 @@ constexpr int kMaxNearDiscs = 512;
 unsigned blocks(std::size_t n, int threads = kThreads)
 {
   return unsigned((n + threads - 1) / threads);
-}
-
-__device__ inline Vec3f toVec(const Rgba& c)
-{
-  return Vec3f(c.r, c.g, c.b);
-}
-__device__ inline Rgba toRgba(const Vec3f& v)
-{
-  return { v.x, v.y, v.z, 0.f };
 }
 
 struct Append
