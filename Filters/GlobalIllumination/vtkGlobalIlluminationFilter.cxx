@@ -231,25 +231,14 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
       internals.Async.reset();
       internals.CheckDistributed(this);
       vtkPolyData* target = distributed ? internals.GlobalLit.Get() : lit;
-      const linkgi::Scene& scene = internals.UpdateScene(this, solved);
-      internals.ActivePartition = internals.Partitions.Rows(this->Controller, internals.Mesh.ElementPoint, this->TwoSided);
-      std::exception_ptr failure;
-      try
-      {
+      // Under MPI all processes leave a failed update together (the failure anywhere in it,
+      // an abort included), so none waits for another in an exchange.
+      internals.Partitions.Together(this->Controller, [&] {
+        const linkgi::Scene& scene = internals.UpdateScene(this, solved);
+        internals.ActivePartition =
+          internals.Partitions.Rows(this->Controller, internals.Mesh.ElementPoint, this->TwoSided);
         internals.Update(this, scene);
-      }
-      catch (...)
-      {
-        failure = std::current_exception();
-      }
-      if (distributed)
-      {
-        internals.Partitions.Agree(this->Controller, failure);
-      }
-      else if (failure)
-      {
-        std::rethrow_exception(failure);
-      }
+      });
       internals.ShapeOutput(solved, target);
       const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
       internals.AttachResults(this, target, elapsed.count(), internals.Solution(), internals.Stats());

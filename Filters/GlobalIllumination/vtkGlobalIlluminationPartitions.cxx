@@ -213,25 +213,21 @@ std::shared_ptr<const linkgi::Partition> vtkGlobalIlluminationPartitions::Rows(
   {
     return this->Partition;
   }
-  auto partition = std::make_shared<linkgi::Partition>();
-  partition->rows.resize(elements);
+  std::vector<std::uint8_t> rows(elements);
   for (std::size_t e = 0; e < elements; ++e)
   {
     const vtkIdType point = elementPoint[e % elementPoint.size()];
-    partition->rows[e] = point >= this->Offset && point < this->Offset + this->Count ? 1 : 0;
+    rows[e] = point >= this->Offset && point < this->Offset + this->Count ? 1 : 0;
   }
   this->PartitionGeneration = this->Generation;
-  if (this->Partition && this->Partition->rows == partition->rows)
+  if (this->Partition && this->Partition->rows == rows)
   {
     return this->Partition; // the surfaces were exchanged again, but the rows are the same
   }
-  partition->smallest = [controller](std::uint64_t value) {
-    vtkTypeUInt64 mine = value, least = value;
-    controller->AllReduce(&mine, &least, 1, vtkCommunicator::MIN_OP);
-    return static_cast<std::uint64_t>(least);
-  };
+  auto partition = std::make_shared<linkgi::Partition>(Collectives(controller));
+  partition->rows = std::move(rows);
   std::shared_ptr<std::uint64_t> exchanged = this->Exchanged;
-  partition->exchange = [controller, exchanged](std::vector<linkgi::Vec3f>& values) {
+  partition->sum = [controller, exchanged](std::vector<linkgi::Vec3f>& values) {
     const vtkIdType n = static_cast<vtkIdType>(3 * values.size());
     std::vector<float> sum(values.size() * 3);
     controller->AllReduce(reinterpret_cast<const float*>(values.data()), sum.data(), n, vtkCommunicator::SUM_OP);
@@ -244,20 +240,31 @@ std::shared_ptr<const linkgi::Partition> vtkGlobalIlluminationPartitions::Rows(
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationPartitions::Agree(
-  vtkMultiProcessController* controller, std::exception_ptr failure) const
+void vtkGlobalIlluminationPartitions::Together(
+  vtkMultiProcessController* controller, const std::function<void()>& work) const
 {
-  const int failed = failure ? 1 : 0;
-  int failures = 0;
-  controller->AllReduce(&failed, &failures, 1, vtkCommunicator::SUM_OP);
-  if (failure)
+  if (!this->Distributed())
   {
-    std::rethrow_exception(failure);
+    work();
+    return;
   }
-  if (failures > 0)
-  {
-    throw linkgi::Error("This update failed on " + std::to_string(failures) + " of the " +
-      std::to_string(this->Processes) + " processes that share the surface (the error is in " +
-      (failures == 1 ? "its" : "their") + " output); the previous result is kept.");
-  }
+  const linkgi::Partition collectives = Collectives(controller);
+  linkgi::together(&collectives, work);
+}
+
+//------------------------------------------------------------------------------
+linkgi::Partition vtkGlobalIlluminationPartitions::Collectives(vtkMultiProcessController* controller)
+{
+  linkgi::Partition p;
+  p.least = [controller](std::uint64_t value) {
+    vtkTypeUInt64 mine = value, least = value;
+    controller->AllReduce(&mine, &least, 1, vtkCommunicator::MIN_OP);
+    return static_cast<std::uint64_t>(least);
+  };
+  p.count = [controller](std::uint64_t value) {
+    vtkTypeUInt64 mine = value, total = value;
+    controller->AllReduce(&mine, &total, 1, vtkCommunicator::SUM_OP);
+    return static_cast<std::uint64_t>(total);
+  };
+  return p;
 }

@@ -12,7 +12,7 @@
 
 #include "linkgi/SolverTypes.h"
 
-#include <exception>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -47,11 +47,11 @@ public:
   std::shared_ptr<const linkgi::Partition> Rows(vtkMultiProcessController* controller,
     const std::vector<vtkIdType>& elementPoint, bool twoSided);
 
-  /// Collective, after an update of a distributed surface: when no process failed, nothing;
-  /// else `failure` is rethrown on the processes that had one, and the others throw an error
-  /// that says another process failed. So all processes leave a failed update together, and
-  /// none waits in Scatter's or the next update's exchanges for one that left.
-  void Agree(vtkMultiProcessController* controller, std::exception_ptr failure) const;
+  /// Runs `work`, this process's part of an update of the last Gather's surface. Collective
+  /// when the surface is distributed (linkgi::together): when `work` throws on any process,
+  /// it throws on all - the error itself where it happened, linkgi::PeerFailed on the others
+  /// - so all keep their previous result and none waits in an exchange for one that left.
+  void Together(vtkMultiProcessController* controller, const std::function<void()>& work) const;
 
   /// `output` = `local` with every point array of `lit` (the lit global surface) that
   /// `local` lacks, cut to this process's points, and `lit`'s field data, with
@@ -67,6 +67,8 @@ public:
 
 private:
   void FindGhostOwners(vtkPolyData* local);
+  /// A linkgi::Partition without rows: the collectives over `controller`.
+  static linkgi::Partition Collectives(vtkMultiProcessController* controller);
 
   vtkSmartPointer<vtkPolyData> Global;
   std::vector<std::pair<vtkIdType, vtkIdType>> Owners;

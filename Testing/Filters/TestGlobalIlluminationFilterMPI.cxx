@@ -16,6 +16,7 @@
 #include "vtkCellData.h"
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkFieldData.h"
 #include "vtkLight.h"
@@ -30,6 +31,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <string>
 #include <vector>
@@ -251,6 +253,65 @@ int main(int argc, char* argv[])
   ok &= Check(rank, Field(out, "LinkGI.PartitionBytesReceived") == 0, "a light move exchanges no surface");
   ok &= Check(rank, Field(out, "LinkGI.LinkBuilds") == links, "a light move builds no links");
   ok &= Check(rank, Field(out, "LinkGI.LightLinkBuilds") == lightLinks + 1, "a light move re-runs the light links");
+
+  // Rank 1 aborts the next light move in its bounces, after the sky's exchange: every rank
+  // leaves the update together (rank 1 with its warning, the others with an error that says
+  // so) and keeps its previous output, instead of waiting for rank 1 in the next exchange;
+  // the update after that completes everywhere, with one process's values.
+  {
+    vtkNew<vtkDoubleArray> before;
+    before->DeepCopy(out->GetPointData()->GetArray("DirectIrradiance"));
+    std::string messages;
+    vtkNew<vtkCallbackCommand> onMessage;
+    onMessage->SetClientData(&messages);
+    onMessage->SetCallback([](vtkObject*, unsigned long, void* clientData, void* callData) {
+      *static_cast<std::string*>(clientData) += static_cast<const char*>(callData);
+    });
+    vtkNew<vtkCallbackCommand> abortInBounces; // what a GUI's cancel button does, on rank 1 only
+    abortInBounces->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
+      auto* filter = static_cast<vtkAlgorithm*>(caller);
+      if (filter->GetProgressText() && std::strstr(filter->GetProgressText(), "ounces"))
+      {
+        filter->SetAbortExecute(1);
+      }
+    });
+    const unsigned long onError = distributed->AddObserver(vtkCommand::ErrorEvent, onMessage);
+    const unsigned long onWarning = distributed->AddObserver(vtkCommand::WarningEvent, onMessage);
+    const unsigned long onProgress = rank == 1 ? distributed->AddObserver(vtkCommand::ProgressEvent, abortInBounces) : 0;
+    light->SetPosition(0.1, -0.3, 2.0);
+    distributed->Modified();
+    distributed->Update();
+    out = distributed->GetOutput();
+    ok &= Check(rank, rank == 1 ? messages.find("aborted") != std::string::npos :
+                                  messages.find("failed on 1 of the other processes") != std::string::npos,
+      "every rank leaves the update that rank 1 aborted (" + messages + ")");
+    vtkDataArray* after = out->GetPointData()->GetArray("DirectIrradiance");
+    bool kept = after && after->GetNumberOfTuples() == before->GetNumberOfTuples();
+    for (vtkIdType i = 0; kept && i < before->GetNumberOfTuples(); ++i)
+    {
+      kept = after->GetComponent(i, 0) == before->GetComponent(i, 0);
+    }
+    ok &= Check(rank, kept, "and keeps its previous output");
+    if (rank == 1)
+    {
+      distributed->RemoveObserver(onProgress);
+      distributed->SetAbortExecute(0);
+    }
+    messages.clear();
+    distributed->Modified();
+    distributed->Update();
+    out = distributed->GetOutput();
+    whole->Modified();
+    whole->Update();
+    ok &= Check(rank, messages.empty(), "the next update completes everywhere (" + messages + ")");
+    if (mine->GetNumberOfPoints() > 0)
+    {
+      const double d = Difference(out, whole->GetOutput(), offset, "IndirectIrradiance");
+      ok &= Check(rank, d <= 1e-4, "with one process's values (" + std::to_string(d) + ")");
+    }
+    distributed->RemoveObserver(onError);
+    distributed->RemoveObserver(onWarning);
+  }
 
   // Rank 0's memory budget (64 KiB) is too small for the update, the others' (the machine's)
   // is not: every rank takes the smallest, so all refuse the update with an error, instead

@@ -76,6 +76,39 @@ struct SumExchange : AllReduce<Vec3f>
   explicit SumExchange(int parties) : AllReduce<Vec3f>(parties, [](const Vec3f& a, const Vec3f& b) { return a + b; }) {}
 };
 
+/// Every collective of `parties` processes (threads): a Partition's sum, least and count.
+struct Collectives
+{
+  explicit Collectives(int parties)
+    : sum(parties)
+    , least(parties, [](std::uint64_t a, std::uint64_t b) { return std::min(a, b); })
+    , count(parties, [](std::uint64_t a, std::uint64_t b) { return a + b; })
+  {
+  }
+  /// A partition over these collectives, process p owning the elements e with owner(e) == p.
+  template <typename Owner>
+  std::shared_ptr<Partition> partition(std::size_t elements, int p, Owner owner)
+  {
+    auto part = std::make_shared<Partition>();
+    part->rows.resize(elements);
+    for (std::size_t e = 0; e < elements; ++e)
+    {
+      part->rows[e] = std::uint8_t(owner(e) == p);
+    }
+    part->sum = [this](std::vector<Vec3f>& v) { sum(v); };
+    const auto one = [](AllReduce<std::uint64_t>& reduce, std::uint64_t x) {
+      std::vector<std::uint64_t> v{ x };
+      reduce(v);
+      return v[0];
+    };
+    part->least = [this, one](std::uint64_t x) { return one(least, x); };
+    part->count = [this, one](std::uint64_t x) { return one(count, x); };
+    return part;
+  }
+  SumExchange sum;
+  AllReduce<std::uint64_t> least, count;
+};
+
 /// Two processes (threads) solving `s` once, process p owning the vertices v with
 /// owner(v) == p, through one SumExchange.
 struct TwoProcesses
@@ -88,26 +121,19 @@ struct TwoProcesses
 template <typename Owner>
 TwoProcesses solveAsTwo(const Scene& s, const SolverOptions& o, Owner owner)
 {
-  SumExchange exchange(2);
+  Collectives collectives(2);
   TwoProcesses out;
   Solver solvers[2];
   const auto run = [&](int p) {
-    auto part = std::make_shared<Partition>();
-    part->rows.resize(s.vertexCount());
-    for (std::size_t e = 0; e < s.vertexCount(); ++e)
-    {
-      part->rows[e] = std::uint8_t(owner(e) == p);
-    }
-    part->exchange = [&exchange](std::vector<Vec3f>& v) { exchange(v); };
     SolverOptions mine = o;
-    mine.partition = part;
+    mine.partition = collectives.partition(s.vertexCount(), p, owner);
     out.result[p] = solvers[p].update(s, mine);
     out.stats[p] = solvers[p].stats();
   };
   std::thread other(run, 1);
   run(0);
   other.join();
-  out.exchanges = exchange.exchanges;
+  out.exchanges = collectives.sum.exchanges;
   return out;
 }
 }
@@ -121,17 +147,11 @@ TEST(TestPartition, TwoProcessesGiveTheOneProcessResultBitForBit)
   const Solution one = whole.update(s, o);
 
   // Rows split in interleaved runs of 7 (not a contiguous half: any mask works).
-  SumExchange exchange(2);
+  Collectives collectives(2);
   std::vector<std::shared_ptr<Partition>> parts(2);
   for (int p = 0; p < 2; ++p)
   {
-    parts[p] = std::make_shared<Partition>();
-    parts[p]->rows.resize(s.vertexCount());
-    for (std::size_t e = 0; e < s.vertexCount(); ++e)
-    {
-      parts[p]->rows[e] = std::uint8_t((e / 7) % 2 == std::size_t(p));
-    }
-    parts[p]->exchange = [&exchange](std::vector<Vec3f>& v) { exchange(v); };
+    parts[p] = collectives.partition(s.vertexCount(), p, [](std::size_t e) { return int((e / 7) % 2); });
   }
   Solution result[2];
   SolverStats stats[2];
@@ -145,7 +165,7 @@ TEST(TestPartition, TwoProcessesGiveTheOneProcessResultBitForBit)
   std::thread other(run, 1, std::cref(s));
   run(0, s);
   other.join();
-  EXPECT_EQ(exchange.exchanges, int(o.bounces) + 1) << "the sky's irradiance, then one per bounce";
+  EXPECT_EQ(collectives.sum.exchanges, int(o.bounces) + 1) << "the sky's irradiance, then one per bounce";
   for (int p = 0; p < 2; ++p)
   {
     EXPECT_TRUE(sameBits(result[p].indirect, one.indirect)) << "process " << p;
@@ -254,7 +274,7 @@ TEST(TestPartition, AMaskOfTheWrongSizeIsNamed)
   o.backend = Backend::Cpu;
   auto part = std::make_shared<Partition>();
   part->rows.assign(3, 1);
-  part->exchange = [](std::vector<Vec3f>&) {};
+  part->sum = [](std::vector<Vec3f>&) {};
   o.partition = part;
   Solver solver;
   EXPECT_NE(test::errorOf([&] { solver.update(s, o); }).find("one flag per element"), std::string::npos);
@@ -267,29 +287,17 @@ TEST(TestPartition, ProcessesAgreeOnTheMemoryBudget)
   const Scene s = test::roomWithBlock(0.5f);
   SolverOptions o = test::quickOptions();
   o.backend = Backend::Cpu;
-  SumExchange exchange(2);
-  AllReduce<std::uint64_t> least(2, [](std::uint64_t a, std::uint64_t b) { return std::min(a, b); });
+  Collectives collectives(2);
   std::string refused[2];
   const auto run = [&](int p) {
-    auto part = std::make_shared<Partition>();
-    part->rows.resize(s.vertexCount());
-    for (std::size_t e = 0; e < s.vertexCount(); ++e)
-    {
-      part->rows[e] = std::uint8_t(e % 2 == std::size_t(p));
-    }
-    part->exchange = [&exchange](std::vector<Vec3f>& v) { exchange(v); };
-    part->smallest = [&least](std::uint64_t x) {
-      std::vector<std::uint64_t> v{ x };
-      least(v);
-      return v[0];
-    };
+    auto part = collectives.partition(s.vertexCount(), p, [](std::size_t e) { return int(e % 2); });
     SolverOptions mine = o;
     mine.partition = part;
     mine.memoryBudget = p == 0 ? 64 * 1024 : 0;
     Solver solver;
     try
     {
-      solver.update(s, mine);
+      together(part.get(), [&] { solver.update(s, mine); }); // both fail: one agreement step each
     }
     catch (const OutOfMemoryBudget& e)
     {
@@ -303,7 +311,105 @@ TEST(TestPartition, ProcessesAgreeOnTheMemoryBudget)
   std::thread other(run, 1);
   run(0);
   other.join();
-  EXPECT_EQ(exchange.exchanges, 0) << "nobody solved";
+  EXPECT_EQ(collectives.sum.exchanges, 0) << "nobody solved";
   EXPECT_NE(refused[0].find("Not enough memory"), std::string::npos) << refused[0];
   EXPECT_NE(refused[1].find("the smallest of the budgets of the processes"), std::string::npos) << refused[1];
+}
+
+// A process that fails in the middle of a partitioned update (here an abort at a chosen
+// progress report of process 1) takes the others with it at their next collective step:
+// they leave with PeerFailed instead of waiting for it in an exchange (the test's exchanges
+// throw after ten seconds), every process keeps its previous result, and the next update
+// gives the one-process result bit for bit.
+TEST(TestPartition, AProcessThatFailsLeavesWithTheOthers)
+{
+  const Scene s = test::roomWithBlock(0.5f);
+  SolverOptions o = test::quickOptions();
+  o.backend = Backend::Cpu;
+  Solver whole;
+  whole.update(s, o);
+  Scene lit = s;
+  lit.lights[0].position.x += 0.3f;
+  const Solution oneLit = whole.update(lit, o);
+
+  // Where process 1 fails in a light move: at its first progress report (before any
+  // exchange), at its 11th (in the second of three bounces, after two of the four exchanges), after its
+  // update (1000: the other finished its own), or not at all (-1).
+  for (const int failAt : { 1, 11, 1000, -1 })
+  {
+    SCOPED_TRACE("process 1 fails at its report " + std::to_string(failAt));
+    Collectives collectives(2);
+    Solver solvers[2];
+    Solution before[2];
+    std::string outcome[2];
+    const auto run = [&](int p, const Scene& scene, int failAtReport) {
+      SolverOptions mine = o;
+      mine.partition = collectives.partition(s.vertexCount(), p, [](std::size_t e) { return int((e / 3) % 2); });
+      before[p] = solvers[p].solution();
+      int reports = 0;
+      const ProgressCallback progress = [&](const char*, double) {
+        return !(p == 1 && ++reports == failAtReport);
+      };
+      try
+      {
+        together(mine.partition.get(), [&] {
+          solvers[p].update(scene, mine, progress);
+          if (p == 1 && failAtReport == 1000)
+          {
+            throw Error("process 1 failed after its update");
+          }
+        });
+        outcome[p] = "solved";
+      }
+      catch (const PeerFailed& e)
+      {
+        outcome[p] = "peer failed: " + std::string(e.what());
+      }
+      catch (const std::exception& e)
+      {
+        outcome[p] = e.what();
+      }
+    };
+    // A solved scene first, so "kept" is something; then a light move that fails.
+    std::thread first(run, 1, std::cref(s), -1);
+    run(0, s, -1);
+    first.join();
+    ASSERT_EQ(outcome[0], "solved");
+    ASSERT_EQ(outcome[1], "solved");
+    const int exchangesBefore = collectives.sum.exchanges;
+    std::thread other(run, 1, std::cref(lit), failAt);
+    run(0, lit, failAt);
+    other.join();
+    const int exchanged = collectives.sum.exchanges - exchangesBefore;
+    if (failAt == 11)
+    {
+      EXPECT_GT(exchanged, 0) << "failed between two exchanges";
+      EXPECT_LT(exchanged, int(o.bounces) + 1) << "failed between two exchanges";
+    }
+    if (failAt < 0)
+    {
+      EXPECT_EQ(outcome[0], "solved");
+      EXPECT_EQ(outcome[1], "solved");
+    }
+    else
+    {
+      EXPECT_NE(outcome[0].find("peer failed: This update failed on 1 of the other processes"), std::string::npos)
+        << outcome[0];
+      EXPECT_EQ(outcome[1], failAt == 1000 ? "process 1 failed after its update" :
+                                             "The update was aborted; the previous result is kept.");
+      for (int p = 0; p < 2 && failAt != 1000; ++p)
+      {
+        EXPECT_TRUE(sameBits(solvers[p].solution().indirect, before[p].indirect)) << "process " << p << " kept its result";
+      }
+    }
+    // And the next update of the moved light completes on both, as one process's.
+    std::thread last(run, 1, std::cref(lit), -1);
+    run(0, lit, -1);
+    last.join();
+    for (int p = 0; p < 2; ++p)
+    {
+      EXPECT_EQ(outcome[p], "solved");
+      EXPECT_TRUE(sameBits(solvers[p].solution().indirect, oneLit.indirect)) << "process " << p;
+    }
+  }
 }

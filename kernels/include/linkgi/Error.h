@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -17,5 +18,19 @@ class Aborted : public Error
 {
 public:
   Aborted() : Error("The update was aborted; the previous result is kept.") {}
+};
+
+/// Thrown on the processes of a partitioned update (Partition) when another of them failed:
+/// they leave the update together, each keeping its previous result.
+class PeerFailed : public Error
+{
+public:
+  explicit PeerFailed(std::uint64_t failures)
+    : Error("This update failed on " + std::to_string(failures) + " of the other processes that share the "
+        "surface (the error is in " + (failures == 1 ? "its" : "their") + " output); the previous result is kept.")
+    , failures(failures)
+  {
+  }
+  const std::uint64_t failures;
 };
 }

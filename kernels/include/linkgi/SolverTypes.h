@@ -13,24 +13,48 @@
 namespace linkgi
 {
 /// This process's share of a scene that several processes (MPI ranks) solve together, each
-/// holding the whole scene: the link method on the CPU links only the rows (receiving
-/// elements) marked here and completes each bounce's per-element vector through `exchange`,
+/// holding the whole scene: the CPU backend links or gathers only the rows (receiving
+/// elements) marked here and completes each bounce's per-element vector through exchange(),
 /// so the links, their memory and their time are split among the processes and the result
-/// is the one process's, bit for bit. The other methods and the GPU solve every row.
+/// is the one process's, bit for bit. The GPU backend does not take partitions.
+///
+/// Every collective step first agrees on whether a process failed (`count`): a process that
+/// fails between two steps (an abort, an error, memory) tells the others at their next step,
+/// and they all leave the update together instead of waiting for it in an exchange
+/// (together() below).
 struct Partition
 {
   /// Per element (vertices, then their back sides when two-sided): 1 = this process's row.
   std::vector<std::uint8_t> rows;
-  /// Completes a per-element RGB vector in which every process set its own rows and zeroed
-  /// the others (an allreduce of the sum over the processes). Collective: every process
-  /// calls it at the same points of an update.
-  std::function<void(std::vector<Vec3f>&)> exchange;
-  /// The smallest of a value over the processes (an allreduce of the minimum). Collective,
-  /// called once per update: the processes agree on the memory budget, so that they all
-  /// refuse an update or all run it (one refusing while the others went on would leave them
-  /// waiting in an exchange). Empty: this process's own value.
-  std::function<std::uint64_t(std::uint64_t)> smallest;
+  /// The processes' collectives, all over one communicator, each called by every process at
+  /// the same point of an update:
+  /// the sum of a per-element RGB vector in which every process set its own rows and zeroed
+  /// the others (an allreduce);
+  std::function<void(std::vector<Vec3f>&)> sum;
+  /// the smallest of one value (an allreduce of the minimum; empty: this process's own);
+  std::function<std::uint64_t(std::uint64_t)> least;
+  /// the sum of one count (an allreduce; empty: no process can tell the others of a failure).
+  std::function<std::uint64_t(std::uint64_t)> count;
+
+  /// Completes `values` (sum) once no process has failed; else throws PeerFailed.
+  void exchange(std::vector<Vec3f>& values) const;
+  /// The smallest `value` of the processes once no process has failed; else throws
+  /// PeerFailed. Called once per update, for the memory budget: all processes refuse an
+  /// update or all run it.
+  std::uint64_t smallest(std::uint64_t value) const;
+  /// One agreement step: throws PeerFailed when a process failed since the last one.
+  void check() const;
+  /// This process failed: its one agreement step, which the others take at their next
+  /// collective step and leave by PeerFailed.
+  void fail() const;
 };
+
+/// Runs `work`, one process's part of a collective update of the processes that share
+/// `partition` (null: just runs it), so that they leave it together: when `work` throws on
+/// some of them, it throws on all - the error itself where it happened, PeerFailed on the
+/// others - and none is left waiting in an exchange. On success all have passed a last
+/// agreement step. The outermost caller of a partitioned update wraps it in this, once.
+void together(const Partition* partition, const std::function<void()>& work);
 
 /// How the indirect light is computed. Every method writes the same Solution.
 enum class Method

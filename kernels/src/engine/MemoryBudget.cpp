@@ -54,7 +54,7 @@ void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverO
   const MemoryShape shape = MemoryShape::of(scene);
   const std::uint64_t own = hostMemoryBudget(options.memoryBudget);
   // Under MPI every process takes the smallest budget, so all give the same verdict.
-  const std::uint64_t budget = options.partition && options.partition->smallest ? options.partition->smallest(own) : own;
+  const std::uint64_t budget = options.partition ? options.partition->smallest(own) : own;
   const MemoryVerdict v = judgeMemory(spec, shape, options, stale, cuda, budget);
   stats.hostBytesEstimated = v.estimate.hostBytes;
   stats.deviceBytesEstimated = v.estimate.deviceBytes;

@@ -154,6 +154,58 @@ std::uint64_t SolverStats::runs(const std::string& counter) const
   return 0;
 }
 
+void Partition::check() const
+{
+  const std::uint64_t failures = count ? count(0) : 0;
+  if (failures > 0)
+  {
+    throw PeerFailed(failures);
+  }
+}
+
+void Partition::fail() const
+{
+  if (count)
+  {
+    count(1);
+  }
+}
+
+void Partition::exchange(std::vector<Vec3f>& values) const
+{
+  check();
+  sum(values);
+}
+
+std::uint64_t Partition::smallest(std::uint64_t value) const
+{
+  check();
+  return least ? least(value) : value;
+}
+
+void together(const Partition* partition, const std::function<void()>& work)
+{
+  if (!partition)
+  {
+    work();
+    return;
+  }
+  try
+  {
+    work();
+  }
+  catch (const PeerFailed&)
+  {
+    throw; // learnt in an agreement step: every process knows already
+  }
+  catch (...)
+  {
+    partition->fail();
+    throw;
+  }
+  partition->check();
+}
+
 namespace engine
 {
 const std::uint8_t* ownRows(const SolverOptions& o, std::size_t elements)
@@ -162,12 +214,22 @@ const std::uint8_t* ownRows(const SolverOptions& o, std::size_t elements)
   {
     return nullptr;
   }
-  if (o.partition->rows.size() != elements || !o.partition->exchange)
+  if (o.partition->rows.size() != elements || !o.partition->sum)
   {
     throw Error("The partition marks " + std::to_string(o.partition->rows.size()) + " rows for " +
       std::to_string(elements) + " elements, or has no exchange; give one flag per element.");
   }
   return o.partition->rows.data();
+}
+
+std::function<void(std::vector<Vec3f>&)> exchangeOf(const SolverOptions& o)
+{
+  if (!o.partition)
+  {
+    return {};
+  }
+  const std::shared_ptr<const Partition> partition = o.partition;
+  return [partition](std::vector<Vec3f>& values) { partition->exchange(values); };
 }
 
 Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& before,

@@ -181,6 +181,10 @@ public:
 /// partition's exchange.
 const std::uint8_t* ownRows(const SolverOptions& options, std::size_t elements);
 
+/// The partition's exchange (Partition::exchange) as the bounce loops take it; empty without
+/// a partition.
+std::function<void(std::vector<Vec3f>&)> exchangeOf(const SolverOptions& options);
+
 /// The registry: the one place that names every method (Methods.cpp).
 const MethodSpec& methodSpec(Method method);
 }

@@ -140,7 +140,7 @@ private:
     inputs.albedo = s.albedo;
     inputs.emission = s.emission;
     std::vector<Vec3f> indirect = iterateHierarchicalBounces(tree, linksNow.transport, inputs, o.bounces, c.progress,
-      partitioned ? o.partition->exchange : std::function<void(std::vector<Vec3f>&)>());
+      exchangeOf(o));
     for (std::size_t v = 0; v < nv; ++v)
     {
       indirect[v] += envIrradiance[v];

@@ -133,7 +133,7 @@ private:
       std::copy(s.emission.begin(), s.emission.end(), inputs.emission.begin());
     }
     std::vector<Vec3f> indirect = iterateBounces(linksNow.transport, inputs, o.bounces, c.progress,
-      partitioned ? o.partition->exchange : std::function<void(std::vector<Vec3f>&)>());
+      exchangeOf(o));
     for (std::size_t e = 0; e < ne; ++e)
     {
       indirect[e] += envIrradiance[e];
