@@ -134,6 +134,30 @@ TEST(TestAsyncSolver, RepeatedRequestsAreNotNewWork)
   EXPECT_GT(async.request(moved, options()), id);
 }
 
+// Once the newest request's result is published the solver is idle: a render loop that
+// shows that result never also reports work pending (the filter's LinkGI.Pending). The
+// worker used to leave its update a moment after publishing; a callback that sleeps on
+// publish holds that moment open. A failed request leaves it idle with its error too.
+TEST(TestAsyncSolver, APublishedResultLeavesTheSolverIdle)
+{
+  AsyncSolver async(1);
+  async.setOnPublish([](std::uint64_t) { std::this_thread::sleep_for(std::chrono::milliseconds(50)); });
+  Scene s = test::roomWithBlock();
+  for (int k = 1; k <= 3; ++k)
+  {
+    s.lights[0].position.x += 0.05f;
+    const std::uint64_t id = async.request(s, options());
+    ASSERT_TRUE(async.wait(id, 60.0));
+    EXPECT_FALSE(async.busy()) << "request " << k << " is shown, nothing else was asked";
+  }
+  Scene broken = s;
+  broken.positions[0].x = std::nanf("");
+  const std::uint64_t failed = async.request(broken, options());
+  EXPECT_FALSE(async.wait(failed, 60.0));
+  EXPECT_FALSE(async.lastError().empty());
+  EXPECT_FALSE(async.busy());
+}
+
 TEST(TestAsyncSolver, CancelKeepsTheLastResult)
 {
   AsyncSolver async(1);

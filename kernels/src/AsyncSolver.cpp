@@ -215,6 +215,7 @@ void AsyncSolver::Impl::solve(Request& request)
   {
     std::lock_guard<std::mutex> lock(mutex);
     error = e.what();
+    running = 0; // with the error: busy() and lastError() never disagree
     return;
   }
   std::shared_ptr<AsyncResult> result = blended(request, solver.solution(), solver.stats());
@@ -223,6 +224,8 @@ void AsyncSolver::Impl::solve(Request& request)
     std::lock_guard<std::mutex> lock(mutex);
     published = std::move(result);
     error.clear();
+    // Idle with the result, in one step: a caller that saw the result never sees busy().
+    running = 0;
     callback = onPublish;
   }
   changed.notify_all();
