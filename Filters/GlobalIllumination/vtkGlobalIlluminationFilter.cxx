@@ -2,6 +2,7 @@
 
 #include "vtkGlobalIlluminationFilterInternals.h"
 
+#include "vtkCommunicator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataObject.h"
 #include "vtkDemandDrivenPipeline.h"
@@ -29,7 +30,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <exception>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,7 +39,15 @@ bool vtkGlobalIlluminationFilter::PollAsynchronousResult()
 {
   const auto& async = this->Internals->Async;
   const auto latest = async ? async->latest() : nullptr;
-  if (!latest || latest->request == this->Internals->ShownRequest)
+  int newer = latest && latest->request != this->Internals->ShownRequest ? 1 : 0;
+  if (this->Asynchronous && this->Internals->Partitions.Distributed())
+  {
+    // RequestData is collective (the surfaces' gather): all processes re-execute, or none.
+    int any = newer;
+    this->Controller->AllReduce(&newer, &any, 1, vtkCommunicator::MAX_OP);
+    newer = any;
+  }
+  if (!newer)
   {
     return false;
   }
@@ -222,9 +230,18 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
       vtkWarningMacro("The input is empty; the output is empty too.");
       lit->ShallowCopy(surface);
     }
-    else if (this->Asynchronous && !distributed)
+    else if (this->Asynchronous)
     {
-      internals.SolveAsynchronously(this, surface, lit);
+      // Under MPI the background thread may not call MPI (pvbatch and pvserver initialise
+      // it without thread support), so every process solves the whole global surface there,
+      // without exchanges, and shows its own points of the newest result.
+      internals.ActivePartition.reset();
+      vtkPolyData* target = distributed ? internals.GlobalLit.Get() : lit;
+      internals.SolveAsynchronously(this, solved, target);
+      if (distributed)
+      {
+        internals.Partitions.Scatter(target, surface, lit);
+      }
     }
     else
     {

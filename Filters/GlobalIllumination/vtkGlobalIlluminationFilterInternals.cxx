@@ -459,9 +459,4 @@ void vtkGlobalIlluminationFilter::vtkInternals::CheckDistributed(vtkGlobalIllumi
     throw linkgi::Error("Refinement is not available when the surface is partitioned among " +
       std::to_string(this->Partitions.ProcessCount()) + " processes (MPI); turn it off or run on one process.");
   }
-  if (self->GetAsynchronous())
-  {
-    this->Warnings.emplace_back("Asynchronous updates run synchronously when the surface is partitioned "
-                                "among processes (MPI): every process lights the same global surface.");
-  }
 }

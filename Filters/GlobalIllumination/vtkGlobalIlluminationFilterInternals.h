@@ -68,7 +68,7 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   vtkNew<vtkPolyData> GlobalLit;
   /// This process's rows of the global surface for the engine (Options), null alone.
   std::shared_ptr<const linkgi::Partition> ActivePartition;
-  /// Under MPI: refuses Refinement, and says that an asynchronous update ran synchronously.
+  /// Under MPI: refuses Refinement (a refined global surface has points no process owns).
   void CheckDistributed(vtkGlobalIlluminationFilter* self);
 
   // The triangle mesh and what it was built from; rebuilt only when one of these changes,

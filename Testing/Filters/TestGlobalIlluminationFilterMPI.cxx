@@ -313,6 +313,50 @@ int main(int argc, char* argv[])
     distributed->RemoveObserver(onWarning);
   }
 
+  // Asynchronous: every process solves the global surface in the background (no MPI from
+  // that thread) and outputs its own points of the newest result, one process's values; a
+  // light move re-runs only the light links and the bounces.
+  {
+    vtkNew<vtkGlobalIlluminationFilter> async;
+    Configure(async, light);
+    async->SetAsynchronous(true);
+    async->SetInputData(mine);
+    async->Update();
+    for (int move = 0; move < 2; ++move)
+    {
+      // Collective, as a render would be: all re-execute when any has a newer result.
+      async->WaitForAsynchronousResult(600.0);
+      async->Update();
+      vtkPolyData* shown = async->GetOutput();
+      const std::string when = move == 0 ? "the first asynchronous result" : "after a light move";
+      const double newest = static_cast<double>(async->GetAsynchronousRequest());
+      ok &= Check(rank, Field(shown, "LinkGI.ShownRequest") == newest && Field(shown, "LinkGI.Pending") == 0.0,
+        when + " is shown (request " + std::to_string(Field(shown, "LinkGI.ShownRequest")) + " of " +
+          std::to_string(newest) + ")");
+      ok &= Check(rank, shown->GetNumberOfPoints() == mine->GetNumberOfPoints(), when + ": this rank's points");
+      if (mine->GetNumberOfPoints() > 0)
+      {
+        for (const char* name : { "DirectIrradiance", "IndirectIrradiance" })
+        {
+          const double d = Difference(shown, whole->GetOutput(), offset, name);
+          ok &= Check(rank, d <= 1e-4, when + ": " + name + " equals one process's (" + std::to_string(d) + ")");
+        }
+      }
+      if (move == 1)
+      {
+        ok &= Check(rank, Field(shown, "LinkGI.LinkBuilds") == 1.0 && Field(shown, "LinkGI.LightLinkBuilds") == 2.0,
+          "a light move re-ran the light links only (" + std::to_string(Field(shown, "LinkGI.LinkBuilds")) + " link builds, " +
+            std::to_string(Field(shown, "LinkGI.LightLinkBuilds")) + " light link builds)");
+        break;
+      }
+      light->SetPosition(0.3, 0.1, 2.0);
+      whole->Modified();
+      whole->Update();
+      async->Modified();
+      async->Update();
+    }
+  }
+
   // Rank 0's memory budget (64 KiB) is too small for the update, the others' (the machine's)
   // is not: every rank takes the smallest, so all refuse the update with an error, instead
   // of rank 0 refusing alone while the others wait for it in the first exchange.
