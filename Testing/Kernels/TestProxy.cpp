@@ -5,6 +5,7 @@
 #include "linkgi/Error.h"
 #include "linkgi/Metrics.h"
 #include "linkgi/Proxy.h"
+#include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,8 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <limits>
+#include <utility>
 
 using namespace linkgi;
 using test::errorOf;
@@ -222,4 +225,111 @@ TEST(TestProxy, DecimationReportsProgressAndAbortsKeepingThePreviousProxy)
   EXPECT_THROW(solver.update(s, o, target / 2, stopEarly), Aborted);
   EXPECT_EQ(solver.decimations(), 1u);
   EXPECT_EQ(solver.solution().indirect, before.indirect);
+}
+
+namespace
+{
+/// The squared distance from p to triangle abc, computed another way than the transfer
+/// does: the plane's foot where it lies inside, else the nearest of the three edges.
+float squaredDistanceToTriangle(const Vec3f& p, const Vec3f& a, const Vec3f& b, const Vec3f& c)
+{
+  const Vec3f n = cross(b - a, c - a);
+  const float nn = dot(n, n);
+  if (nn > 0.f)
+  {
+    const Vec3f foot = p - n * (dot(p - a, n) / nn);
+    const float u = dot(cross(c - b, foot - b), n), v = dot(cross(a - c, foot - c), n), w = dot(cross(b - a, foot - a), n);
+    if (u >= 0.f && v >= 0.f && w >= 0.f)
+    {
+      return dot(p - foot, p - foot);
+    }
+  }
+  float best = std::numeric_limits<float>::max();
+  for (const auto& [e0, e1] : { std::pair{ a, b }, std::pair{ b, c }, std::pair{ c, a } })
+  {
+    const Vec3f d = e1 - e0;
+    const float t = std::clamp(dot(p - e0, d) / std::max(dot(d, d), 1e-30f), 0.f, 1.f);
+    const Vec3f q = e0 + d * t;
+    best = std::min(best, dot(p - q, p - q));
+  }
+  return best;
+}
+}
+
+// A decimation to a tenth collapses the short edges first (without priorities) and leaves
+// the last collapses to the Decimater: the proxy still has the target's size, is made of
+// input vertices, and no triangle turns more than the normal deviation (60 degrees) from the
+// input normals at its corners, nor is a sliver.
+TEST(TestProxy, ALargeDecimationReachesItsTargetWithoutTurningTriangles)
+{
+  if (!proxyAvailable())
+  {
+    GTEST_SKIP() << "This build has no OpenMesh.";
+  }
+  const Scene s = validated(makeStandardScene("torso"));
+  const std::size_t target = s.vertexCount() / 10;
+  int reports = 0;
+  const ProxyMesh proxy = decimate(s, target, 60.f, [&](const char*, double) { return ++reports > 0; });
+  EXPECT_GT(reports, 0);
+  EXPECT_LE(proxy.scene.vertexCount(), target + target / 20);
+  EXPECT_GT(proxy.scene.vertexCount(), target / 2);
+  for (std::size_t v = 0; v < proxy.scene.vertexCount(); ++v)
+  {
+    ASSERT_EQ(proxy.scene.positions[v], s.positions[proxy.sourceVertex[v]]);
+  }
+  // Slivers (a normal that is rounding noise) only where the input had them.
+  const auto slivers = [](const Scene& m) {
+    std::size_t count = 0;
+    for (const Triangle& t : m.triangles)
+    {
+      const Vec3f &a = m.positions[t.v[0]], &b = m.positions[t.v[1]], &c = m.positions[t.v[2]];
+      const float longest2 = std::max({ dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c) });
+      count += !(length(cross(b - a, c - a)) > 2e-3f * longest2);
+    }
+    return count;
+  };
+  EXPECT_LE(slivers(proxy.scene), slivers(s));
+  std::size_t turned = 0;
+  for (const Triangle& t : proxy.scene.triangles)
+  {
+    const Vec3f& a = proxy.scene.positions[t.v[0]];
+    const Vec3f n = cross(proxy.scene.positions[t.v[1]] - a, proxy.scene.positions[t.v[2]] - a);
+    for (Index v : t.v)
+    {
+      turned += dot(n, s.normals[proxy.sourceVertex[v]]) < 0.5f * length(n); // over 60 degrees
+    }
+  }
+  EXPECT_EQ(turned, 0u) << "corners whose input normal turns more than 60 degrees from their proxy triangle";
+}
+
+// The transfer finds each input vertex's nearest proxy triangle facing its way: the
+// distance to the triangle and point it chose equals a brute-force search's.
+TEST(TestProxy, TransferFindsTheNearestFacingTriangle)
+{
+  if (!proxyAvailable())
+  {
+    GTEST_SKIP() << "This build has no OpenMesh.";
+  }
+  const Scene s = validated(makeStandardScene("torso"));
+  const Scene p = decimate(s, s.vertexCount() / 10).scene;
+  const ProxyTransfer transfer = buildTransfer(s, p);
+  std::size_t worse = 0;
+  for (std::size_t v = 0; v < s.vertexCount(); ++v)
+  {
+    float best = std::numeric_limits<float>::max();
+    for (const Triangle& t : p.triangles)
+    {
+      const Vec3f &a = p.positions[t.v[0]], &b = p.positions[t.v[1]], &c = p.positions[t.v[2]];
+      if (dot(cross(b - a, c - a), s.normals[v]) > 0.f)
+      {
+        best = std::min(best, squaredDistanceToTriangle(s.positions[v], a, b, c));
+      }
+    }
+    const Triangle& t = transfer.corners[v];
+    const auto& w = transfer.weights[v];
+    const Vec3f q = p.positions[t.v[0]] * w[0] + p.positions[t.v[1]] * w[1] + p.positions[t.v[2]] * w[2];
+    const float chosen = dot(q - s.positions[v], q - s.positions[v]);
+    worse += std::sqrt(chosen) > std::sqrt(best) * 1.0001f + 1e-6f;
+  }
+  EXPECT_EQ(worse, 0u) << "input vertices whose proxy point is farther than the nearest facing triangle";
 }

@@ -12,6 +12,7 @@
 #include "linkgi/Topology.h"
 
 #include <chrono>
+#include <future>
 
 namespace linkgi
 {
@@ -88,14 +89,19 @@ const Solution& ProxySolver::update(const Scene& input, const SolverOptions& opt
   if (!sameGeometry)
   {
     auto t = std::chrono::steady_clock::now();
+    // The input's shadow-ray structures on another thread while OpenMesh decimates on this
+    // one (its decimation is sequential). The future waits for them on every way out.
+    std::future<void> inputStructures = std::async(std::launch::async, [&g, &s] {
+      g.topology = Topology::build(s.vertexCount(), s.triangles);
+      g.shifts = originShifts(s, g.topology);
+      g.tracer = createCpuRayTracer();
+      g.tracer->build(s.positions, s.triangles);
+    });
     g.proxy = decimate(s, proxyVertices, 60.f, progress); // checks the target
     parts.emplace_back("Decimate", msSince(t));
     t = std::chrono::steady_clock::now();
     g.transfer = buildTransfer(s, g.proxy.scene);
-    g.topology = Topology::build(s.vertexCount(), s.triangles);
-    g.shifts = originShifts(s, g.topology);
-    g.tracer = createCpuRayTracer();
-    g.tracer->build(s.positions, s.triangles);
+    inputStructures.get(); // rethrows what building them threw
     parts.emplace_back("Transfer", msSince(t));
   }
   // The proxy's materials and lights follow the input's on every update.

@@ -6,7 +6,9 @@
 #include "linkgi/Parallel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace linkgi
@@ -139,6 +141,96 @@ public:
     return found != kInvalidIndex ? found : foundAny;
   }
 
+  /// The nearest facing triangle of every point of `points` (normals `normals`) that has one
+  /// within `margin`, found from the triangles' side: each triangle offers itself to the
+  /// points within `margin` of its bounding box, and a point keeps the smallest (distance,
+  /// triangle) key. The nearest facing triangle at distance d <= margin has the point in
+  /// its box grown by margin, so it was offered: the result is the nearest, exactly (ties:
+  /// the lowest triangle). kInvalidIndex where none is that close. Far cheaper than a search
+  /// per point when the points lie on the proxy's surface, as an input's vertices do: a
+  /// point meets the few triangles around it instead of every triangle of 27 cells.
+  std::vector<Index> nearestWithin(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals, float margin) const
+  {
+    // The points binned into the grid's cells (outside it: into the border cells).
+    std::vector<std::uint32_t> first(cellCount() + 1, 0);
+    std::vector<Index> order(points.size());
+    const auto home = [&](const Vec3f& p) {
+      return cellIndex(clampCell(p.x - lo.x, 0), clampCell(p.y - lo.y, 1), clampCell(p.z - lo.z, 2));
+    };
+    for (const Vec3f& p : points)
+      ++first[home(p) + 1];
+    for (std::size_t c = 1; c < first.size(); ++c)
+      first[c] += first[c - 1];
+    {
+      std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+      for (std::size_t v = 0; v < points.size(); ++v)
+        order[next[home(points[v])]++] = Index(v);
+    }
+    // In bin order, so that a cell's points are read in one sweep.
+    std::vector<Vec3f> binned(points.size()), binnedNormals(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+      binned[i] = points[order[i]];
+      binnedNormals[i] = normals[order[i]];
+    }
+    // Keys: the distance's bits (non-negative floats order as their bits), then the triangle.
+    std::vector<std::atomic<std::uint64_t>> best(points.size());
+    for (auto& b : best)
+      b.store(std::numeric_limits<std::uint64_t>::max(), std::memory_order_relaxed);
+    const float margin2 = margin * margin;
+    parallelRanges(proxy.triangleCount(), 256, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t t = begin; t < end; ++t)
+      {
+        const Triangle& tri = proxy.triangles[t];
+        const Vec3f &a = proxy.positions[tri.v[0]], &b = proxy.positions[tri.v[1]], &c = proxy.positions[tri.v[2]];
+        const Vec3f boxLo = Vec3f(std::min({ a.x, b.x, c.x }), std::min({ a.y, b.y, c.y }), std::min({ a.z, b.z, c.z })) - Vec3f(margin);
+        const Vec3f boxHi = Vec3f(std::max({ a.x, b.x, c.x }), std::max({ a.y, b.y, c.y }), std::max({ a.z, b.z, c.z })) + Vec3f(margin);
+        int cFirst[3], cLast[3];
+        for (int k = 0; k < 3; ++k)
+        {
+          cFirst[k] = clampCell(component(boxLo - lo, k), k);
+          cLast[k] = clampCell(component(boxHi - lo, k), k);
+        }
+        for (int z = cFirst[2]; z <= cLast[2]; ++z)
+          for (int y = cFirst[1]; y <= cLast[1]; ++y)
+            for (int x = cFirst[0]; x <= cLast[0]; ++x)
+            {
+              const std::size_t cell = cellIndex(x, y, z);
+              for (std::uint32_t i = first[cell]; i < first[cell + 1]; ++i)
+              {
+                const Vec3f& p = binned[i];
+                if (p.x < boxLo.x || p.y < boxLo.y || p.z < boxLo.z || p.x > boxHi.x || p.y > boxHi.y || p.z > boxHi.z ||
+                  !(dot(faceNormals[t], binnedNormals[i]) > 0.f))
+                  continue;
+                const Index v = order[i];
+                const std::array<float, 3> w = closestWeights(p, a, b, c);
+                const Vec3f q = a * w[0] + b * w[1] + c * w[2];
+                const float d = dot(q - p, q - p);
+                if (!(d <= margin2))
+                  continue;
+                std::uint32_t bits;
+                std::memcpy(&bits, &d, sizeof bits);
+                const std::uint64_t key = (std::uint64_t(bits) << 32) | std::uint64_t(t);
+                std::uint64_t now = best[v].load(std::memory_order_relaxed);
+                while (key < now && !best[v].compare_exchange_weak(now, key, std::memory_order_relaxed))
+                {
+                }
+              }
+            }
+      }
+    });
+    std::vector<Index> out(points.size());
+    for (std::size_t v = 0; v < points.size(); ++v)
+    {
+      const std::uint64_t key = best[v].load(std::memory_order_relaxed);
+      out[v] = key == std::numeric_limits<std::uint64_t>::max() ? kInvalidIndex : Index(key & 0xffffffffu);
+    }
+    return out;
+  }
+
+  /// The cells' edge length.
+  float cellSize() const { return cell; }
+
 private:
   static float component(const Vec3f& v, int a) { return a == 0 ? v.x : a == 1 ? v.y : v.z; }
   int clampCell(float offset, int a) const { return std::max(0, std::min(dims[a] - 1, int(offset / cell))); }
@@ -208,10 +300,24 @@ ProxyTransfer buildTransfer(const Scene& input, const Scene& proxy)
   ProxyTransfer out;
   out.corners.resize(input.vertexCount());
   out.weights.resize(input.vertexCount());
+  // Most vertices lie within a quarter of a cell of a facing triangle (98% of a 1M-vertex
+  // isosurface's on a 30k proxy): found from the triangles' side; the others search the grid
+  // around them.
+  const std::vector<Index> near = grid.nearestWithin(input.positions, input.normals, 0.25f * grid.cellSize());
   parallelRanges(input.vertexCount(), 1024, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v)
     {
-      const Index t = grid.nearest(input.positions[v], input.normals[v], out.weights[v]);
+      Index t = near[v];
+      if (t == kInvalidIndex)
+      {
+        t = grid.nearest(input.positions[v], input.normals[v], out.weights[v]);
+      }
+      else
+      {
+        const Triangle& tri = proxy.triangles[t];
+        out.weights[v] = closestWeights(input.positions[v], proxy.positions[tri.v[0]], proxy.positions[tri.v[1]],
+          proxy.positions[tri.v[2]]);
+      }
       out.corners[v] = proxy.triangles[t];
     }
   });
