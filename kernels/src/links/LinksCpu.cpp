@@ -7,6 +7,7 @@
 #include "linkgi/Error.h"
 #include "linkgi/DirectLight.h"
 #include "linkgi/Links.h"
+#include "linkgi/Memory.h"
 
 #include <algorithm>
 #include <chrono>
@@ -47,7 +48,7 @@ public:
     {
       std::swap(direct, nextDirect);
     }
-    linksStaged = directStaged = geometryTouched = false;
+    linksStaged = directStaged = geometryTouched = linksDropped = false;
   }
 
   bool discard() override
@@ -55,8 +56,8 @@ public:
     linksStaged = directStaged = false;
     // The tracer and the host geometry are updated in place: after a failure they may
     // belong to the failed scene, and the next update must rebuild them.
-    const bool whole = !geometryTouched;
-    geometryTouched = false;
+    const bool whole = !geometryTouched && !linksDropped;
+    geometryTouched = linksDropped = false;
     return whole;
   }
 
@@ -87,7 +88,15 @@ private:
       return [&c, lo, hi](const char*, double f) { return !c.progress || c.progress("Links", lo + (hi - lo) * f); };
     };
     // Traced and compressed element by element: no buffer of every hit (4 KB per element
-    // at 256 rays, held between updates before).
+    // at 256 rays, held between updates before). The links being replaced go first, so that
+    // a re-link holds one set of links at its peak, not the old and the new side by side; a
+    // failed re-link then has none to keep (discard), and the next update links again.
+    if (!links.transport.rowOffsets.empty())
+    {
+      links = LinkStructure();
+      linksDropped = true;
+      returnFreedMemory();
+    }
     double msCompress = 0.0;
     nextLinks = linkgi::buildLinks(c.scene, geometry.shifts, *geometry.tracer, geometry.faceNormals, linkOptions, within(0.0, 1.0), &msCompress);
     c.part("Compress", msCompress);
@@ -160,6 +169,7 @@ private:
   CpuGeometry geometry;
   bool geometryTouched = false;
   LinkStructure links, nextLinks;
+  bool linksDropped = false; ///< the cached links were freed for a re-link that has not committed
   DirectLightResult direct, nextDirect;
   bool linksStaged = false, directStaged = false;
 };
@@ -191,13 +201,14 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
   if (stale & (1u << kLinkStage))
   {
     // buildLinks: the compressed rows of each chunk (at their size once the chunk is done)
-    // and the CSR they are copied into, the row counts and offsets; per worker a dense
-    // scratch row, one element's rays and hits, and a chunk growing by doubling.
+    // and the CSR they are copied into, the row counts and offsets; per worker a row's
+    // table (at most 4 slots per link), a dense row of texels, one element's rays and hits,
+    // and a chunk growing by doubling.
     const LinksPerElement links = LinksPerElement::bound(shape, o);
     const std::uint64_t perElement =
       (links.transport + links.environment) * csrEntry * 2 + 2 * (sizeof(Index) + sizeof(Offset));
-    const std::uint64_t perWorker = (e + shape.texels) * sizeof(float) + n * (sizeof(Hit) + sizeof(Ray)) +
-      64 * (links.transport + links.environment) * csrEntry * 2;
+    const std::uint64_t perWorker = 4 * 3 * n * (csrEntry + sizeof(std::uint32_t)) + shape.texels * sizeof(float) +
+      n * (sizeof(Hit) + sizeof(Ray)) + 64 * (links.transport + links.environment) * csrEntry * 2;
     bytes += e * perElement + std::uint64_t(workerCount()) * perWorker;
   }
   if (stale & (1u << kLightLinkStage))
