@@ -318,6 +318,10 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
       thread_local HashedRow row;
       thread_local ScratchRow envRow;
       thread_local std::vector<Hit> hitScratch;
+      // A chunk's rows are gathered in the worker's buffers (kept between chunks) and copied
+      // once, at their size, into the chunk: no growth by doubling, whose copies and fresh
+      // pages cost as much as the rest of the compression on a large mesh.
+      thread_local RowChunk staging;
       row.reserve(3 * n);
       if (envRow.value.size() != texels)
       {
@@ -354,15 +358,18 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
             }
             chunk.rawLinks += links.count;
           }
-          rowCounts[x] = Index(row.flush(chunk.columns, chunk.weights));
-          envRowCounts[x] = Index(envRow.flush(chunk.envColumns, chunk.envWeights));
+          rowCounts[x] = Index(row.flush(staging.columns, staging.weights));
+          envRowCounts[x] = Index(envRow.flush(staging.envColumns, staging.envWeights));
         }
-        // Grown by doubling, a chunk holds up to twice its links: at their size, all chunks
-        // hold the links once until assembleCsr moves them.
-        chunk.columns.shrink_to_fit();
-        chunk.weights.shrink_to_fit();
-        chunk.envColumns.shrink_to_fit();
-        chunk.envWeights.shrink_to_fit();
+        // At their size, all chunks hold the links once until assembleCsr moves them.
+        chunk.columns.assign(staging.columns.begin(), staging.columns.end());
+        chunk.weights.assign(staging.weights.begin(), staging.weights.end());
+        chunk.envColumns.assign(staging.envColumns.begin(), staging.envColumns.end());
+        chunk.envWeights.assign(staging.envWeights.begin(), staging.envWeights.end());
+        staging.columns.clear();
+        staging.weights.clear();
+        staging.envColumns.clear();
+        staging.envWeights.clear();
       }
     },
     progress);

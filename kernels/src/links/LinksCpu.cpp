@@ -203,7 +203,7 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
     // buildLinks: the compressed rows of each chunk (at their size once the chunk is done)
     // and the CSR they are copied into, the row counts and offsets; per worker a row's
     // table (at most 4 slots per link), a dense row of texels, one element's rays and hits,
-    // and a chunk growing by doubling.
+    // and the staging of a chunk's rows (grown by doubling, kept between chunks).
     const LinksPerElement links = LinksPerElement::bound(shape, o);
     const std::uint64_t perElement =
       (links.transport + links.environment) * csrEntry * 2 + 2 * (sizeof(Index) + sizeof(Offset));
