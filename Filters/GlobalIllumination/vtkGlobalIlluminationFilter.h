@@ -516,13 +516,9 @@ public:
    * (vtkGhostType's DUPLICATEPOINT) get the values of their owner's copy. The surfaces are
    * exchanged again only when one of them changed: a light move re-runs only the light
    * links and the bounces. LinkGI.Processes and LinkGI.PartitionBytesReceived in the field
-   * data say what happened. A synchronous update splits the work: each process links and
-   * gathers only its own points' rows, and the bounces exchange the light; when one process
-   * fails or is aborted, all leave the update and keep their previous output. An
-   * asynchronous update solves the whole global surface on every process, in the
-   * background and without exchanges (MPI may not be called from that thread: pvbatch and
-   * pvserver initialise it without thread support), so it costs each process one
-   * process's memory. Refinement is not available with more than one process. nullptr or one
+   * data say what happened. A failure on one process fails the update on all. Asynchronous
+   * updates solve the whole surface on every process (Documentation/Distributed.md).
+   * Refinement is not available with more than one process. nullptr or one
    * process: this process's input alone. The default value is the global controller
    * (vtkMultiProcessController::GetGlobalController() when the filter is made).
    */
@@ -543,11 +539,8 @@ public:
 
   /**
    * In asynchronous mode: if a result newer than the one in the output is ready, marks the
-   * filter modified (so the next render re-executes it) and returns true. With a surface
-   * partitioned among processes (MPI) it is collective, like RequestData: every process
-   * calls it at the same point, and all are marked modified when any has a newer result, so
-   * that they re-execute together (from a collective render, not from each process's own
-   * timer).
+   * filter modified (so the next render re-executes it) and returns true. Collective under
+   * MPI, like RequestData: all processes are marked when any has a newer result.
    */
   bool PollAsynchronousResult();
 

@@ -166,7 +166,6 @@ struct RowChunk
 };
 
 /// Dense scratch row: accumulates weights by column and remembers which columns it touched.
-/// For the environment's texels (a row's rays reach few of them, in a small table).
 struct ScratchRow
 {
   std::vector<float> value;
@@ -190,67 +189,6 @@ struct ScratchRow
       columns.push_back(c);
       weights.push_back(value[c]);
       value[c] = 0.f;
-    }
-    const std::size_t count = touched.size();
-    touched.clear();
-    return count;
-  }
-};
-
-/// The transport row's scratch: the same sums in the same first-reached order, kept in an
-/// open-addressing table of twice a row's most links (3 per ray) instead of a dense row of
-/// every element: 16 KB per worker at 256 rays instead of 4 MB at 1M vertices. (The
-/// compression's time did not move measurably with it: copying the chunks into the CSR
-/// costs more.)
-struct HashedRow
-{
-  std::vector<Index> keys; ///< column + 1 per slot, 0 = empty
-  std::vector<float> values;
-  std::vector<std::uint32_t> touched; ///< the filled slots, in first-reached order
-  std::uint32_t mask = 0;
-
-  void reserve(std::size_t links)
-  {
-    std::size_t slots = 16;
-    while (slots < 2 * links)
-    {
-      slots *= 2;
-    }
-    if (keys.size() != slots)
-    {
-      keys.assign(slots, 0);
-      values.assign(slots, 0.f);
-      mask = std::uint32_t(slots - 1);
-    }
-  }
-  void add(Index column, float w)
-  {
-    std::uint32_t slot = (column * 2654435761u) & mask;
-    for (;;)
-    {
-      if (keys[slot] == column + 1)
-      {
-        values[slot] += w;
-        return;
-      }
-      if (keys[slot] == 0)
-      {
-        keys[slot] = column + 1;
-        values[slot] = w;
-        touched.push_back(slot);
-        return;
-      }
-      slot = (slot + 1) & mask;
-    }
-  }
-  /// Appends the row to (columns, weights) and clears the table (see ScratchRow::flush).
-  std::size_t flush(std::vector<Index>& columns, std::vector<float>& weights)
-  {
-    for (std::uint32_t slot : touched)
-    {
-      columns.push_back(keys[slot] - 1);
-      weights.push_back(values[slot]);
-      keys[slot] = 0;
     }
     const std::size_t count = touched.size();
     touched.clear();
@@ -313,16 +251,18 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
   std::vector<Index> rowCounts(rows), envRowCounts(rows);
   parallelFor("compress", chunks.size(), 1,
     [&](std::size_t begin, std::size_t end) {
-      // Scratch rows stay empty between rows (flush clears them), so they are only
+      // Scratch rows stay all-zero between rows (flush clears them), so they are only
       // reallocated when the size changes.
-      thread_local HashedRow row;
-      thread_local ScratchRow envRow;
+      thread_local ScratchRow row, envRow;
       thread_local std::vector<Hit> hitScratch;
       // A chunk's rows are gathered in the worker's buffers (kept between chunks) and copied
       // once, at their size, into the chunk: no growth by doubling, whose copies and fresh
       // pages cost as much as the rest of the compression on a large mesh.
       thread_local RowChunk staging;
-      row.reserve(3 * n);
+      if (row.value.size() != rows)
+      {
+        row.value.assign(rows, 0.f);
+      }
       if (envRow.value.size() != texels)
       {
         envRow.value.assign(texels, 0.f);
@@ -347,14 +287,7 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
               scene.triangles.data(), faceNormals.data(), params);
             for (int j = 0; j < links.count; ++j)
             {
-              if (links.environment)
-              {
-                envRow.add(links.column[j], links.weight[j]);
-              }
-              else
-              {
-                row.add(links.column[j], links.weight[j]);
-              }
+              (links.environment ? envRow : row).add(links.column[j], links.weight[j]);
             }
             chunk.rawLinks += links.count;
           }

@@ -201,14 +201,14 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
   if (stale & (1u << kLinkStage))
   {
     // buildLinks: the compressed rows of each chunk (at their size once the chunk is done)
-    // and the CSR they are copied into, the row counts and offsets; per worker a row's
-    // table (at most 4 slots per link), a dense row of texels, one element's rays and hits,
-    // and the staging of a chunk's rows (grown by doubling, kept between chunks).
+    // and the CSR they are copied into, the row counts and offsets; per worker a dense
+    // scratch row, one element's rays and hits, and the staging of a chunk's rows (grown by
+    // doubling, kept between chunks).
     const LinksPerElement links = LinksPerElement::bound(shape, o);
     const std::uint64_t perElement =
       (links.transport + links.environment) * csrEntry * 2 + 2 * (sizeof(Index) + sizeof(Offset));
-    const std::uint64_t perWorker = 4 * 3 * n * (csrEntry + sizeof(std::uint32_t)) + shape.texels * sizeof(float) +
-      n * (sizeof(Hit) + sizeof(Ray)) + 64 * (links.transport + links.environment) * csrEntry * 2;
+    const std::uint64_t perWorker = (e + shape.texels) * sizeof(float) + n * (sizeof(Hit) + sizeof(Ray)) +
+      64 * (links.transport + links.environment) * csrEntry * 2;
     bytes += e * perElement + std::uint64_t(workerCount()) * perWorker;
   }
   if (stale & (1u << kLightLinkStage))
