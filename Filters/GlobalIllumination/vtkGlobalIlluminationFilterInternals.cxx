@@ -64,6 +64,7 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
   {
     this->MeshValid = false;
     this->Mesh = Builder::BuildMesh(input, computeNormals, self->FeatureAngle);
+    ++this->MeshVersion;
     this->MeshInput = input;
     this->MeshInputTime = input->GetMTime();
     this->MeshComputeNormals = computeNormals;
@@ -296,26 +297,36 @@ linkgi::ProgressCallback vtkGlobalIlluminationFilter::vtkInternals::Progress(
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(vtkGlobalIlluminationFilter* self,
-  vtkPolyData* output, double msFilter, const linkgi::Solution& solution,
-  const linkgi::SolverStats& s)
+std::vector<vtkSmartPointer<vtkDataArray>> vtkGlobalIlluminationFilter::vtkInternals::PointArrays(
+  vtkGlobalIlluminationFilter* self, const linkgi::Solution& solution)
 {
   const Builder::Mesh& mesh = this->RefinedUsed ? this->RefinedMesh : this->Mesh;
   const std::size_t elements = mesh.ElementPoint.size();
-  vtkPointData* pd = output->GetPointData();
+  std::vector<vtkSmartPointer<vtkDataArray>> arrays;
   for (std::size_t side = 0; side < (self->TwoSided ? 2 : 1); ++side)
   {
     const std::string suffix = side ? "Back" : "";
     const std::size_t offset = side * elements;
-    pd->AddArray(Builder::MapToPoints(mesh, solution.direct, offset, ("DirectIrradiance" + suffix).c_str()));
-    pd->AddArray(Builder::MapToPoints(mesh, solution.indirect, offset, ("IndirectIrradiance" + suffix).c_str()));
-    pd->AddArray(Builder::MapToPoints(mesh, solution.radiance, offset, ("Radiance" + suffix).c_str()));
+    arrays.push_back(Builder::MapToPoints(mesh, solution.direct, offset, ("DirectIrradiance" + suffix).c_str()));
+    arrays.push_back(Builder::MapToPoints(mesh, solution.indirect, offset, ("IndirectIrradiance" + suffix).c_str()));
+    arrays.push_back(Builder::MapToPoints(mesh, solution.radiance, offset, ("Radiance" + suffix).c_str()));
     if (!solution.caustics.empty())
     {
-      pd->AddArray(Builder::MapToPoints(mesh, solution.caustics, offset, ("CausticIrradiance" + suffix).c_str()));
+      arrays.push_back(Builder::MapToPoints(mesh, solution.caustics, offset, ("CausticIrradiance" + suffix).c_str()));
     }
   }
+  return arrays;
+}
 
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(vtkGlobalIlluminationFilter* self,
+  vtkPolyData* output, double msFilter, const linkgi::Solution& solution,
+  const linkgi::SolverStats& s)
+{
+  for (const auto& array : this->PointArrays(self, solution))
+  {
+    output->GetPointData()->AddArray(array);
+  }
   Builder::AddStatistics(output->GetFieldData(), s, msFilter, this->Warnings);
 }
 
@@ -348,25 +359,39 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   {
     this->Warnings.push_back("The last asynchronous update failed: " + error);
   }
-  const std::shared_ptr<const linkgi::AsyncResult> latest = this->Async->latest();
+  std::shared_ptr<const linkgi::AsyncResult> latest = this->Async->latest();
   const std::size_t elements = this->Mesh.ElementPoint.size() * (self->TwoSided ? 2 : 1);
-  linkgi::Solution shown;
-  linkgi::SolverStats stats;
   if (latest && latest->solution.elementCount() == elements)
   {
-    // The newest finished result for a mesh of this size: possibly one update behind.
-    shown = latest->solution;
-    stats = latest->stats;
-    this->ShownRequest = latest->request;
+    this->ShownRequest = latest->request; // possibly one update behind the newest request
   }
   else
   {
-    // Nothing solved for this mesh yet: black, until the worker delivers.
-    shown.direct.assign(elements, linkgi::Vec3f(0.f));
-    shown.indirect = shown.radiance = shown.direct;
+    latest.reset(); // nothing solved for this mesh yet: black, until the worker delivers
+  }
+  ShownArrays& shown = this->Shown;
+  const bool twoSided = self->TwoSided != 0;
+  if (shown.Arrays.empty() || shown.Result != latest || shown.MeshVersion != this->MeshVersion ||
+    shown.TwoSided != twoSided)
+  {
+    linkgi::Solution black;
+    if (!latest)
+    {
+      black.direct.assign(elements, linkgi::Vec3f(0.f));
+      black.indirect = black.radiance = black.direct;
+    }
+    shown.Arrays = this->PointArrays(self, latest ? latest->solution : black);
+    shown.Result = latest;
+    shown.MeshVersion = this->MeshVersion;
+    shown.TwoSided = twoSided;
+  }
+  for (const auto& array : shown.Arrays)
+  {
+    output->GetPointData()->AddArray(array);
   }
   const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
-  this->AttachResults(self, output, elapsed.count(), shown, stats);
+  Builder::AddStatistics(output->GetFieldData(), latest ? latest->stats : linkgi::SolverStats(),
+    elapsed.count(), this->Warnings);
   Builder::AddFieldValue(output->GetFieldData(), "Pending", std::uint64_t(this->Async->busy() ? 1 : 0));
   Builder::AddFieldValue(output->GetFieldData(), "ShownRequest", this->ShownRequest);
   return true;

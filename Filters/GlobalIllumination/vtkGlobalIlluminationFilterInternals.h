@@ -74,6 +74,7 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   // The triangle mesh and what it was built from; rebuilt only when one of these changes,
   // so a light-only update costs no triangulation.
   vtkGlobalIlluminationSceneBuilder::Mesh Mesh;
+  std::uint64_t MeshVersion = 0; ///< counts rebuilds of Mesh
   bool MeshValid = false;
   const vtkPolyData* MeshInput = nullptr;
   vtkMTimeType MeshInputTime = 0;
@@ -83,12 +84,26 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   const linkgi::Scene& UpdateScene(vtkGlobalIlluminationFilter* self, vtkPolyData* input);
   linkgi::SolverOptions Options(vtkGlobalIlluminationFilter* self);
   linkgi::ProgressCallback Progress(vtkGlobalIlluminationFilter* self);
+  /// The point arrays of `solution` (DirectIrradiance, ... and their Back twins).
+  std::vector<vtkSmartPointer<vtkDataArray>> PointArrays(
+    vtkGlobalIlluminationFilter* self, const linkgi::Solution& solution);
   void AttachResults(vtkGlobalIlluminationFilter* self, vtkPolyData* output, double msFilter,
     const linkgi::Solution& solution, const linkgi::SolverStats& stats);
 
   // Asynchronous mode: the worker, and the request whose result the output shows.
   std::unique_ptr<linkgi::AsyncSolver> Async;
   std::uint64_t ShownRequest = 0;
+  /// The point arrays of the shown result, kept while it stays the newest: a render loop
+  /// re-executes the filter at every light move, and arrays made anew each time would make
+  /// the mapper rebuild all its buffers each frame. Kept for the result object, the mesh
+  /// (MeshVersion) and TwoSided they were made for (a null result: the black placeholder).
+  struct ShownArrays
+  {
+    std::shared_ptr<const linkgi::AsyncResult> Result;
+    std::uint64_t MeshVersion = 0;
+    bool TwoSided = false;
+    std::vector<vtkSmartPointer<vtkDataArray>> Arrays;
+  } Shown;
   std::uint64_t LastRequest = 0; // the newest request's id
   bool SolveAsynchronously(vtkGlobalIlluminationFilter* self, vtkPolyData* input, vtkPolyData* output);
 

@@ -97,9 +97,14 @@ TEST(GlobalIlluminationAsync, MovingALightShowsTheOldResultUntilTheNewOneArrives
   double p[3];
   light->GetPosition(p);
   light->SetPosition(p[0] + 0.1, p[1] - 0.1, p[2]);
+  // held: an array freed by a later update could be replaced by one at its address
+  vtkSmartPointer<vtkDataArray> shown = PointArray(async.filter->GetOutput(), "IndirectIrradiance");
   async.filter->Update(); // returns at once with the previous, complete result
   EXPECT_EQ(Stat(async.filter->GetOutput(), "ShownRequest"), 1.0);
+  // ... as the same arrays, so that a mapper drawing them uploads nothing again
+  EXPECT_EQ(PointArray(async.filter->GetOutput(), "IndirectIrradiance"), shown);
   ASSERT_TRUE(async.WaitForResult());
   EXPECT_EQ(Stat(async.filter->GetOutput(), "ShownRequest"), 2.0);
+  EXPECT_NE(PointArray(async.filter->GetOutput(), "IndirectIrradiance"), shown);
   EXPECT_EQ(Stat(async.filter->GetOutput(), "LinkBuilds"), before); // light only: no relink
 }
