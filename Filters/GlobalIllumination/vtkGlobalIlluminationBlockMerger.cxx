@@ -248,16 +248,26 @@ void vtkGlobalIlluminationBlockMerger::Deliver(vtkPolyData* lit, vtkDataObject* 
   vtkPointData* merged = this->Merged->GetPointData();
   for (Leaf& leaf : this->Leaves)
   {
-    leaf.Output->ShallowCopy(leaf.Input); // drops the arrays of an earlier delivery
     const vtkIdType n = leaf.Input->GetNumberOfPoints();
+    std::vector<vtkSmartPointer<vtkDataArray>> sources;
+    vtkMTimeType time = 0;
     for (int a = 0; a < results->GetNumberOfArrays(); ++a)
     {
       vtkDataArray* source = results->GetArray(a);
-      if (!source || !source->GetName() || merged->GetArray(source->GetName()) ||
-        source->GetNumberOfTuples() < leaf.FirstPoint + n)
+      if (source && source->GetName() && !merged->GetArray(source->GetName()) &&
+        source->GetNumberOfTuples() >= leaf.FirstPoint + n)
       {
-        continue;
+        sources.emplace_back(source);
+        time = std::max(time, source->GetMTime());
       }
+    }
+    if (sources == leaf.Delivered && time == leaf.DeliveredTime)
+    {
+      continue; // the same results, unchanged: the leaf already has them
+    }
+    leaf.Output->ShallowCopy(leaf.Input); // drops the arrays of an earlier delivery
+    for (vtkDataArray* source : sources)
+    {
       if (leaf.FirstPoint == 0 && n == source->GetNumberOfTuples())
       {
         // The only leaf: its array is the result itself (each update makes new ones).
@@ -271,8 +281,26 @@ void vtkGlobalIlluminationBlockMerger::Deliver(vtkPolyData* lit, vtkDataObject* 
       slice->InsertTuples(0, n, leaf.FirstPoint, source);
       leaf.Output->GetPointData()->AddArray(slice);
     }
+    leaf.Delivered = std::move(sources);
+    leaf.DeliveredTime = time;
   }
-  if (this->Structure)
+  auto tree = vtkDataObjectTree::SafeDownCast(this->Structure);
+  if (tree)
+  {
+    // The same leaf objects: a tree's ShallowCopy clones its leaves (VTK 9.2), and a mapper
+    // takes a clone for new data, rebuilding all its buffers and bounds at every update.
+    auto out = vtkDataObjectTree::SafeDownCast(output);
+    out->CopyStructure(tree);
+    out->GetFieldData()->ShallowCopy(tree->GetFieldData());
+    auto it = vtk::TakeSmartPointer(tree->NewTreeIterator());
+    it->VisitOnlyLeavesOn();
+    it->SkipEmptyNodesOn();
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      out->SetDataSet(it, it->GetCurrentDataObject());
+    }
+  }
+  else if (this->Structure)
   {
     output->ShallowCopy(this->Structure);
   }

@@ -30,6 +30,7 @@
 #include <string> // for std::string
 #include <vector> // for std::vector
 
+class vtkDataArray;
 class vtkDataObject;
 class vtkPolyData;
 
@@ -68,6 +69,8 @@ public:
    * that GetMerged() does not have onto the output leaves, and makes `output` the input's
    * structure with those leaves and `lit`'s field data added to the input's. `output` is
    * of the input's type (a vtkPolyData when the input is a non-polydata vtkDataSet).
+   * A leaf whose arrays would come from the same `lit` arrays as at the last delivery is
+   * left as it is (not modified), so that a mapper drawing it rebuilds nothing.
    */
   void Deliver(vtkPolyData* lit, vtkDataObject* output);
 
@@ -77,6 +80,8 @@ private:
     vtkSmartPointer<vtkPolyData> Input; ///< the leaf, or its surface
     vtkSmartPointer<vtkPolyData> Output;
     vtkIdType FirstPoint = 0;
+    std::vector<vtkSmartPointer<vtkDataArray>> Delivered; ///< `lit`'s arrays in Output
+    vtkMTimeType DeliveredTime = 0;                       ///< their newest modification
   };
 
   void CollectLeaves(vtkDataObject* data);

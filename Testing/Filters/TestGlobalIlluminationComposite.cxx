@@ -17,6 +17,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 using namespace linkgi_test;
 
 namespace
@@ -385,4 +388,50 @@ TEST(GlobalIlluminationComposite, TheMergerMergesOnlyWhatChanged)
   EXPECT_FALSE(merger.Merge(blocks, albedo));
   EXPECT_TRUE(merger.Merge(blocks, {}));
   EXPECT_EQ(PointArray(merger.GetMerged(), "Albedo"), nullptr);
+}
+
+TEST(GlobalIlluminationComposite, AnAsynchronousReExecutionWithoutANewResultKeepsTheLeaves)
+{
+  // A render loop re-executes the filter at every light move; until a new result arrives
+  // the output's leaves must stay the same, unmodified objects, or a mapper rebuilds all
+  // its buffers at every frame.
+  vtkSmartPointer<vtkPolyData> floor = Floor(), box = Box();
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetBlock(0, floor);
+  blocks->SetBlock(1, box);
+  auto filter = Filter(blocks);
+  filter->AsynchronousOn();
+  const auto waitForResult = [&]() {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(600);
+    while (!filter->PollAsynchronousResult())
+    {
+      ASSERT_LT(std::chrono::steady_clock::now(), deadline);
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    filter->Update();
+  };
+  filter->Update();
+  waitForResult();
+  const std::vector<vtkPolyData*> leaves = Leaves(filter->GetOutputDataObject(0));
+  ASSERT_EQ(leaves.size(), 2u);
+  const vtkMTimeType times[2] = { leaves[0]->GetMTime(), leaves[1]->GetMTime() };
+  // held: an array freed by the next delivery could be replaced by one at its address
+  vtkSmartPointer<vtkDataArray> direct = PointArray(leaves[1], "DirectIrradiance");
+  const double before = Max(leaves[1], "DirectIrradiance");
+  ASSERT_GT(before, 0.0);
+
+  filter->Modified(); // the same scene: nothing new to show
+  filter->Update();
+  EXPECT_EQ(Leaves(filter->GetOutputDataObject(0)), leaves);
+  EXPECT_EQ(leaves[0]->GetMTime(), times[0]);
+  EXPECT_EQ(leaves[1]->GetMTime(), times[1]);
+  EXPECT_EQ(PointArray(leaves[1], "DirectIrradiance"), direct);
+
+  filter->GetLight(0)->SetPosition(-0.6, 0.4, 1.5); // a new result: new arrays on the leaves
+  filter->Update();
+  waitForResult();
+  std::vector<vtkPolyData*> after = Leaves(filter->GetOutputDataObject(0));
+  ASSERT_EQ(after.size(), 2u);
+  EXPECT_NE(PointArray(after[1], "DirectIrradiance"), direct);
+  EXPECT_NE(Max(after[1], "DirectIrradiance"), before);
 }
