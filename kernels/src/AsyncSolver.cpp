@@ -10,6 +10,7 @@
 #include <thread>
 
 #ifdef __linux__
+#include <pthread.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -166,6 +167,7 @@ void AsyncSolver::Impl::run()
   // The worker yields to the render loop: a lower priority (nice 10) for this thread, which
   // runs the whole solve when threads == 1.
   setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
+  pthread_setname_np(pthread_self(), "linkgi-async"); // so top, perf and gdb tell it apart
 #endif
   for (;;)
   {
