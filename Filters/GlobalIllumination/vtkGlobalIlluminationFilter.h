@@ -85,6 +85,13 @@ public:
   vtkTypeMacro(vtkGlobalIlluminationFilter, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /**
+   * Whether `name` is one of the point arrays the filter computes (`DirectIrradiance`,
+   * `IndirectIrradiance`, `Radiance`, `CausticIrradiance` and their `Back` twins): arrays
+   * that change at every update while the geometry stays (a mapper re-uploads only them).
+   */
+  static bool IsResultArray(const char* name);
+
   /// Where the engine runs.
   enum BackendType
   {

@@ -297,6 +297,31 @@ linkgi::ProgressCallback vtkGlobalIlluminationFilter::vtkInternals::Progress(
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// The result arrays' names, front sides; the back sides' add "Back".
+constexpr const char* DirectName = "DirectIrradiance";
+constexpr const char* IndirectName = "IndirectIrradiance";
+constexpr const char* RadianceName = "Radiance";
+constexpr const char* CausticName = "CausticIrradiance";
+}
+
+bool vtkGlobalIlluminationFilter::IsResultArray(const char* name)
+{
+  if (!name)
+  {
+    return false;
+  }
+  std::string front(name);
+  if (front.size() > 4 && front.compare(front.size() - 4, 4, "Back") == 0)
+  {
+    front.resize(front.size() - 4);
+  }
+  return front == DirectName || front == IndirectName || front == RadianceName ||
+    front == CausticName;
+}
+
+//------------------------------------------------------------------------------
 std::vector<vtkSmartPointer<vtkDataArray>> vtkGlobalIlluminationFilter::vtkInternals::PointArrays(
   vtkGlobalIlluminationFilter* self, const linkgi::Solution& solution)
 {
@@ -307,12 +332,12 @@ std::vector<vtkSmartPointer<vtkDataArray>> vtkGlobalIlluminationFilter::vtkInter
   {
     const std::string suffix = side ? "Back" : "";
     const std::size_t offset = side * elements;
-    arrays.push_back(Builder::MapToPoints(mesh, solution.direct, offset, ("DirectIrradiance" + suffix).c_str()));
-    arrays.push_back(Builder::MapToPoints(mesh, solution.indirect, offset, ("IndirectIrradiance" + suffix).c_str()));
-    arrays.push_back(Builder::MapToPoints(mesh, solution.radiance, offset, ("Radiance" + suffix).c_str()));
+    arrays.push_back(Builder::MapToPoints(mesh, solution.direct, offset, (DirectName + suffix).c_str()));
+    arrays.push_back(Builder::MapToPoints(mesh, solution.indirect, offset, (IndirectName + suffix).c_str()));
+    arrays.push_back(Builder::MapToPoints(mesh, solution.radiance, offset, (RadianceName + suffix).c_str()));
     if (!solution.caustics.empty())
     {
-      arrays.push_back(Builder::MapToPoints(mesh, solution.caustics, offset, ("CausticIrradiance" + suffix).c_str()));
+      arrays.push_back(Builder::MapToPoints(mesh, solution.caustics, offset, (CausticName + suffix).c_str()));
     }
   }
   return arrays;

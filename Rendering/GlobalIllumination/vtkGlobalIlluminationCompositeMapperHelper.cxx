@@ -5,11 +5,34 @@
 #include "vtkFloatArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
+#include "vtkOpenGLVertexBufferObject.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
+#include "vtkProperty.h"
+#include "vtkTexture.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
 
 vtkStandardNewMacro(vtkGlobalIlluminationCompositeMapperHelper);
+
+namespace
+{
+/// The shading attributes any block has: the vertex buffers' layout. AppendOneBufferObject
+/// fills the blocks that lack one.
+vtkGlobalIlluminationMapperCore::Layout BlocksLayout(const vtkGlobalIlluminationMapperCore& core,
+  const std::map<vtkPolyData*, vtkCompositeMapperHelperData*>& blocks)
+{
+  vtkGlobalIlluminationMapperCore::Layout layout;
+  for (const auto& entry : blocks)
+  {
+    const vtkGlobalIlluminationMapperCore::Layout block = core.GetLayout(entry.first);
+    for (const auto& buffer : vtkGlobalIlluminationMapperCore::Buffers())
+    {
+      layout.*buffer.Present = layout.*buffer.Present || block.*buffer.Present;
+    }
+  }
+  return layout;
+}
+}
 
 //------------------------------------------------------------------------------
 vtkGlobalIlluminationCompositeMapperHelper::vtkGlobalIlluminationCompositeMapperHelper()
@@ -37,6 +60,7 @@ void vtkGlobalIlluminationCompositeMapperHelper::ReleaseGraphicsResources(vtkWin
 {
   this->Core->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
+  this->GeometryKey.clear(); // the buffers are gone: the next build is a full one
 }
 
 //------------------------------------------------------------------------------
@@ -114,29 +138,98 @@ void vtkGlobalIlluminationCompositeMapperHelper::SetLightingShaderParameters(
 bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildBufferObjects(
   vtkRenderer* ren, vtkActor* act)
 {
+  // The superclass is asked first, always: it records what it has seen.
   const bool rebuild = this->Superclass::GetNeedToRebuildBufferObjects(ren, act);
-  return rebuild || this->Core->BufferKey() != this->BufferKey;
+  if (this->Core->BufferKey() != this->BufferKey)
+  {
+    return true;
+  }
+  if (!rebuild)
+  {
+    return false;
+  }
+  if (ren->GetSelector() || this->GeometryKey.empty() ||
+    !(BlocksLayout(*this->Core, this->Data) == this->Core->GetLayout()) ||
+    this->MakeGeometryKey(act) != this->GeometryKey)
+  {
+    return true;
+  }
+  this->UploadShading();
+  return false;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGlobalIlluminationCompositeMapperHelper::MakeGeometryKey(vtkActor* act)
+{
+  // Not the composite display attributes: block visibility, opacity and colour are set at
+  // each draw (and ParaView modifies them at every render).
+  std::string key = std::to_string(this->GetMTime()) + ' ' +
+    std::to_string(act->GetProperty()->GetMTime()) + ' ' +
+    std::to_string(act->GetTexture() ? act->GetTexture()->GetMTime() : 0) + '\n';
+  for (const auto& entry : this->Data)
+  {
+    this->Core->AppendGeometryKey(key, entry.first, this);
+    key += '\n';
+  }
+  return key;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationCompositeMapperHelper::UploadShading()
+{
+  std::string key;
+  for (vtkPolyData* block : this->ShadedBlocks)
+  {
+    this->Core->AppendShadingKey(key, block);
+  }
+  if (key == this->ShadingKey)
+  {
+    return;
+  }
+  // The same calls as vtkOpenGLVertexBufferObjectGroup::BuildAllVBOs makes for appended
+  // arrays, so the buffers end as a full build would leave them.
+  std::vector<vtkGlobalIlluminationMapperCore::Attributes> attributes;
+  for (vtkPolyData* block : this->ShadedBlocks)
+  {
+    attributes.push_back(this->Core->MakeAttributes(block, true));
+  }
+  const vtkGlobalIlluminationMapperCore::Layout& layout = this->Core->GetLayout();
+  for (const auto& buffer : vtkGlobalIlluminationMapperCore::Buffers())
+  {
+    vtkOpenGLVertexBufferObject* vbo = layout.*buffer.Present ? this->VBOs->GetVBO(buffer.Name) : nullptr;
+    if (!vbo)
+    {
+      continue;
+    }
+    if (attributes.size() == 1)
+    {
+      vbo->UploadDataArray(attributes[0].*buffer.Array);
+      continue;
+    }
+    for (const auto& a : attributes)
+    {
+      vbo->AppendDataArray(a.*buffer.Array);
+    }
+    vbo->UploadVBO();
+  }
+  this->ShadingKey = key;
 }
 
 //------------------------------------------------------------------------------
 void vtkGlobalIlluminationCompositeMapperHelper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
 {
-  // An attribute is in the buffer if any block has it; AppendOneBufferObject fills the
-  // blocks that lack it.
-  vtkGlobalIlluminationMapperCore::Layout layout;
-  for (const auto& entry : this->Data)
-  {
-    const vtkGlobalIlluminationMapperCore::Layout block = this->Core->GetLayout(entry.first);
-    layout.Albedo = layout.Albedo || block.Albedo;
-    layout.Indirect = layout.Indirect || block.Indirect;
-    layout.IndirectBack = layout.IndirectBack || block.IndirectBack;
-    layout.Emission = layout.Emission || block.Emission;
-  }
-  this->Core->SetLayout(layout);
+  this->Core->SetLayout(BlocksLayout(*this->Core, this->Data));
   this->Core->ClearKept();
+  this->ShadedBlocks.clear();
   this->Superclass::BuildBufferObjects(ren, act);
   this->Core->ClearKept();
   this->BufferKey = this->Core->BufferKey();
+  this->GeometryKey = this->MakeGeometryKey(act);
+  this->ShadingKey.clear();
+  for (vtkPolyData* block : this->ShadedBlocks)
+  {
+    this->Core->AppendShadingKey(this->ShadingKey, block);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -155,23 +248,15 @@ void vtkGlobalIlluminationCompositeMapperHelper::AppendOneBufferObject(vtkRender
   {
     return;
   }
+  this->ShadedBlocks.push_back(hdata->Data);
   const auto attributes = this->Core->MakeAttributes(hdata->Data, true);
   this->Core->Keep(attributes);
   const vtkGlobalIlluminationMapperCore::Layout& layout = this->Core->GetLayout();
-  if (layout.Albedo)
+  for (const auto& buffer : vtkGlobalIlluminationMapperCore::Buffers())
   {
-    this->VBOs->AppendDataArray("giAlbedoMC", attributes.Albedo, VTK_FLOAT);
-  }
-  if (layout.Indirect)
-  {
-    this->VBOs->AppendDataArray("giIndirectMC", attributes.Indirect, VTK_FLOAT);
-  }
-  if (layout.IndirectBack)
-  {
-    this->VBOs->AppendDataArray("giIndirectBackMC", attributes.IndirectBack, VTK_FLOAT);
-  }
-  if (layout.Emission)
-  {
-    this->VBOs->AppendDataArray("giEmissionMC", attributes.Emission, VTK_FLOAT);
+    if (layout.*buffer.Present)
+    {
+      this->VBOs->AppendDataArray(buffer.Name, attributes.*buffer.Array, VTK_FLOAT);
+    }
   }
 }

@@ -23,6 +23,7 @@
 #include <map>    // for std::map
 #include <memory> // for std::unique_ptr
 #include <string> // for std::string
+#include <vector> // for std::vector
 
 class vtkGlobalIlluminationMapperCore;
 class vtkGlobalIlluminationShading;
@@ -56,6 +57,11 @@ protected:
 
   bool Shades(const vtkOpenGLHelper* cellBO, vtkActor* act);
 
+  /// What the superclass's buffers are built of (see vtkGlobalIlluminationMapperCore).
+  std::string MakeGeometryKey(vtkActor* act);
+  /// Re-uploads the shading attributes of ShadedBlocks if their arrays changed.
+  void UploadShading();
+
 private:
   vtkGlobalIlluminationCompositeMapperHelper(
     const vtkGlobalIlluminationCompositeMapperHelper&) = delete;
@@ -64,6 +70,13 @@ private:
   std::unique_ptr<vtkGlobalIlluminationMapperCore> Core;
   std::map<const vtkOpenGLHelper*, std::string> ShaderKeys;
   std::string BufferKey;
+  // A new result of the filter changes only the light arrays of the blocks, but the
+  // superclass rebuilds every buffer (and the shadow maps) for any change of a block:
+  // when the geometry key still matches the last build's, only the shading attributes
+  // are uploaded again.
+  std::string GeometryKey; ///< of the last full build; empty: none
+  std::string ShadingKey;  ///< of the shading arrays in the buffers
+  std::vector<vtkPolyData*> ShadedBlocks; ///< blocks whose attributes are in the buffers, in order
 };
 
 #endif

@@ -154,16 +154,13 @@ void vtkGlobalIlluminationMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*
   this->Core->ClearKept();
   this->Core->Keep(attributes);
   auto* cache = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())->GetVBOCache();
-  this->VBOs->CacheDataArray("giAlbedoMC", attributes.Albedo, cache, VTK_FLOAT);
-  this->VBOs->CacheDataArray("giIndirectMC", attributes.Indirect, cache, VTK_FLOAT);
-  this->VBOs->CacheDataArray("giIndirectBackMC", attributes.IndirectBack, cache, VTK_FLOAT);
-  this->VBOs->CacheDataArray("giEmissionMC", attributes.Emission, cache, VTK_FLOAT);
-  this->Superclass::BuildBufferObjects(ren, act);
   vtkGlobalIlluminationMapperCore::Layout layout;
-  layout.Albedo = attributes.Albedo != nullptr;
-  layout.Indirect = attributes.Indirect != nullptr;
-  layout.IndirectBack = attributes.IndirectBack != nullptr;
-  layout.Emission = attributes.Emission != nullptr;
+  for (const auto& buffer : vtkGlobalIlluminationMapperCore::Buffers())
+  {
+    this->VBOs->CacheDataArray(buffer.Name, attributes.*buffer.Array, cache, VTK_FLOAT);
+    layout.*buffer.Present = attributes.*buffer.Array != nullptr;
+  }
+  this->Superclass::BuildBufferObjects(ren, act);
   this->Core->SetLayout(layout);
   this->BufferKey = this->Core->BufferKey();
 }

@@ -5,7 +5,10 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkGlobalIlluminationGlobalCasters.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkGlobalIlluminationColors.h"
+#include "vtkGlobalIlluminationFilter.h"
 #include "vtkGlobalIlluminationLights.h"
 #include "vtkGlobalIlluminationShading.h"
 #include "vtkLight.h"
@@ -32,6 +35,7 @@
 #include "vtkGlobalIlluminationVertexImpl.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <sstream>
 
 namespace
@@ -147,6 +151,18 @@ bool vtkGlobalIlluminationMapperCore::Shades(
 }
 
 //------------------------------------------------------------------------------
+const std::array<vtkGlobalIlluminationMapperCore::Buffer, 4>& vtkGlobalIlluminationMapperCore::Buffers()
+{
+  static const std::array<Buffer, 4> buffers = { {
+    { "giAlbedoMC", &Layout::Albedo, &Attributes::Albedo },
+    { "giIndirectMC", &Layout::Indirect, &Attributes::Indirect },
+    { "giIndirectBackMC", &Layout::IndirectBack, &Attributes::IndirectBack },
+    { "giEmissionMC", &Layout::Emission, &Attributes::Emission },
+  } };
+  return buffers;
+}
+
+//------------------------------------------------------------------------------
 vtkGlobalIlluminationMapperCore::Attributes vtkGlobalIlluminationMapperCore::MakeAttributes(
   vtkPolyData* poly, bool fill) const
 {
@@ -219,6 +235,82 @@ std::string vtkGlobalIlluminationMapperCore::BufferKey() const
   return s ? name(s->GetAlbedoArrayName()) + '\n' + name(s->GetIndirectIrradianceArrayName()) +
       '\n' + name(s->GetEmissionArrayName())
            : std::string();
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+/// Appends an object's address and modification time (0 0 for none).
+void AppendObject(std::string& key, vtkObject* object)
+{
+  key += std::to_string(reinterpret_cast<std::uintptr_t>(object));
+  key += ':';
+  key += std::to_string(object ? object->GetMTime() : 0);
+  key += ' ';
+}
+}
+
+void vtkGlobalIlluminationMapperCore::AppendGeometryKey(
+  std::string& key, vtkPolyData* poly, vtkMapper* mapper) const
+{
+  key += std::to_string(reinterpret_cast<std::uintptr_t>(poly)); // its own time moves with any array
+  key += '|';
+  if (!poly)
+  {
+    return;
+  }
+  AppendObject(key, poly->GetPoints());
+  for (vtkCellArray* cells : { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
+  {
+    AppendObject(key, cells);
+  }
+  const std::string indirect = this->Shading && this->Shading->GetIndirectIrradianceArrayName()
+    ? this->Shading->GetIndirectIrradianceArrayName()
+    : "";
+  const std::string back = this->BackName();
+  for (vtkFieldData* data : { static_cast<vtkFieldData*>(poly->GetPointData()),
+         static_cast<vtkFieldData*>(poly->GetCellData()) })
+  {
+    key += '|';
+    for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+    {
+      vtkAbstractArray* array = data->GetAbstractArray(a);
+      const char* name = array ? array->GetName() : nullptr;
+      const bool shadingOnly = name &&
+        (vtkGlobalIlluminationFilter::IsResultArray(name) || (!indirect.empty() && indirect == name) ||
+          (!back.empty() && back == name));
+      if (!shadingOnly)
+      {
+        AppendObject(key, array);
+      }
+    }
+  }
+  key += '|';
+  if (mapper && mapper->GetScalarVisibility())
+  {
+    // What the mapper colours by, light array or not (its mapped colours are in the buffers).
+    int cellFlag = 0;
+    AppendObject(key, vtkAbstractMapper::GetAbstractScalars(poly, mapper->GetScalarMode(),
+      mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag));
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::AppendShadingKey(std::string& key, vtkPolyData* poly) const
+{
+  vtkPointData* data = poly ? poly->GetPointData() : nullptr;
+  if (!data || !this->Shading)
+  {
+    return;
+  }
+  const std::string back = this->BackName();
+  for (const char* name : std::initializer_list<const char*>{ this->Shading->GetAlbedoArrayName(),
+         this->Shading->GetIndirectIrradianceArrayName(), back.c_str(),
+         this->Shading->GetEmissionArrayName() })
+  {
+    AppendObject(key, name && *name ? data->GetAbstractArray(name) : nullptr);
+  }
+  key += '|';
 }
 
 //------------------------------------------------------------------------------

@@ -23,6 +23,7 @@
 #include "vtkShader.h"                       // for vtkShader::Type
 #include "vtkSmartPointer.h"                 // for vtkSmartPointer
 
+#include <array>  // for std::array
 #include <map>    // for std::map
 #include <string> // for std::string
 #include <vector> // for std::vector
@@ -30,6 +31,7 @@
 class vtkActor;
 class vtkFloatArray;
 class vtkGlobalIlluminationShading;
+class vtkMapper;
 class vtkObject;
 class vtkOpenGLHelper;
 class vtkOpenGLVertexBufferObjectGroup;
@@ -80,6 +82,17 @@ public:
     }
   };
 
+  /// The vertex buffer of one attribute: its name in the shaders, its flag in a Layout and
+  /// its array in Attributes.
+  struct Buffer
+  {
+    const char* Name;
+    bool Layout::*Present;
+    vtkSmartPointer<vtkFloatArray> Attributes::*Array;
+  };
+  /// The four attributes' buffers.
+  static const std::array<Buffer, 4>& Buffers();
+
   /**
    * The attributes of `poly`. The back faces' indirect irradiance is the array named like
    * the indirect one plus "Back" (vtkGlobalIlluminationFilter's TwoSided output). With
@@ -107,6 +120,19 @@ public:
 
   /// A key of the names of the shading arrays: a change rebuilds the vertex buffers.
   std::string BufferKey() const;
+
+  /**
+   * Appends to `key` what a vtkOpenGLPolyDataMapper builds its buffers of in `poly`: its
+   * points, cells and point and cell arrays (each as object and modification time), less
+   * the arrays only the shading attributes read (the filter's results, see
+   * vtkGlobalIlluminationFilter::IsResultArray, and the indirect irradiance arrays) unless
+   * `mapper` colours by one. Equal keys before and after a change of `poly`: re-uploading
+   * the shading attributes brings the buffers up to date.
+   */
+  void AppendGeometryKey(std::string& key, vtkPolyData* poly, vtkMapper* mapper) const;
+
+  /// Appends to `key` the arrays that MakeAttributes(poly) reads, as objects and times.
+  void AppendShadingKey(std::string& key, vtkPolyData* poly) const;
 
   /// The shadow casters drawn from a mapper's buffers (its triangles and strips).
   /// `version` must change whenever the triangles do; the positions' own upload time is

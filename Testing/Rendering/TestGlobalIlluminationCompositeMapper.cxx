@@ -105,6 +105,47 @@ int TestGlobalIlluminationCompositeMapper(int, char*[])
          composite->GetShadowMapRenderCount() == 1, "expected one helper, one shadow map render") &&
     ok;
 
+  // A new indirect irradiance on the blocks, as each asynchronous result brings: only the
+  // shading attributes are uploaded (the positions are not, so the shadow maps are not
+  // rendered again), and the picture is a new mapper's.
+  vtkDataArray* indirect = box->GetPointData()->GetArray("IndirectIrradiance");
+  vtkNew<vtkFloatArray> brighter;
+  brighter->DeepCopy(indirect);
+  for (vtkIdType i = 0; i < brighter->GetNumberOfValues(); ++i)
+  {
+    brighter->SetValue(i, 4.0f * brighter->GetValue(i));
+  }
+  for (unsigned int b = 0; b < blocks->GetNumberOfBlocks(); ++b)
+  {
+    vtkPolyData::SafeDownCast(blocks->GetBlock(b))->GetPointData()->AddArray(brighter);
+  }
+  window->Render(); // the same renderer, its buffers and shadow maps kept
+  vtkSmartPointer<vtkImageData> updated = Capture(window);
+  const int renders = composite->GetShadowMapRenderCount(); // before RenderAlone releases it
+  vtkNew<vtkGlobalIlluminationCompositeMapper> fresh;
+  fresh->SetInputDataObject(blocks);
+  vtkSmartPointer<vtkRenderer> freshScene = Scene(lighting, fresh, exposure);
+  freshScene->GetActors()->GetLastActor()->GetProperty()->SetDiffuseColor(0.1, 0.8, 0.1);
+  vtkSmartPointer<vtkImageData> rebuilt = RenderAlone(window, freshScene);
+  double changed = 0.0, unlike = 0.0;
+  for (int p = 0; p < n; ++p)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double u = updated->GetPointData()->GetScalars()->GetComponent(p, k);
+      changed = std::max(changed, std::abs(u - cut->GetPointData()->GetScalars()->GetComponent(p, k)));
+      unlike = std::max(unlike, std::abs(u - rebuilt->GetPointData()->GetScalars()->GetComponent(p, k)));
+    }
+  }
+  std::printf("new indirect light: largest change %.0f levels, largest difference from a new "
+              "mapper %.0f, shadow map renders %d\n",
+    changed, unlike, renders);
+  ok = Check(changed > 20.0, "the new indirect light is not drawn") && ok;
+  ok = Check(unlike <= 1.0, "the updated mapper draws unlike a new one") && ok;
+  ok = Check(renders == 1,
+         "a new indirect light alone rebuilt the positions (shadow maps rendered again)") &&
+    ok;
+
   // A sphere without shading arrays, hanging over the floor beside the tall block.
   const double centre[3] = { 0.45, 0.15, 0.2 }, radius = 0.04;
   vtkNew<vtkSphereSource> sphereSource;
