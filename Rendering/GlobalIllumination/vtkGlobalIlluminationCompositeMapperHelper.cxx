@@ -5,10 +5,7 @@
 #include "vtkFloatArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
-#include "vtkOpenGLVertexBufferObject.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
-#include "vtkProperty.h"
-#include "vtkTexture.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
 
@@ -154,65 +151,24 @@ bool vtkGlobalIlluminationCompositeMapperHelper::GetNeedToRebuildBufferObjects(
   {
     return true;
   }
-  this->UploadShading();
+  const std::string shading = this->Core->ShadingKey(this->ShadedBlocks);
+  if (shading != this->ShadingKey)
+  {
+    this->Core->UploadShading(this->VBOs, this->ShadedBlocks, true);
+    this->ShadingKey = shading;
+  }
   return false;
 }
 
 //------------------------------------------------------------------------------
 std::string vtkGlobalIlluminationCompositeMapperHelper::MakeGeometryKey(vtkActor* act)
 {
-  // Not the composite display attributes: block visibility, opacity and colour are set at
-  // each draw (and ParaView modifies them at every render).
-  std::string key = std::to_string(this->GetMTime()) + ' ' +
-    std::to_string(act->GetProperty()->GetMTime()) + ' ' +
-    std::to_string(act->GetTexture() ? act->GetTexture()->GetMTime() : 0) + '\n';
+  std::vector<vtkPolyData*> blocks;
   for (const auto& entry : this->Data)
   {
-    this->Core->AppendGeometryKey(key, entry.first, this);
-    key += '\n';
+    blocks.push_back(entry.first);
   }
-  return key;
-}
-
-//------------------------------------------------------------------------------
-void vtkGlobalIlluminationCompositeMapperHelper::UploadShading()
-{
-  std::string key;
-  for (vtkPolyData* block : this->ShadedBlocks)
-  {
-    this->Core->AppendShadingKey(key, block);
-  }
-  if (key == this->ShadingKey)
-  {
-    return;
-  }
-  // The same calls as vtkOpenGLVertexBufferObjectGroup::BuildAllVBOs makes for appended
-  // arrays, so the buffers end as a full build would leave them.
-  std::vector<vtkGlobalIlluminationMapperCore::Attributes> attributes;
-  for (vtkPolyData* block : this->ShadedBlocks)
-  {
-    attributes.push_back(this->Core->MakeAttributes(block, true));
-  }
-  const vtkGlobalIlluminationMapperCore::Layout& layout = this->Core->GetLayout();
-  for (const auto& buffer : vtkGlobalIlluminationMapperCore::Buffers())
-  {
-    vtkOpenGLVertexBufferObject* vbo = layout.*buffer.Present ? this->VBOs->GetVBO(buffer.Name) : nullptr;
-    if (!vbo)
-    {
-      continue;
-    }
-    if (attributes.size() == 1)
-    {
-      vbo->UploadDataArray(attributes[0].*buffer.Array);
-      continue;
-    }
-    for (const auto& a : attributes)
-    {
-      vbo->AppendDataArray(a.*buffer.Array);
-    }
-    vbo->UploadVBO();
-  }
-  this->ShadingKey = key;
+  return this->Core->GeometryKey(this, act, blocks);
 }
 
 //------------------------------------------------------------------------------
@@ -225,11 +181,7 @@ void vtkGlobalIlluminationCompositeMapperHelper::BuildBufferObjects(vtkRenderer*
   this->Core->ClearKept();
   this->BufferKey = this->Core->BufferKey();
   this->GeometryKey = this->MakeGeometryKey(act);
-  this->ShadingKey.clear();
-  for (vtkPolyData* block : this->ShadedBlocks)
-  {
-    this->Core->AppendShadingKey(this->ShadingKey, block);
-  }
+  this->ShadingKey = this->Core->ShadingKey(this->ShadedBlocks);
 }
 
 //------------------------------------------------------------------------------

@@ -57,10 +57,8 @@ protected:
 
   bool Shades(const vtkOpenGLHelper* cellBO, vtkActor* act);
 
-  /// What the superclass's buffers are built of (see vtkGlobalIlluminationMapperCore).
+  /// What the superclass's buffers are built of (vtkGlobalIlluminationMapperCore::GeometryKey).
   std::string MakeGeometryKey(vtkActor* act);
-  /// Re-uploads the shading attributes of ShadedBlocks if their arrays changed.
-  void UploadShading();
 
 private:
   vtkGlobalIlluminationCompositeMapperHelper(
@@ -70,10 +68,8 @@ private:
   std::unique_ptr<vtkGlobalIlluminationMapperCore> Core;
   std::map<const vtkOpenGLHelper*, std::string> ShaderKeys;
   std::string BufferKey;
-  // A new result of the filter changes only the light arrays of the blocks, but the
-  // superclass rebuilds every buffer (and the shadow maps) for any change of a block:
-  // when the geometry key still matches the last build's, only the shading attributes
-  // are uploaded again.
+  // When only the light arrays of the blocks changed, only the shading attributes are
+  // uploaded again (vtkGlobalIlluminationMapperCore::GeometryKey).
   std::string GeometryKey; ///< of the last full build; empty: none
   std::string ShadingKey;  ///< of the shading arrays in the buffers
   std::vector<vtkPolyData*> ShadedBlocks; ///< blocks whose attributes are in the buffers, in order

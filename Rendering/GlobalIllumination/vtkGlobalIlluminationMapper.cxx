@@ -63,6 +63,7 @@ void vtkGlobalIlluminationMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Core->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
+  this->GeometryKey.clear(); // the buffers are gone: the next build is a full one
 }
 
 //------------------------------------------------------------------------------
@@ -141,8 +142,32 @@ void vtkGlobalIlluminationMapper::SetLightingShaderParameters(
 //------------------------------------------------------------------------------
 bool vtkGlobalIlluminationMapper::GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act)
 {
+  // The superclass is asked first, always: it records what it has seen.
   const bool rebuild = this->Superclass::GetNeedToRebuildBufferObjects(ren, act);
-  return rebuild || this->Core->BufferKey() != this->BufferKey;
+  if (this->Core->BufferKey() != this->BufferKey)
+  {
+    return true;
+  }
+  if (!rebuild)
+  {
+    return false;
+  }
+  // Only the light arrays changed (vtkGlobalIlluminationMapperCore::GeometryKey): upload
+  // the shading attributes alone, if they have the built layout.
+  const std::vector<vtkPolyData*> input{ this->CurrentInput };
+  if (ren->GetSelector() || this->GeometryKey.empty() ||
+    !(this->Core->GetLayout(this->CurrentInput) == this->Core->GetLayout()) ||
+    this->Core->GeometryKey(this, act, input) != this->GeometryKey)
+  {
+    return true;
+  }
+  const std::string shading = this->Core->ShadingKey(input);
+  if (shading != this->ShadingKey)
+  {
+    this->Core->UploadShading(this->VBOs, input, false);
+    this->ShadingKey = shading;
+  }
+  return false;
 }
 
 //------------------------------------------------------------------------------
@@ -163,6 +188,9 @@ void vtkGlobalIlluminationMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*
   this->Superclass::BuildBufferObjects(ren, act);
   this->Core->SetLayout(layout);
   this->BufferKey = this->Core->BufferKey();
+  const std::vector<vtkPolyData*> input{ this->CurrentInput };
+  this->GeometryKey = this->Core->GeometryKey(this, act, input);
+  this->ShadingKey = this->Core->ShadingKey(input);
 }
 
 //------------------------------------------------------------------------------

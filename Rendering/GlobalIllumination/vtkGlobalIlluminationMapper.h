@@ -91,6 +91,8 @@ private:
   std::unique_ptr<vtkGlobalIlluminationMapperCore> Core;
   std::map<const vtkOpenGLHelper*, std::string> ShaderKeys;
   std::string BufferKey;
+  std::string GeometryKey; ///< of the last full build (vtkGlobalIlluminationMapperCore); empty: none
+  std::string ShadingKey;  ///< of the shading arrays in the buffers
 };
 
 #endif

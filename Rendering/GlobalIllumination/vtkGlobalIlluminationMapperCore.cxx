@@ -26,6 +26,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
+#include "vtkTexture.h"
 #include "vtk_glew.h"
 
 #include "vtkGlobalIlluminationLightDec.h"
@@ -250,67 +251,115 @@ void AppendObject(std::string& key, vtkObject* object)
 }
 }
 
-void vtkGlobalIlluminationMapperCore::AppendGeometryKey(
-  std::string& key, vtkPolyData* poly, vtkMapper* mapper) const
+std::string vtkGlobalIlluminationMapperCore::GeometryKey(
+  vtkMapper* mapper, vtkActor* actor, const std::vector<vtkPolyData*>& polys) const
 {
-  key += std::to_string(reinterpret_cast<std::uintptr_t>(poly)); // its own time moves with any array
-  key += '|';
-  if (!poly)
-  {
-    return;
-  }
-  AppendObject(key, poly->GetPoints());
-  for (vtkCellArray* cells : { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
-  {
-    AppendObject(key, cells);
-  }
+  // Not a composite mapper's display attributes: block visibility, opacity and colour are
+  // set at each draw (and ParaView modifies them at every render).
+  std::string key = std::to_string(mapper->GetMTime()) + ' ' +
+    std::to_string(actor->GetProperty()->GetMTime()) + ' ' +
+    std::to_string(actor->GetTexture() ? actor->GetTexture()->GetMTime() : 0) + '\n';
   const std::string indirect = this->Shading && this->Shading->GetIndirectIrradianceArrayName()
     ? this->Shading->GetIndirectIrradianceArrayName()
     : "";
   const std::string back = this->BackName();
-  for (vtkFieldData* data : { static_cast<vtkFieldData*>(poly->GetPointData()),
-         static_cast<vtkFieldData*>(poly->GetCellData()) })
+  for (vtkPolyData* poly : polys)
   {
+    key += std::to_string(reinterpret_cast<std::uintptr_t>(poly)); // its time moves with any array
     key += '|';
-    for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+    if (!poly)
     {
-      vtkAbstractArray* array = data->GetAbstractArray(a);
-      const char* name = array ? array->GetName() : nullptr;
-      const bool shadingOnly = name &&
-        (vtkGlobalIlluminationFilter::IsResultArray(name) || (!indirect.empty() && indirect == name) ||
-          (!back.empty() && back == name));
-      if (!shadingOnly)
+      continue;
+    }
+    AppendObject(key, poly->GetPoints());
+    for (vtkCellArray* cells :
+      { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
+    {
+      AppendObject(key, cells);
+    }
+    for (vtkFieldData* data : { static_cast<vtkFieldData*>(poly->GetPointData()),
+           static_cast<vtkFieldData*>(poly->GetCellData()) })
+    {
+      key += '|';
+      for (int a = 0; a < data->GetNumberOfArrays(); ++a)
       {
-        AppendObject(key, array);
+        vtkAbstractArray* array = data->GetAbstractArray(a);
+        const char* name = array ? array->GetName() : nullptr;
+        const bool shadingOnly = name &&
+          (vtkGlobalIlluminationFilter::IsResultArray(name) ||
+            (!indirect.empty() && indirect == name) || (!back.empty() && back == name));
+        if (!shadingOnly)
+        {
+          AppendObject(key, array);
+        }
       }
     }
+    key += '|';
+    if (mapper->GetScalarVisibility())
+    {
+      // What the mapper colours by, light array or not (its mapped colours are in the buffers).
+      int cellFlag = 0;
+      AppendObject(key, vtkAbstractMapper::GetAbstractScalars(poly, mapper->GetScalarMode(),
+        mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag));
+    }
+    key += '\n';
   }
-  key += '|';
-  if (mapper && mapper->GetScalarVisibility())
-  {
-    // What the mapper colours by, light array or not (its mapped colours are in the buffers).
-    int cellFlag = 0;
-    AppendObject(key, vtkAbstractMapper::GetAbstractScalars(poly, mapper->GetScalarMode(),
-      mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag));
-  }
+  return key;
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapperCore::AppendShadingKey(std::string& key, vtkPolyData* poly) const
+std::string vtkGlobalIlluminationMapperCore::ShadingKey(const std::vector<vtkPolyData*>& polys) const
 {
-  vtkPointData* data = poly ? poly->GetPointData() : nullptr;
-  if (!data || !this->Shading)
-  {
-    return;
-  }
+  std::string key;
   const std::string back = this->BackName();
-  for (const char* name : std::initializer_list<const char*>{ this->Shading->GetAlbedoArrayName(),
-         this->Shading->GetIndirectIrradianceArrayName(), back.c_str(),
-         this->Shading->GetEmissionArrayName() })
+  for (vtkPolyData* poly : polys)
   {
-    AppendObject(key, name && *name ? data->GetAbstractArray(name) : nullptr);
+    vtkPointData* data = poly ? poly->GetPointData() : nullptr;
+    if (!data || !this->Shading)
+    {
+      continue;
+    }
+    for (const char* name : std::initializer_list<const char*>{ this->Shading->GetAlbedoArrayName(),
+           this->Shading->GetIndirectIrradianceArrayName(), back.c_str(),
+           this->Shading->GetEmissionArrayName() })
+    {
+      AppendObject(key, name && *name ? data->GetAbstractArray(name) : nullptr);
+    }
+    key += '|';
   }
-  key += '|';
+  return key;
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::UploadShading(
+  vtkOpenGLVertexBufferObjectGroup* vbos, const std::vector<vtkPolyData*>& polys, bool fill) const
+{
+  std::vector<Attributes> attributes;
+  for (vtkPolyData* poly : polys)
+  {
+    attributes.push_back(this->MakeAttributes(poly, fill));
+  }
+  // The calls vtkOpenGLVertexBufferObjectGroup::BuildAllVBOs makes, so that the buffers
+  // end as a full build leaves them.
+  for (const Buffer& buffer : Buffers())
+  {
+    vtkOpenGLVertexBufferObject* vbo =
+      this->Present.*buffer.Present ? vbos->GetVBO(buffer.Name) : nullptr;
+    if (!vbo)
+    {
+      continue;
+    }
+    if (attributes.size() == 1)
+    {
+      vbo->UploadDataArray(attributes[0].*buffer.Array);
+      continue;
+    }
+    for (const Attributes& a : attributes)
+    {
+      vbo->AppendDataArray(a.*buffer.Array);
+    }
+    vbo->UploadVBO();
+  }
 }
 
 //------------------------------------------------------------------------------

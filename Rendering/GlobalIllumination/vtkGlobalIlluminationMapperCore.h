@@ -121,18 +121,27 @@ public:
   /// A key of the names of the shading arrays: a change rebuilds the vertex buffers.
   std::string BufferKey() const;
 
+  ///@{
   /**
-   * Appends to `key` what a vtkOpenGLPolyDataMapper builds its buffers of in `poly`: its
-   * points, cells and point and cell arrays (each as object and modification time), less
-   * the arrays only the shading attributes read (the filter's results, see
+   * Keeping the buffers when only the light changed. A new result of the filter changes
+   * only its arrays, but a vtkOpenGLPolyDataMapper rebuilds every buffer for any change of
+   * its input (and, with new positions, the shadow maps are rendered again).
+   * GeometryKey is what the superclass builds its buffers of from `polys`, drawn by
+   * `mapper` with `actor`: the mapper's and the actor's property's and texture's times, and
+   * per polydata its points, cells and point and cell arrays (objects and times), less the
+   * arrays only the shading attributes read (the filter's results, see
    * vtkGlobalIlluminationFilter::IsResultArray, and the indirect irradiance arrays) unless
-   * `mapper` colours by one. Equal keys before and after a change of `poly`: re-uploading
-   * the shading attributes brings the buffers up to date.
+   * `mapper` colours by one. When it equals the last build's, UploadShading (the
+   * attributes of `polys`, appended in this order, into the existing buffers of the
+   * layout) brings the buffers up to date; ShadingKey (the arrays MakeAttributes reads)
+   * says whether even that is needed.
    */
-  void AppendGeometryKey(std::string& key, vtkPolyData* poly, vtkMapper* mapper) const;
-
-  /// Appends to `key` the arrays that MakeAttributes(poly) reads, as objects and times.
-  void AppendShadingKey(std::string& key, vtkPolyData* poly) const;
+  std::string GeometryKey(
+    vtkMapper* mapper, vtkActor* actor, const std::vector<vtkPolyData*>& polys) const;
+  std::string ShadingKey(const std::vector<vtkPolyData*>& polys) const;
+  void UploadShading(
+    vtkOpenGLVertexBufferObjectGroup* vbos, const std::vector<vtkPolyData*>& polys, bool fill) const;
+  ///@}
 
   /// The shadow casters drawn from a mapper's buffers (its triangles and strips).
   /// `version` must change whenever the triangles do; the positions' own upload time is
