@@ -23,7 +23,7 @@ struct AsyncSolver::Impl
   struct Request
   {
     std::uint64_t id;
-    Scene scene;
+    std::shared_ptr<const Scene> scene; // shared by lastAccepted and pending
     SolverOptions options;
   };
 
@@ -69,7 +69,7 @@ AsyncSolver::~AsyncSolver()
   impl->worker.join();
 }
 
-std::uint64_t AsyncSolver::request(Scene scene, const SolverOptions& options)
+std::uint64_t AsyncSolver::request(const Scene& scene, const SolverOptions& options)
 {
   std::uint64_t id;
   {
@@ -77,15 +77,15 @@ std::uint64_t AsyncSolver::request(Scene scene, const SolverOptions& options)
     // Asking again for what is already pending, running or published is not new work: a
     // render loop may re-request the same scene every frame.
     const auto& last = impl->lastAccepted;
-    if (last && last->options == options && sameScene(last->scene, scene) &&
+    if (last && last->options == options && sameScene(*last->scene, scene) &&
       (impl->pending || impl->running == last->id ||
         (impl->published && impl->published->request == last->id)))
     {
       return last->id;
     }
     id = impl->nextId++;
-    impl->lastAccepted = Impl::Request{ id, scene, options };
-    impl->pending = Impl::Request{ id, std::move(scene), options };
+    impl->lastAccepted = Impl::Request{ id, std::make_shared<const Scene>(scene), options };
+    impl->pending = impl->lastAccepted;
   }
   impl->changed.notify_all();
   return id;
@@ -207,7 +207,7 @@ void AsyncSolver::Impl::solve(Request& request)
   };
   try
   {
-    runWithConcurrency(threads, [&] { solver.update(request.scene, request.options, stillWanted); });
+    runWithConcurrency(threads, [&] { solver.update(*request.scene, request.options, stillWanted); });
   }
   catch (const Aborted&)
   {
@@ -257,13 +257,13 @@ std::shared_ptr<AsyncResult> AsyncSolver::Impl::blended(
   }
   // Only the indirect light is blended: it carries the sampling noise, while direct light is
   // exact and must follow a moving light without lag. Radiance follows the blended value.
-  const std::size_t nv = request.scene.vertexCount();
+  const std::size_t nv = request.scene->vertexCount();
   Solution& out = result->solution;
   for (std::size_t e = 0; e < out.elementCount(); ++e)
   {
     const Vec3f before = previous->solution.indirect[e];
     const Vec3f mixed = out.indirect[e] * a + before * (1.f - a);
-    out.radiance[e] += request.scene.albedo[e % nv] * (mixed - out.indirect[e]) * (1.f / kPi);
+    out.radiance[e] += request.scene->albedo[e % nv] * (mixed - out.indirect[e]) * (1.f / kPi);
     out.indirect[e] = mixed;
   }
   return result;

@@ -46,8 +46,9 @@ public:
 
   /// Asks for `scene` to be solved; returns the request's id (1, 2, ...). Asking again for
   /// the same scene and options as the last request, while that one is pending, running or
-  /// published, returns its id and starts nothing.
-  std::uint64_t request(Scene scene, const SolverOptions& options = {});
+  /// published, returns its id and starts nothing (and copies nothing: a render loop asks
+  /// at every frame). A new scene is copied once.
+  std::uint64_t request(const Scene& scene, const SolverOptions& options = {});
   /// The newest published result, or null before the first one. Never blocks on the worker.
   std::shared_ptr<const AsyncResult> latest() const;
   /// Aborts the running update and drops a pending request; latest() is unchanged.
