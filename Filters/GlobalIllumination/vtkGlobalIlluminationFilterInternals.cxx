@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <numeric>
 
@@ -73,13 +74,25 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
   }
 
   linkgi::Scene& scene = this->Mesh.Scene;
-  scene.albedo = Builder::GatherColors(input, this->Mesh, self->AlbedoArrayName,
-    self->AlbedoArrayAssociation, ToVec3f(self->Albedo), "albedo");
-  scene.emission.clear();
-  if (self->EmissionArrayName && *self->EmissionArrayName)
+  char albedo[128];
+  std::snprintf(albedo, sizeof(albedo), "%a %a %a", self->Albedo[0], self->Albedo[1], self->Albedo[2]);
+  const auto name = [](const char* s) { return std::string(s ? s : ""); };
+  const std::string colorsKey = std::to_string(this->MeshVersion) + '|' +
+    name(self->AlbedoArrayName) + '|' + std::to_string(self->AlbedoArrayAssociation) + '|' +
+    albedo + '|' + name(self->EmissionArrayName) + '|' +
+    std::to_string(self->EmissionArrayAssociation);
+  if (colorsKey != this->ColorsKey) // the mesh (its input) or the colour settings changed
   {
-    scene.emission = Builder::GatherColors(input, this->Mesh, self->EmissionArrayName,
-      self->EmissionArrayAssociation, linkgi::Vec3f(0.f), "emission");
+    this->ColorsKey.clear();
+    scene.albedo = Builder::GatherColors(input, this->Mesh, self->AlbedoArrayName,
+      self->AlbedoArrayAssociation, ToVec3f(self->Albedo), "albedo");
+    scene.emission.clear();
+    if (self->EmissionArrayName && *self->EmissionArrayName)
+    {
+      scene.emission = Builder::GatherColors(input, this->Mesh, self->EmissionArrayName,
+        self->EmissionArrayAssociation, linkgi::Vec3f(0.f), "emission");
+    }
+    this->ColorsKey = colorsKey;
   }
   scene.triangleMaterials.clear();
   scene.triangleIor.clear();

@@ -80,6 +80,9 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   vtkMTimeType MeshInputTime = 0;
   bool MeshComputeNormals = false;
   double MeshFeatureAngle = 0.0;
+  // What Mesh.Scene's albedo and emission were gathered with: a render loop updates at every
+  // light move, and gathering them again each time costs the render thread.
+  std::string ColorsKey;
 
   const linkgi::Scene& UpdateScene(vtkGlobalIlluminationFilter* self, vtkPolyData* input);
   linkgi::SolverOptions Options(vtkGlobalIlluminationFilter* self);
