@@ -8,7 +8,9 @@ it). Datasets: Wavelet -40..40 contoured at RTData 160 (the issue's 54k-point su
 Wavelet -64..64 at 160 (a larger one, >= 120k points). View 800x600, default view lights
 (the light kit), 10 orbit steps of 5 degrees (Azimuth) per run, each step one Render();
 a run's figure is its mean ms per frame, and the table gives the median, minimum and
-maximum of `--repeats` runs. Rows:
+maximum of `--repeats` runs, and `cpu_ms_per_frame` the median CPU time per frame of the
+process's thread groups (the render thread, llvmpipe's, the background solve's; Linux).
+Rows:
 
 - Surface;
 - Global Illumination, key light not bounced, no shadows;
@@ -70,16 +72,46 @@ def has_background_mode(display):
     return display.GetProperty("GlobalIlluminationWait") is not None
 
 
+def thread_cpu_ms():
+    """CPU time (user + system, ms) of this process's threads by group: "render" (the main
+    thread, which renders and runs the filter), "llvmpipe" (Mesa's rasterizer threads),
+    "linkgi-async" (the background solve), "other". Linux only; empty elsewhere."""
+    groups = {}
+    tick_ms = 1000.0 / os.sysconf("SC_CLK_TCK")
+    try:
+        tids = os.listdir("/proc/self/task")
+    except OSError:
+        return groups
+    for tid in tids:
+        try:
+            with open("/proc/self/task/%s/stat" % tid) as f:
+                stat = f.read()
+            with open("/proc/self/task/%s/comm" % tid) as f:
+                comm = f.read().strip()
+        except OSError:
+            continue  # the thread ended
+        fields = stat[stat.rfind(")") + 2:].split()  # fields[11], [12]: utime, stime
+        group = "render" if tid == str(os.getpid()) else \
+            "llvmpipe" if comm.startswith("llvmpipe") else \
+            comm if comm == "linkgi-async" else "other"
+        groups[group] = groups.get(group, 0.0) + (int(fields[11]) + int(fields[12])) * tick_ms
+    return groups
+
+
 def orbit(view, steps):
-    """Mean ms per frame of `steps` orbit steps of 5 degrees."""
+    """Mean ms per frame of `steps` orbit steps of 5 degrees, and the CPU ms per frame of
+    each thread group (thread_cpu_ms) over the orbit."""
     camera = GetActiveCamera()
     elapsed = 0.0
+    before = thread_cpu_ms()
     for _ in range(steps):
         camera.Azimuth(5)
         start = time.perf_counter()
         Render(view)
         elapsed += time.perf_counter() - start
-    return 1000.0 * elapsed / steps
+    after = thread_cpu_ms()
+    cpu = {g: (t - before.get(g, 0.0)) / steps for g, t in after.items()}
+    return 1000.0 * elapsed / steps, cpu
 
 
 def row(view, display, setup, wait=None):
@@ -92,15 +124,20 @@ def row(view, display, setup, wait=None):
     Render(view)  # a finished solution to start from
     if background and wait:
         display.GlobalIlluminationWait = wait
-    runs = []
+    runs, cpus = [], []
     for _ in range(arguments.repeats):
         view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = HOME
-        runs.append(orbit(view, arguments.steps))
+        ms, cpu = orbit(view, arguments.steps)
+        runs.append(ms)
+        cpus.append(cpu)
     if background:
         display.GlobalIlluminationWait = "Always"
         Render(view)  # let the worker finish before the next row
+    groups = sorted({g for cpu in cpus for g in cpu})
     return {"median_ms": round(statistics.median(runs), 1), "min_ms": round(min(runs), 1),
-            "max_ms": round(max(runs), 1), "runs_ms": [round(r, 1) for r in runs]}
+            "max_ms": round(max(runs), 1), "runs_ms": [round(r, 1) for r in runs],
+            "cpu_ms_per_frame": {g: round(statistics.median(cpu.get(g, 0.0) for cpu in cpus), 1)
+                                 for g in groups}}
 
 
 def gi(key, shadows, point_light=False):
