@@ -180,7 +180,9 @@ void vtkGlobalIlluminationCompositeMapperHelper::BuildBufferObjects(vtkRenderer*
   this->Superclass::BuildBufferObjects(ren, act);
   this->Core->ClearKept();
   this->BufferKey = this->Core->BufferKey();
-  this->GeometryKey = this->MakeGeometryKey(act);
+  // Buffers built during a selection pass are not kept (a selector may change what the
+  // superclass builds): the next normal render builds them in full.
+  this->GeometryKey = ren->GetSelector() ? std::string() : this->MakeGeometryKey(act);
   this->ShadingKey = this->Core->ShadingKey(this->ShadedBlocks);
 }
 

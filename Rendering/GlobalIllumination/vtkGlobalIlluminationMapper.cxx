@@ -189,7 +189,9 @@ void vtkGlobalIlluminationMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*
   this->Core->SetLayout(layout);
   this->BufferKey = this->Core->BufferKey();
   const std::vector<vtkPolyData*> input{ this->CurrentInput };
-  this->GeometryKey = this->Core->GeometryKey(this, act, input);
+  // Buffers built during a selection pass are not kept (a selector may change what the
+  // superclass builds): the next normal render builds them in full.
+  this->GeometryKey = ren->GetSelector() ? std::string() : this->Core->GeometryKey(this, act, input);
   this->ShadingKey = this->Core->ShadingKey(input);
 }
 

@@ -5,10 +5,13 @@
 // - a new, brighter IndirectIrradiance array on the Cornell box;
 // - the same while the mapper colours the box by that array (without an albedo array, so
 //   the colours are the albedo): the colours are in VTK's own buffers, so the mapper must
-//   rebuild those, light array or not.
+//   rebuild those, light array or not;
+// - the same after a hardware point selection of the box.
 #include "RenderingTestUtilities.h"
 
+#include "vtkHardwareSelector.h"
 #include "vtkPointData.h"
+#include "vtkSelection.h"
 
 #include <cmath>
 
@@ -69,8 +72,9 @@ int TestGlobalIlluminationMapperNewLight(int, char*[])
   }
   auto window = MakeWindow(200, 200);
   bool ok = true;
-  for (const bool coloured : { false, true })
+  for (const int variant : { 0, 1, 2 })
   {
+    const bool coloured = variant == 1, selected = variant == 2;
     vtkNew<vtkPolyData> box;
     box->ShallowCopy(lit);
     if (coloured)
@@ -79,6 +83,15 @@ int TestGlobalIlluminationMapperNewLight(int, char*[])
     }
     Scene scene = MakeScene(lighting, box, exposure, coloured);
     vtkSmartPointer<vtkImageData> before = RenderAlone(window, scene.Renderer);
+    if (selected)
+    {
+      vtkNew<vtkHardwareSelector> selector;
+      selector->SetRenderer(scene.Renderer);
+      selector->SetArea(0, 0, 199, 199);
+      selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_POINTS);
+      vtkSmartPointer<vtkSelection> picked = vtk::TakeSmartPointer(selector->Select());
+      ok = Check(picked && picked->GetNumberOfNodes() > 0, "the point selection picked nothing") && ok;
+    }
     box->GetPointData()->AddArray(brighter); // replaces IndirectIrradiance, as a new result does
     window->Render();                         // the same renderer: its buffers are kept
     vtkSmartPointer<vtkImageData> after = Capture(window);
@@ -86,7 +99,9 @@ int TestGlobalIlluminationMapperNewLight(int, char*[])
     vtkSmartPointer<vtkImageData> expected = RenderAlone(window, fresh.Renderer);
     const double changed = LargestDifference(before, after);
     const double unlike = LargestDifference(after, expected);
-    const char* what = coloured ? "coloured by the indirect light" : "albedo array";
+    const char* what = coloured ? "coloured by the indirect light"
+      : selected                 ? "after a point selection"
+                                 : "albedo array";
     std::printf("%s: largest change %.0f levels, largest difference from a new mapper %.0f\n",
       what, changed, unlike);
     ok = Check(changed > 20.0, std::string(what) + ": the new indirect light is not drawn") && ok;
