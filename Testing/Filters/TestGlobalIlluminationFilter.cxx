@@ -8,6 +8,7 @@
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkImageData.h"
 #include "vtkLightCollection.h"
+#include "vtkMath.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
 #include "vtkUnsignedCharArray.h"
@@ -182,6 +183,12 @@ TEST(GlobalIlluminationFilter, LightOrAlbedoChangesReuseTheLinks)
   EXPECT_EQ(Stat(out, "LinkBuilds"), 1.0);
   EXPECT_EQ(Stat(out, "LightLinkBuilds"), 2.0);
   EXPECT_EQ(Stat(out, "BounceRuns"), 3.0);
+  for (int c = 0; c < 3; ++c) // the new albedo is used (the colours are gathered again)
+  {
+    const double e = Value(out, "DirectIrradiance", 0, c) + Value(out, "IndirectIrradiance", 0, c);
+    EXPECT_GT(e, 0.0);
+    EXPECT_NEAR(Value(out, "Radiance", 0, c), (0.3 + 0.2 * c) / vtkMath::Pi() * e, 1e-5 * e);
+  }
 
   filter->Update(); // nothing changed: no execution at all
   EXPECT_EQ(Stat(out, "BounceRuns"), 3.0);
