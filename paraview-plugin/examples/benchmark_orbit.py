@@ -10,6 +10,9 @@ Wavelet -64..64 at 160 (a larger one, >= 120k points). View 800x600, default vie
 a run's figure is its mean ms per frame, and the table gives the median, minimum and
 maximum of `--repeats` runs, and `cpu_ms_per_frame` the median CPU time per frame of the
 process's thread groups (the render thread, llvmpipe's, the background solve's; Linux).
+With --count-solutions, background rows also give `new_solutions_per_orbit`: per run, the
+frames that drew a newer solution than the frame before (read between the timed frames,
+which gives the worker those moments too: leave it off for the timing figures).
 Rows:
 
 - Surface;
@@ -46,6 +49,9 @@ parser.add_argument("--repeats", type=int, default=5)
 parser.add_argument("--steps", type=int, default=10)
 parser.add_argument("--output")
 parser.add_argument("--datasets", default="wavelet40,wavelet64")
+parser.add_argument("--count-solutions", action="store_true",
+                    help="count the orbit frames that drew a new solution (an information "
+                         "request between frames, outside the timing)")
 arguments = parser.parse_args(sys.argv[1:])
 LoadPlugin(arguments.plugin, remote=False, ns=globals())
 
@@ -98,20 +104,28 @@ def thread_cpu_ms():
     return groups
 
 
-def orbit(view, steps):
-    """Mean ms per frame of `steps` orbit steps of 5 degrees, and the CPU ms per frame of
-    each thread group (thread_cpu_ms) over the orbit."""
+def orbit(view, steps, display=None):
+    """Mean ms per frame of `steps` orbit steps of 5 degrees, the CPU ms per frame of each
+    thread group (thread_cpu_ms) over the orbit, and, given the `display` of a background
+    Global Illumination row, how many frames drew a solution newer than the frame before
+    (read between the timed renders; else None)."""
     camera = GetActiveCamera()
     elapsed = 0.0
+    new_solutions = 0 if display is not None else None
+    shown = information(display, "ShownRequest") if display is not None else None
     before = thread_cpu_ms()
     for _ in range(steps):
         camera.Azimuth(5)
         start = time.perf_counter()
         Render(view)
         elapsed += time.perf_counter() - start
+        if display is not None:
+            now = information(display, "ShownRequest")
+            new_solutions += 1 if now != shown else 0
+            shown = now
     after = thread_cpu_ms()
     cpu = {g: (t - before.get(g, 0.0)) / steps for g, t in after.items()}
-    return 1000.0 * elapsed / steps, cpu
+    return 1000.0 * elapsed / steps, cpu, new_solutions
 
 
 def row(view, display, setup, wait=None):
@@ -124,20 +138,25 @@ def row(view, display, setup, wait=None):
     Render(view)  # a finished solution to start from
     if background and wait:
         display.GlobalIlluminationWait = wait
-    runs, cpus = [], []
+    runs, cpus, solutions = [], [], []
     for _ in range(arguments.repeats):
         view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = HOME
-        ms, cpu = orbit(view, arguments.steps)
+        ms, cpu, drawn = orbit(
+            view, arguments.steps, display if background and arguments.count_solutions else None)
         runs.append(ms)
         cpus.append(cpu)
+        solutions.append(drawn)
     if background:
         display.GlobalIlluminationWait = "Always"
         Render(view)  # let the worker finish before the next row
     groups = sorted({g for cpu in cpus for g in cpu})
-    return {"median_ms": round(statistics.median(runs), 1), "min_ms": round(min(runs), 1),
-            "max_ms": round(max(runs), 1), "runs_ms": [round(r, 1) for r in runs],
-            "cpu_ms_per_frame": {g: round(statistics.median(cpu.get(g, 0.0) for cpu in cpus), 1)
-                                 for g in groups}}
+    result = {"median_ms": round(statistics.median(runs), 1), "min_ms": round(min(runs), 1),
+              "max_ms": round(max(runs), 1), "runs_ms": [round(r, 1) for r in runs],
+              "cpu_ms_per_frame": {g: round(statistics.median(cpu.get(g, 0.0) for cpu in cpus), 1)
+                                   for g in groups}}
+    if solutions[0] is not None:
+        result["new_solutions_per_orbit"] = solutions
+    return result
 
 
 def gi(key, shadows, point_light=False):
