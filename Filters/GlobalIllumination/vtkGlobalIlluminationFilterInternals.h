@@ -99,7 +99,8 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   /// The point arrays of the shown result, kept while it stays the newest: a render loop
   /// re-executes the filter at every light move, and arrays made anew each time would make
   /// the mapper rebuild all its buffers each frame. Kept for the result object, the mesh
-  /// (MeshVersion) and TwoSided they were made for (a null result: the black placeholder).
+  /// (MeshVersion) and TwoSided they were made for; a null result stands for the black
+  /// arrays shown before the first result.
   struct ShownArrays
   {
     std::shared_ptr<const linkgi::AsyncResult> Result;

@@ -17,8 +17,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <thread>
 
 using namespace linkgi_test;
 
@@ -402,12 +400,7 @@ TEST(GlobalIlluminationComposite, AnAsynchronousReExecutionWithoutANewResultKeep
   auto filter = Filter(blocks);
   filter->AsynchronousOn();
   const auto waitForResult = [&]() {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(600);
-    while (!filter->PollAsynchronousResult())
-    {
-      ASSERT_LT(std::chrono::steady_clock::now(), deadline);
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+    ASSERT_TRUE(filter->WaitForAsynchronousResult(600.0));
     filter->Update();
   };
   filter->Update();
