@@ -266,3 +266,87 @@ TEST(TestAsyncSolver, DirectionSetDoesNotCrawlUnderDeformation)
   // Measured 0.13%; with the twist re-rolled between the two frames (another seed) 1.2%.
   EXPECT_LT(std::sqrt(change / scale), 0.005);
 }
+
+#ifdef __linux__
+namespace
+{
+/// Every core kept busy at normal priority while it lives: another program that wants the
+/// whole machine.
+class BusyCores
+{
+public:
+  BusyCores()
+  {
+    for (unsigned i = 0; i < std::max(1u, std::thread::hardware_concurrency()); ++i)
+    {
+      spinners.emplace_back([this] {
+        while (!done.load(std::memory_order_relaxed))
+        {
+        }
+      });
+    }
+  }
+  ~BusyCores()
+  {
+    done = true;
+    for (std::thread& t : spinners)
+    {
+      t.join();
+    }
+  }
+
+private:
+  std::atomic<bool> done{ false };
+  std::vector<std::thread> spinners;
+};
+}
+
+constexpr std::chrono::milliseconds kPause{ 1100 }; // longer than a continuous change's gaps
+
+TEST(TestAsyncSolver, ContinuousChangeYieldsButNeverStarves)
+{
+  // Requests less than a second apart are solved in the idle scheduling class. With every
+  // core busy at normal priority, such an update gets a few thousandths of a core (this one,
+  // ~0.1 s of work alone, took 30 s that way). Once the requests stop it must be stopped and
+  // run again at nice 10, and finish while the cores stay busy (in 4 s here).
+  const Scene room = test::roomWithBlock(0.03f);
+  const auto lit = [&room](float k) { // the light moved by k steps
+    Scene s = room;
+    s.lights[0].position.x += 0.05f * k;
+    return s;
+  };
+  AsyncSolver async(1);
+  ASSERT_TRUE(async.wait(async.request(lit(1.f), options()), 300.0)); // the links
+  // Two requests back to back: the first after a pause (nice 10), the second right after
+  // it (the idle class, unless turned off). Returns whether the update was seen yielding.
+  const auto change = [&](float k, double timeoutSeconds) {
+    std::this_thread::sleep_for(kPause);
+    async.request(lit(k), options());
+    const std::uint64_t last = async.request(lit(k + 1.f), options());
+    bool yielded = false;
+    const auto start = std::chrono::steady_clock::now();
+    while (!async.wait(last, 0.01) &&
+      std::chrono::steady_clock::now() - start < std::chrono::duration<double>(timeoutSeconds))
+    {
+      yielded = yielded || async.yielding();
+    }
+    return yielded;
+  };
+  async.setYieldToInteraction(false);
+  EXPECT_FALSE(change(2.f, 60.0));
+  async.setYieldToInteraction(true);
+
+  BusyCores busy;
+  EXPECT_TRUE(change(4.f, 20.0)) << "the continuous change never ran in the idle class";
+  ASSERT_EQ(async.latest()->request, async.request(lit(5.f), options()))
+    << "the idle-class update starved behind busy cores";
+  EXPECT_FALSE(async.yielding());
+  // Stopped and run again, it is still exactly that request's solution.
+  const Solution fresh = Solver().update(lit(5.f), options());
+  const Solution& shown = async.latest()->solution;
+  for (std::size_t i = 0; i < fresh.elementCount(); ++i)
+  {
+    ASSERT_EQ(shown.radiance[i], fresh.radiance[i]);
+  }
+}
+#endif

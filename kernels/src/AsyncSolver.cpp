@@ -11,6 +11,7 @@
 
 #ifdef __linux__
 #include <pthread.h>
+#include <sched.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -18,6 +19,60 @@
 
 namespace linkgi
 {
+namespace
+{
+using Clock = std::chrono::steady_clock;
+/// Requests closer together than this are one continuous change (an orbit, a dragged light).
+constexpr std::chrono::milliseconds kContinuous{ 1000 };
+/// How often the worker checks that an idle-class update is not starving.
+constexpr std::chrono::milliseconds kStarvationWindow{ 500 };
+
+/// Lowers the calling thread's priority: the idle scheduling class where `idle` is asked
+/// for and allowed, nice 10 otherwise. Returns whether it is in the idle class.
+bool lowerPriority(bool idle)
+{
+#ifdef __linux__
+  if (idle)
+  {
+    sched_param none{};
+    if (pthread_setschedparam(pthread_self(), SCHED_IDLE, &none) == 0)
+    {
+      return true;
+    }
+  }
+  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
+#else
+  (void)idle;
+#endif
+  return false;
+}
+
+void nameThread(const char* name)
+{
+#ifdef __linux__
+  pthread_setname_np(pthread_self(), name); // so top, perf and gdb tell the threads apart
+#else
+  (void)name;
+#endif
+}
+
+/// CPU seconds `thread` has run, or a negative value where that is unknown.
+double cpuSeconds(std::thread& thread)
+{
+#ifdef __linux__
+  clockid_t clock;
+  timespec t;
+  if (pthread_getcpuclockid(thread.native_handle(), &clock) == 0 && clock_gettime(clock, &t) == 0)
+  {
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+  }
+#else
+  (void)thread;
+#endif
+  return -1.0;
+}
+}
+
 struct AsyncSolver::Impl
 {
   struct Request
@@ -38,6 +93,12 @@ struct AsyncSolver::Impl
   std::uint64_t running = 0; // id being solved, 0 when idle
   double progress = 0.0;     // fraction of the running update done
   bool stopping = false;
+  Clock::time_point lastRequestAt; // when the newest request was accepted
+  bool continuous = false;         // it came less than kContinuous after the one before
+  bool yieldToInteraction = true;
+  bool idleClass = false; // the running update is in the idle scheduling class
+  bool starved = false;   // ... and is to stop, to be run again at nice 10
+  bool solved = false;    // the update thread is done
   std::shared_ptr<const AsyncResult> published;
   std::string error;
   float blend = 1.f;
@@ -46,6 +107,7 @@ struct AsyncSolver::Impl
   std::thread worker;
 
   void run();
+  bool solveOnThread(Request& request, bool idle);
   void solve(Request& request);
   std::shared_ptr<AsyncResult> blended(const Request& request, const Solution& s, const SolverStats& st);
 };
@@ -84,6 +146,9 @@ std::uint64_t AsyncSolver::request(const Scene& scene, const SolverOptions& opti
       return last->id;
     }
     id = impl->nextId++;
+    const Clock::time_point now = Clock::now();
+    impl->continuous = id > 1 && now - impl->lastRequestAt < kContinuous;
+    impl->lastRequestAt = now;
     impl->lastAccepted = Impl::Request{ id, std::make_shared<const Scene>(scene), options };
     impl->pending = impl->lastAccepted;
   }
@@ -155,6 +220,18 @@ void AsyncSolver::setAbortRunning(bool abort)
   impl->abortRunning = abort;
 }
 
+void AsyncSolver::setYieldToInteraction(bool yield)
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  impl->yieldToInteraction = yield;
+}
+
+bool AsyncSolver::yielding() const
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  return impl->running != 0 && impl->idleClass;
+}
+
 void AsyncSolver::setOnPublish(std::function<void(std::uint64_t)> callback)
 {
   std::lock_guard<std::mutex> lock(impl->mutex);
@@ -163,15 +240,14 @@ void AsyncSolver::setOnPublish(std::function<void(std::uint64_t)> callback)
 
 void AsyncSolver::Impl::run()
 {
-#ifdef __linux__
-  // The worker yields to the render loop: a lower priority (nice 10) for this thread, which
-  // runs the whole solve when threads == 1.
-  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
-  pthread_setname_np(pthread_self(), "linkgi-async"); // so top, perf and gdb tell it apart
-#endif
+  // This thread takes the requests and watches the update threads; each update runs on a
+  // thread of its own (solveOnThread), at the priority of its own (see the class comment).
+  lowerPriority(false);
+  nameThread("linkgi-watch");
   for (;;)
   {
     Request request;
+    bool idle;
     {
       std::unique_lock<std::mutex> lock(mutex);
       changed.wait(lock, [this] { return stopping || pending.has_value(); });
@@ -182,8 +258,12 @@ void AsyncSolver::Impl::run()
       request = std::move(*pending);
       pending.reset();
       running = request.id;
+      idle = yieldToInteraction && continuous;
     }
-    solve(request);
+    while (solveOnThread(request, idle))
+    {
+      idle = false; // starved in the idle class: again at nice 10
+    }
     {
       std::lock_guard<std::mutex> lock(mutex);
       running = 0;
@@ -192,10 +272,57 @@ void AsyncSolver::Impl::run()
   }
 }
 
+bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
+{
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    solved = false;
+    starved = false;
+    idleClass = false;
+  }
+  std::thread thread([this, &request, idle] {
+    const bool inIdleClass = lowerPriority(idle);
+    nameThread("linkgi-async");
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      idleClass = inIdleClass;
+    }
+    solve(request);
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      solved = true;
+      idleClass = false;
+    }
+    changed.notify_all();
+  });
+  // An idle-class update gets no CPU while anything else wants it. That is the point while
+  // the changes go on; once they stopped, an update that still gets under half a core is
+  // stopped (at its next progress check) and run again at nice 10.
+  std::unique_lock<std::mutex> lock(mutex);
+  double cpuBefore = cpuSeconds(thread);
+  Clock::time_point before = Clock::now();
+  while (!changed.wait_for(lock, kStarvationWindow, [this] { return solved; }))
+  {
+    const Clock::time_point now = Clock::now();
+    const double cpu = cpuSeconds(thread);
+    const double share = (cpu - cpuBefore) / std::chrono::duration<double>(now - before).count();
+    if (idleClass && cpuBefore >= 0.0 && now - lastRequestAt > kContinuous && share < 0.5)
+    {
+      starved = true;
+    }
+    cpuBefore = cpu;
+    before = now;
+  }
+  const bool again = starved && running == request.id && !stopping;
+  lock.unlock();
+  thread.join();
+  return again;
+}
+
 void AsyncSolver::Impl::solve(Request& request)
 {
   // The update stops at its next progress check after cancel() or the destructor, and, with
-  // setAbortRunning(true), once a newer request is waiting.
+  // setAbortRunning(true), once a newer request is waiting, or once it starved.
   {
     std::lock_guard<std::mutex> lock(mutex);
     progress = 0.0;
@@ -203,7 +330,7 @@ void AsyncSolver::Impl::solve(Request& request)
   const ProgressCallback stillWanted = [this, id = request.id](const char*, double fraction) {
     std::lock_guard<std::mutex> lock(mutex);
     progress = std::max(progress, fraction);
-    return !stopping && running == id && !(abortRunning && pending.has_value());
+    return !stopping && !starved && running == id && !(abortRunning && pending.has_value());
   };
   try
   {

@@ -9,19 +9,25 @@ void gatherRgb(const SparseMatrix& m, const Vec3f* x, Vec3f* y)
   gatherRgb(m.view(), x, y);
 }
 
+namespace
+{
+void gatherRows(const CsrRows& m, const Vec3f* x, Vec3f* y, std::size_t begin, std::size_t end)
+{
+  for (std::size_t r = begin; r < end; ++r)
+  {
+    Vec3f sum(0.f);
+    for (Offset i = m.rowOffsets[r] - m.firstEntry; i < m.rowOffsets[r + 1] - m.firstEntry; ++i)
+    {
+      sum += x[m.columns[i]] * m.weights[i];
+    }
+    y[r] = sum;
+  }
+}
+}
+
 void gatherRgb(const CsrRows& m, const Vec3f* x, Vec3f* y)
 {
-  parallelRanges(m.rows, 256, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t r = begin; r < end; ++r)
-    {
-      Vec3f sum(0.f);
-      for (Offset i = m.rowOffsets[r] - m.firstEntry; i < m.rowOffsets[r + 1] - m.firstEntry; ++i)
-      {
-        sum += x[m.columns[i]] * m.weights[i];
-      }
-      y[r] = sum;
-    }
-  });
+  parallelRanges(m.rows, 256, [&](std::size_t begin, std::size_t end) { gatherRows(m, x, y, begin, end); });
 }
 
 std::vector<Vec3f> iterateBounces(const SparseMatrix& transport, const BounceInputs& inputs,
@@ -43,7 +49,18 @@ std::vector<Vec3f> iterateBounces(const SparseMatrix& transport, const BounceInp
           inputs.emission.empty() ? Vec3f(0.f) : inputs.emission[e]);
       }
     });
-    gatherRgb(transport, radiance.data(), indirect.data());
+    // The gather is the bounce's whole cost (tens of ms per bounce at 100k vertices): it
+    // checks for an abort in slices, so that cancel() or a starved background update stops
+    // within milliseconds of work rather than a bounce.
+    const CsrRows rows = transport.view();
+    const ProgressCallback sliced = progress
+      ? ProgressCallback([&progress, b, bounces](const char* stage, double f) {
+          return progress(stage, (b + f) / bounces);
+        })
+      : ProgressCallback();
+    parallelFor("bounces", rows.rows, 256,
+      [&](std::size_t begin, std::size_t end) { gatherRows(rows, radiance.data(), indirect.data(), begin, end); },
+      sliced);
     if (exchange)
     {
       exchange(indirect); // other processes' rows gathered zero here

@@ -29,6 +29,17 @@ struct AsyncResult
 /// torso that way. So by default the running update finishes (a result is at most two
 /// update times old) and only cancel() aborts it.
 ///
+/// Sharing the machine with the render loop (Linux): each update runs on a thread of its own
+/// at nice 10. Under continuous change (a request less than a second after the previous one:
+/// an orbit with a camera-following light, a dragged light) the update runs in the idle
+/// scheduling class (SCHED_IDLE) instead, so every frame the render loop draws preempts it at
+/// once; on a two-core machine that is what keeps an orbit's frame time close to one without
+/// global illumination, for fewer global-illumination updates per second while it lasts. Once
+/// the changes stop (no request for a second) an idle-class update that still gets less than
+/// half a core (another program keeps the cores busy) is aborted and run again at nice 10, so
+/// it never starves: an unprivileged thread cannot leave the idle class, hence the new thread.
+/// setYieldToInteraction(false) keeps every update at nice 10.
+///
 /// Temporal blending (optional): with blend factor a in (0, 1], the indirect irradiance is
 /// published as a * new + (1 - a) * previous per element when the element count is
 /// unchanged (radiance follows), which damps frame-to-frame flicker of the sampled indirect
@@ -71,7 +82,12 @@ public:
   void setBlend(float factor);
   /// Let a new request abort the running update (default false, see above).
   void setAbortRunning(bool abort);
-  /// Called on the worker thread after each publish (e.g. to wake a render loop).
+  /// Run updates under continuous change in the idle scheduling class (default true, see
+  /// above; Linux only, elsewhere updates always run at the lower priority).
+  void setYieldToInteraction(bool yield);
+  /// True while the running update is in the idle scheduling class.
+  bool yielding() const;
+  /// Called on the update's thread after each publish (e.g. to wake a render loop).
   void setOnPublish(std::function<void(std::uint64_t request)> callback);
 
 private:
