@@ -81,7 +81,9 @@ def has_background_mode(display):
 def thread_cpu_ms():
     """CPU time (user + system, ms) of this process's threads by group: "render" (the main
     thread, which renders and runs the filter), "llvmpipe" (Mesa's rasterizer threads),
-    "linkgi-async" (the background solve), "other". Linux only; empty elsewhere."""
+    "linkgi-async" (the background solve: each update runs on a thread of its own, so this
+    group also has the time of every thread that ended, which the process's total keeps), and
+    "other". Linux only; empty elsewhere."""
     groups = {}
     tick_ms = 1000.0 / os.sysconf("SC_CLK_TCK")
     try:
@@ -101,6 +103,11 @@ def thread_cpu_ms():
             "llvmpipe" if comm.startswith("llvmpipe") else \
             comm if comm == "linkgi-async" else "other"
         groups[group] = groups.get(group, 0.0) + (int(fields[11]) + int(fields[12])) * tick_ms
+    with open("/proc/self/stat") as f:
+        stat = f.read()
+    fields = stat[stat.rfind(")") + 2:].split()
+    ended = (int(fields[11]) + int(fields[12])) * tick_ms - sum(groups.values())
+    groups["linkgi-async"] = groups.get("linkgi-async", 0.0) + max(0.0, ended)
     return groups
 
 
