@@ -7,6 +7,7 @@
 #include <condition_variable>
 #include <mutex>
 #include <optional>
+#include <system_error>
 #include <thread>
 
 #ifdef __linux__
@@ -280,9 +281,7 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
     starved = false;
     idleClass = false;
   }
-  std::thread thread([this, &request, idle] {
-    const bool inIdleClass = lowerPriority(idle);
-    nameThread("linkgi-async");
+  const auto update = [this, &request](bool inIdleClass) {
     {
       std::lock_guard<std::mutex> lock(mutex);
       idleClass = inIdleClass;
@@ -294,7 +293,21 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
       idleClass = false;
     }
     changed.notify_all();
-  });
+  };
+  std::thread thread;
+  try
+  {
+    thread = std::thread([&update, idle] {
+      const bool inIdleClass = lowerPriority(idle);
+      nameThread("linkgi-async");
+      update(inIdleClass);
+    });
+  }
+  catch (const std::system_error&) // no thread to be had: solve here, at nice 10
+  {
+    update(false);
+    return false;
+  }
   // An idle-class update gets no CPU while anything else wants it. That is the point while
   // the changes go on; once they stopped, an update that still gets under half a core is
   // stopped (at its next progress check) and run again at nice 10.
@@ -306,7 +319,7 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
     const Clock::time_point now = Clock::now();
     const double cpu = cpuSeconds(thread);
     const double share = (cpu - cpuBefore) / std::chrono::duration<double>(now - before).count();
-    if (idleClass && cpuBefore >= 0.0 && now - lastRequestAt > kContinuous && share < 0.5)
+    if (idleClass && cpuBefore >= 0.0 && cpu >= 0.0 && now - lastRequestAt > kContinuous && share < 0.5)
     {
       starved = true;
     }
