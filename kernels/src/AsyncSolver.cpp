@@ -230,7 +230,7 @@ void AsyncSolver::setYieldToInteraction(bool yield)
 bool AsyncSolver::yielding() const
 {
   std::lock_guard<std::mutex> lock(impl->mutex);
-  return impl->running != 0 && impl->idleClass;
+  return impl->running != 0 && impl->idleClass && !impl->starved;
 }
 
 void AsyncSolver::setOnPublish(std::function<void(std::uint64_t)> callback)

@@ -85,7 +85,8 @@ public:
   /// Run updates under continuous change in the idle scheduling class (default true, see
   /// above; Linux only, elsewhere updates always run at the lower priority).
   void setYieldToInteraction(bool yield);
-  /// True while the running update is in the idle scheduling class.
+  /// True while the running update is in the idle scheduling class and not found starving
+  /// (from then on it is being stopped, to run again at nice 10).
   bool yielding() const;
   /// Called on the update's thread after each publish (e.g. to wake a render loop).
   void setOnPublish(std::function<void(std::uint64_t request)> callback);
