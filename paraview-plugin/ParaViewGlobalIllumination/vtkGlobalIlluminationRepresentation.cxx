@@ -21,7 +21,9 @@
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLight.h"
+#include "vtkPVGlobalIlluminationStateInformation.h"
 #include "vtkPVRenderView.h"
+#include "vtkPVSession.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
@@ -32,6 +34,7 @@
 #include "vtkSMProxyIterator.h"
 #include "vtkSMProxyManager.h"
 #include "vtkSMSession.h"
+#include "vtkSMSessionClient.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkSmartPointer.h"
 #include "vtkVariant.h"
@@ -234,6 +237,21 @@ void vtkGlobalIlluminationRepresentation::WaitForSolutionNow()
 //------------------------------------------------------------------------------
 int vtkGlobalIlluminationRepresentation::GetAsynchronousState()
 {
+  // ParaView pulls information properties from the client's own copy, whose filter has no
+  // data when the server renders: a client of a remote server asks every process.
+  vtkSMProxy* proxy = this->GetDisplayProxy();
+  if (proxy && vtkSMSessionClient::SafeDownCast(proxy->GetSession()))
+  {
+    vtkNew<vtkPVGlobalIlluminationStateInformation> state;
+    proxy->GatherInformation(state, vtkPVSession::CLIENT | vtkPVSession::DATA_SERVER);
+    return state->GetState();
+  }
+  return this->GetLocalAsynchronousState();
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationRepresentation::GetLocalAsynchronousState()
+{
   vtkGlobalIlluminationFilter* filter = this->Internals->Filter;
   const int shown = FieldInt(filter->GetOutputDataObject(0), "LinkGI.ShownRequest");
   if (filter->PollAsynchronousResult())
@@ -261,17 +279,24 @@ void vtkGlobalIlluminationRepresentation::WatchForSolutions(vtkPVRenderView* vie
 }
 
 //------------------------------------------------------------------------------
-int vtkGlobalIlluminationRepresentation::PollForSolution()
+vtkSMProxy* vtkGlobalIlluminationRepresentation::GetDisplayProxy()
 {
-  // Through the proxy, so that a filter on a server is asked too; in a builtin session this
-  // calls GetAsynchronousState here. The poll is a progress request of its own, so that the
-  // progress the worker reports reaches ParaView's progress bar between renders.
   vtkInternals& internals = *this->Internals;
   if (!internals.Proxy)
   {
     internals.Proxy = FindProxy(this);
   }
-  vtkSMProxy* proxy = internals.Proxy;
+  return internals.Proxy;
+}
+
+//------------------------------------------------------------------------------
+int vtkGlobalIlluminationRepresentation::PollForSolution()
+{
+  // GetAsynchronousState asks a remote server's processes too. The poll is a progress
+  // request of its own, so that the progress the worker reports reaches ParaView's progress
+  // bar between renders.
+  vtkInternals& internals = *this->Internals;
+  vtkSMProxy* proxy = this->GetDisplayProxy();
   if (!proxy)
   {
     return vtkGlobalIlluminationAsyncWatcher::STOP;
@@ -283,13 +308,11 @@ int vtkGlobalIlluminationRepresentation::PollForSolution()
     vtkSMPropertyHelper(proxy, "GlobalIlluminationInteractiveClient").Set(1);
     proxy->UpdateVTKObjects();
   }
-  // (The state is an exposed property of the subproxy: updating all information properties
-  // reaches it.)
   vtkSMSession* session = proxy->GetSession();
   session->PrepareProgress();
-  proxy->UpdatePropertyInformation();
+  const int state = this->GetAsynchronousState();
   session->CleanupPendingProgress();
-  switch (vtkSMPropertyHelper(proxy, "GlobalIlluminationState").GetAsInt())
+  switch (state)
   {
     case READY:
       return vtkGlobalIlluminationAsyncWatcher::RENDER;

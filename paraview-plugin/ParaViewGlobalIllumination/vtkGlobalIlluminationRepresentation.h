@@ -50,6 +50,7 @@ class vtkGlobalIlluminationFilter;
 class vtkGlobalIlluminationShading;
 class vtkPVRenderView;
 class vtkRenderer;
+class vtkSMProxy;
 
 class LINKGIPARAVIEWGLOBALILLUMINATION_EXPORT vtkGlobalIlluminationRepresentation
   : public vtkGeometryRepresentationWithFaces
@@ -151,8 +152,14 @@ public:
   /**
    * An AsynchronousStates value; while SOLVING, also reports the worker's progress through
    * this representation (what ParaView's progress bar shows). Polled by the GUI's client.
+   * On the client of a remote server it is that of every process that may render (the
+   * server's, where it renders remotely, the client's, where it renders locally),
+   * gathered with vtkPVGlobalIlluminationStateInformation.
    */
   int GetAsynchronousState();
+
+  /// The state of this process's own filter (GetAsynchronousState elsewhere than a client).
+  int GetLocalAsynchronousState();
 
   ///@{
   /**
@@ -222,6 +229,10 @@ protected:
 
   /// One poll of the watcher: a vtkGlobalIlluminationAsyncWatcher::PollResult.
   int PollForSolution();
+
+  /// The display (representation) proxy of this object where this process has a proxy
+  /// manager (a client, or a builtin session), else null; found once.
+  vtkSMProxy* GetDisplayProxy();
 
   /// The filter's warning events.
   void OnFilterEvent(vtkObject* caller, unsigned long event, void* data);
