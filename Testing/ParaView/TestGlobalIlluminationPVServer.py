@@ -1,7 +1,8 @@
 """Client and server: the Global Illumination representation rendered by
 `mpiexec -np 2 pvserver` and composited by IceT, as a ParaView GUI connected to a cluster
 sees it; with --ranks 1, the background solve of a one-process server (a parallel server
-solves synchronously), whose state the GUI's watcher polls from the client.
+solves synchronously), whose state the GUI's watcher polls from the client; with --gui
+<paraview>, that GUI itself runs TestGlobalIlluminationGUIRemote.py against the server.
 
 Run with Python and ParaView's modules (as the pvbatch tests' PYTHONPATH). This process
 starts `<mpiexec> -np <ranks> [flags] pvserver` on a free port and runs itself again as the
@@ -9,7 +10,7 @@ client (--port), which connects, loads the plugin on both sides, keeps the rende
 the server (Remote Render Threshold 0) and runs the checks of linkgi_mpi_scene.py against
 the same baseline as the pvbatch runs. The server exits when its client does.
 Arguments: --plugin, --baseline-dir, --output-dir as the pvbatch tests, and --mpiexec
-<path> [--mpiexec-flag <flag>]... --pvserver <path> [--ranks <n>, default 2].
+<path> [--mpiexec-flag <flag>]... --pvserver <path> [--ranks <n>, default 2] [--gui <path>].
 """
 import argparse
 import os
@@ -26,6 +27,7 @@ parser.add_argument("--mpiexec")
 parser.add_argument("--mpiexec-flag", action="append", default=[])
 parser.add_argument("--pvserver")
 parser.add_argument("--ranks", type=int, default=2)
+parser.add_argument("--gui", help="the paraview executable: the GUI is the client")
 parser.add_argument("--port", type=int, help="(internal) be the client of this port")
 arguments = parser.parse_args(sys.argv[1:])
 
@@ -96,6 +98,10 @@ def free_port():
 
 def manager():
     port = free_port()
+    # The Python client loads the plugin on both sides itself; the GUI's script cannot
+    # before the connection exists, so both load it by name at startup.
+    server_plugin = ["--plugin-search-paths=" + os.path.dirname(os.path.abspath(arguments.plugin)),
+                     "--plugins=LinkGI"] if arguments.gui else []
     os.makedirs(arguments.output_dir, exist_ok=True)
     log_path = os.path.join(arguments.output_dir, "pvserver.log")
 
@@ -106,7 +112,7 @@ def manager():
     with open(log_path, "w") as log:
         server = subprocess.Popen(
             [arguments.mpiexec, "-np", str(arguments.ranks)] + arguments.mpiexec_flag +
-            [arguments.pvserver, "--server-port=%d" % port],
+            [arguments.pvserver, "--server-port=%d" % port] + server_plugin,
             stdout=log, stderr=subprocess.STDOUT)
     code = 1
     try:
@@ -116,11 +122,17 @@ def manager():
                 print("FAILED: pvserver did not start:\n" + server_log())
                 return 1
             time.sleep(0.2)
-        code = subprocess.call([sys.executable, os.path.abspath(__file__), "--port", str(port),
-                                "--ranks", str(arguments.ranks),
-                                "--plugin", arguments.plugin,
-                                "--baseline-dir", arguments.baseline_dir,
-                                "--output-dir", arguments.output_dir])
+        if arguments.gui:
+            code = subprocess.call([arguments.gui, "--dr", "--url=cs://localhost:%d" % port] +
+                                   server_plugin + ["--script=" + os.path.join(
+                                       os.path.dirname(os.path.abspath(__file__)),
+                                       "TestGlobalIlluminationGUIRemote.py")])
+        else:
+            code = subprocess.call([sys.executable, os.path.abspath(__file__),
+                                    "--port", str(port), "--ranks", str(arguments.ranks),
+                                    "--plugin", arguments.plugin,
+                                    "--baseline-dir", arguments.baseline_dir,
+                                    "--output-dir", arguments.output_dir])
         server.wait(60)  # it exits with its client
     except subprocess.TimeoutExpired:
         print("FAILED: pvserver did not exit after its client")
@@ -129,7 +141,15 @@ def manager():
         if server.poll() is None:
             server.kill()
             server.wait()
-        print(server_log())  # the server's warnings
+        log = server_log()
+        if arguments.gui:
+            # The GUI's script can only end its process (os._exit), which the server reports
+            # as two socket errors: those are expected, any other error is not.
+            log = "\n".join(line.replace("ERR|", "(the GUI exited)")
+                             if "Could not receive tag" in line or
+                             "Some error in socket processing" in line else line
+                             for line in log.splitlines())
+        print(log)  # the server's warnings
     return code
 
 

@@ -290,24 +290,34 @@ vtkSMProxy* vtkGlobalIlluminationRepresentation::GetDisplayProxy()
 }
 
 //------------------------------------------------------------------------------
+void vtkGlobalIlluminationRepresentation::TellServersTheClientIsInteractive()
+{
+  // A remote server cannot see that its client is the GUI: tell it (not a state change).
+  vtkInternals& internals = *this->Internals;
+  if (internals.ToldServers || !vtkPVView::GetUseGenericOpenGLRenderWindow())
+  {
+    return;
+  }
+  if (vtkSMProxy* proxy = this->GetDisplayProxy())
+  {
+    internals.ToldServers = true;
+    vtkSMPropertyHelper(proxy, "GlobalIlluminationInteractiveClient").Set(1);
+    proxy->UpdateVTKObjects();
+  }
+}
+
+//------------------------------------------------------------------------------
 int vtkGlobalIlluminationRepresentation::PollForSolution()
 {
   // GetAsynchronousState asks a remote server's processes too. The poll is a progress
   // request of its own, so that the progress the worker reports reaches ParaView's progress
   // bar between renders.
-  vtkInternals& internals = *this->Internals;
   vtkSMProxy* proxy = this->GetDisplayProxy();
   if (!proxy)
   {
     return vtkGlobalIlluminationAsyncWatcher::STOP;
   }
-  if (!internals.ToldServers && vtkPVView::GetUseGenericOpenGLRenderWindow())
-  {
-    // A remote server cannot see that its client is the GUI: tell it (not a state change).
-    internals.ToldServers = true;
-    vtkSMPropertyHelper(proxy, "GlobalIlluminationInteractiveClient").Set(1);
-    proxy->UpdateVTKObjects();
-  }
+  this->TellServersTheClientIsInteractive();
   vtkSMSession* session = proxy->GetSession();
   session->PrepareProgress();
   const int state = this->GetAsynchronousState();

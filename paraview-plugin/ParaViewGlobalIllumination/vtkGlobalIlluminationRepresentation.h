@@ -230,6 +230,12 @@ protected:
   /// One poll of the watcher: a vtkGlobalIlluminationAsyncWatcher::PollResult.
   int PollForSolution();
 
+  /// On the GUI's client, once, at the first poll: sets InteractiveClient on every process
+  /// (so that a remote server's renders do not wait for the solution either). Not sooner:
+  /// a property pushed during a view update breaks the client-server protocol (the update
+  /// may run inside an information request).
+  void TellServersTheClientIsInteractive();
+
   /// The display (representation) proxy of this object where this process has a proxy
   /// manager (a client, or a builtin session), else null; found once.
   vtkSMProxy* GetDisplayProxy();
