@@ -196,6 +196,16 @@ struct ScratchRow
   }
 };
 
+/// Moves `from` into `to` and leaves `from` empty with room for a quarter more.
+template <typename T>
+void handOver(std::vector<T>& from, std::vector<T>& to)
+{
+  const std::size_t size = from.size();
+  to = std::move(from);
+  from = std::vector<T>();
+  from.reserve(size + size / 4 + 16);
+}
+
 /// Moves the chunks' rows into `m`, freeing each chunk as soon as it is copied: the CSR's
 /// capacity is reserved (not yet touched, so not yet resident) and filled in order, so the
 /// peak is the links once plus a chunk, not the chunks and the CSR side by side.
@@ -294,15 +304,13 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
           rowCounts[x] = Index(row.flush(staging.columns, staging.weights));
           envRowCounts[x] = Index(envRow.flush(staging.envColumns, staging.envWeights));
         }
-        // At their size, all chunks hold the links once until assembleCsr moves them.
-        chunk.columns.assign(staging.columns.begin(), staging.columns.end());
-        chunk.weights.assign(staging.weights.begin(), staging.weights.end());
-        chunk.envColumns.assign(staging.envColumns.begin(), staging.envColumns.end());
-        chunk.envWeights.assign(staging.envWeights.begin(), staging.envWeights.end());
-        staging.columns.clear();
-        staging.weights.clear();
-        staging.envColumns.clear();
-        staging.envWeights.clear();
+        // The chunk takes the worker's buffers as they are (no copy); the worker goes on
+        // with new ones reserved a quarter above this chunk's size, so the next chunk rarely
+        // grows by doubling (unwritten capacity is never resident).
+        handOver(staging.columns, chunk.columns);
+        handOver(staging.weights, chunk.weights);
+        handOver(staging.envColumns, chunk.envColumns);
+        handOver(staging.envWeights, chunk.envWeights);
       }
     },
     progress);
