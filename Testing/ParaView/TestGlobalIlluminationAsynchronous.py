@@ -112,7 +112,7 @@ t.check(solved["ShownRequest"] == solved["NewestRequest"] and before.max() > 0,
 
 # 2. A link rebuild in the background: renders do not wait and keep the old indirect light.
 gi.GlobalIlluminationWait = "Never"
-gi.GlobalIlluminationRays = 1024
+gi.GlobalIlluminationRays = 576
 Render(view)
 during = pixels(view, "AsyncIndirectDuring")
 pending = statistics(gi)
@@ -146,8 +146,9 @@ t.check(not (after == before).all(), "the new solution changed the picture")
 gi.GlobalIlluminationDisplayMode = "Combined"
 
 # 3. Two light moves while the links are rebuilt: the first move's request is replaced.
+# The longer rebuild (1024 rays) here: it must outlast two renders, the one above one.
 gi.GlobalIlluminationWait = "Never"
-gi.GlobalIlluminationRays = 576
+gi.GlobalIlluminationRays = 1024
 Render(view)
 rebuild = statistics(gi)
 light.Position = [-1.0, 2.5, 1.0]
