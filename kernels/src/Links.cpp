@@ -206,34 +206,39 @@ void handOver(std::vector<T>& from, std::vector<T>& to)
   from.reserve(size + size / 4 + 16);
 }
 
-/// Moves the chunks' rows into `m`, freeing each chunk as soon as it is copied: the CSR's
-/// capacity is reserved (not yet touched, so not yet resident) and filled in order, so the
-/// peak is the links once plus a chunk, not the chunks and the CSR side by side.
+/// Copies the chunks' rows into `m`, in parallel, freeing each chunk as soon as it is
+/// copied. The CSR is sized without a fill, so its pages become resident as the copies
+/// reach them while the chunks' pages go back: the peak is the links once plus a few
+/// chunks, not the chunks and the CSR side by side.
 void assembleCsr(std::vector<RowChunk>& chunks, const std::vector<Index>& rowCounts,
-  bool environment, SparseMatrix& m)
+  std::size_t chunkRows, bool environment, SparseMatrix& m)
 {
   const std::size_t rows = rowCounts.size();
   exclusiveOffsets(rowCounts, 0, m.rowOffsets);
   m.columns.clear();
   m.weights.clear();
-  m.columns.reserve(m.rowOffsets[rows]);
-  m.weights.reserve(m.rowOffsets[rows]);
-  std::size_t freed = 0;
-  for (RowChunk& chunk : chunks)
-  {
-    auto& cols = environment ? chunk.envColumns : chunk.columns;
-    auto& ws = environment ? chunk.envWeights : chunk.weights;
-    m.columns.insert(m.columns.end(), cols.begin(), cols.end());
-    m.weights.insert(m.weights.end(), ws.begin(), ws.end());
-    freed += cols.capacity() * sizeof(Index) + ws.capacity() * sizeof(float);
-    std::vector<Index>().swap(cols);
-    std::vector<float>().swap(ws);
-    if (freed > (std::size_t(256) << 20))
+  m.columns.resize(m.rowOffsets[rows]);
+  m.weights.resize(m.rowOffsets[rows]);
+  std::atomic<std::size_t> freed{ 0 }; // by all threads since the last trim
+  parallelRanges(chunks.size(), 16, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c)
     {
-      returnFreedMemory();
-      freed = 0;
+      auto& cols = environment ? chunks[c].envColumns : chunks[c].columns;
+      auto& ws = environment ? chunks[c].envWeights : chunks[c].weights;
+      const Offset first = m.rowOffsets[std::min(rows, c * chunkRows)];
+      std::copy(cols.begin(), cols.end(), m.columns.begin() + first);
+      std::copy(ws.begin(), ws.end(), m.weights.begin() + first);
+      const std::size_t bytes = cols.capacity() * sizeof(Index) + ws.capacity() * sizeof(float);
+      std::vector<Index>().swap(cols);
+      std::vector<float>().swap(ws);
+      constexpr std::size_t kTrimEvery = std::size_t(256) << 20;
+      if ((freed += bytes) > kTrimEvery)
+      {
+        freed = 0;
+        returnFreedMemory();
+      }
     }
-  }
+  });
   returnFreedMemory();
 }
 
@@ -317,8 +322,8 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
 
   LinkStructure out;
   returnFreedMemory(); // what the chunks' growth left behind
-  assembleCsr(chunks, rowCounts, false, out.transport);
-  assembleCsr(chunks, envRowCounts, true, out.environment);
+  assembleCsr(chunks, rowCounts, kChunkRows, false, out.transport);
+  assembleCsr(chunks, envRowCounts, kChunkRows, true, out.environment);
   const std::size_t linked =
     options.rows ? std::size_t(std::count(options.rows, options.rows + rows, std::uint8_t(1))) : rows;
   out.rays = std::uint64_t(linked) * n;

@@ -1,6 +1,7 @@
 // Link generation and compression: the vertex-to-vertex transport matrix W.
 #pragma once
 
+#include "linkgi/NoFillVector.h"
 #include "linkgi/Parallel.h"
 #include "linkgi/RayTracer.h"
 #include "linkgi/Scene.h"
@@ -37,8 +38,9 @@ struct CsrRows
 struct SparseMatrix
 {
   std::vector<Offset> rowOffsets; ///< rows + 1
-  std::vector<Index> columns;
-  std::vector<float> weights;
+  /// Not zero-filled on resize(): the link compression writes every entry, in parallel.
+  NoFillVector<Index> columns;
+  NoFillVector<float> weights;
   std::size_t rows() const { return rowOffsets.empty() ? 0 : rowOffsets.size() - 1; }
   std::size_t nonZeros() const { return columns.size(); }
   std::size_t bytes() const
