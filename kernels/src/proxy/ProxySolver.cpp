@@ -11,6 +11,7 @@
 #include "linkgi/Links.h"
 #include "linkgi/Topology.h"
 
+#include <atomic>
 #include <chrono>
 #include <future>
 
@@ -86,24 +87,48 @@ const Solution& ProxySolver::update(const Scene& input, const SolverOptions& opt
   // Everything per geometry is made aside and kept only once the whole update succeeded.
   Impl fresh;
   Impl& g = sameGeometry ? m : fresh;
+  DirectLightResult direct;
+  std::atomic<bool> stop{ false }; // the decimation failed: the other thread's work is moot
+  const auto directLight = [&] {
+    const auto t = std::chrono::steady_clock::now();
+    direct = computeDirectLight(s, g.topology, g.shifts, *g.tracer, options.twoSided, options.lightOversampling,
+      [&stop](const char*, double) { return !stop; });
+    return msSince(t);
+  };
+  double directMs = 0.0;
   if (!sameGeometry)
   {
     auto t = std::chrono::steady_clock::now();
-    // The input's shadow-ray structures on another thread while OpenMesh decimates on this
-    // one (its decimation is sequential). The future waits for them on every way out.
-    std::future<void> inputStructures = std::async(std::launch::async, [&g, &s] {
+    // OpenMesh decimates on this thread, the input's shadow-ray structures and its direct
+    // light are made on another meanwhile. The future waits for them on every way out.
+    std::future<void> inputSide = std::async(std::launch::async, [&] {
       g.topology = Topology::build(s.vertexCount(), s.triangles);
       g.shifts = originShifts(s, g.topology);
       g.tracer = createCpuRayTracer();
       g.tracer->build(s.positions, s.triangles);
+      directMs = directLight();
     });
-    g.proxy = decimate(s, proxyVertices, 60.f, progress); // checks the target
+    try
+    {
+      g.proxy = decimate(s, proxyVertices, 60.f, progress); // checks the target
+    }
+    catch (...)
+    {
+      stop = true;
+      throw;
+    }
     parts.emplace_back("Decimate", msSince(t));
     t = std::chrono::steady_clock::now();
     g.transfer = buildTransfer(s, g.proxy.scene);
-    inputStructures.get(); // rethrows what building them threw
+    inputSide.get(); // rethrows what the other thread threw
     parts.emplace_back("Transfer", msSince(t));
   }
+  else
+  {
+    directMs = directLight();
+  }
+  // On a new geometry, made during the decimation.
+  parts.emplace_back("InputDirect", directMs);
   // The proxy's materials and lights follow the input's on every update.
   Scene& p = g.proxy.scene;
   for (std::size_t v = 0; v < g.proxy.sourceVertex.size(); ++v)
@@ -119,10 +144,6 @@ const Solution& ProxySolver::update(const Scene& input, const SolverOptions& opt
   p.environment = s.environment;
 
   const Solution& onProxy = m.inner.update(p, options, progress);
-  auto t = std::chrono::steady_clock::now();
-  const DirectLightResult direct = computeDirectLight(s, g.topology, g.shifts, *g.tracer, options.twoSided,
-    options.lightOversampling);
-  parts.emplace_back("InputDirect", msSince(t));
 
   // Element layout: front sides, then back sides (two-sided), on both meshes.
   const Elements elements{ s.vertexCount(), options.twoSided };
