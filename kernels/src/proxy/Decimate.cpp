@@ -6,7 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <atomic>
+#include <functional>
+#include <future>
 #include <limits>
+#include <numeric>
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/McDecimaterT.hh>
@@ -147,18 +151,20 @@ private:
 
 /// The first, fast part of a large decimation: sweeps over the edges collapsing each one
 /// shorter than `length`, the first time with half of it and then longer, until at most
-/// `stopAt` vertices are left. A collapse removes an unlocked end and is refused where
-/// OpenMesh's topology test refuses it, where it would make an edge longer than `maxEdge`,
-/// or where a triangle around the removed vertex would turn away (by more than
-/// `minCos`'s angle) from an input normal at one of its corners (keepsInputNormals). It
-/// needs no priorities: on a 1M-vertex isosurface a collapse took 2.5-3.6 us against the
-/// multiple-choice Decimater's 37-53 us, whose quadric order then takes the last collapses
-/// to the target. Throws Aborted when `progress` says so.
+/// `stopAt` vertices are left. A collapse removes an unlocked end, never into a vertex that
+/// `seam` marks (by input vertex), and is refused where OpenMesh's topology test refuses it,
+/// where it would make an edge longer than `maxEdge`, or where a triangle around the
+/// removed vertex would turn away (by more than `minCos`'s angle) from an input normal at
+/// one of its corners (keepsInputNormals). It needs no priorities: on a 1M-vertex
+/// isosurface a collapse took 2.5-3.6 us against the multiple-choice Decimater's 37-53 us,
+/// whose quadric order then takes the last collapses to the target. `done` counts the
+/// collapses of every sweep that runs at the same time; `keepGoing` is asked now and then
+/// (with the fraction of `collapses` done) and ends the sweep with Aborted when it says no.
 void collapseShortEdges(Mesh& mesh, const Scene& scene, const OpenMesh::VPropHandleT<Index>& source,
-  double length, double maxEdge, float minCos, std::size_t stopAt, std::size_t collapses,
-  const ProgressCallback& progress)
+  const std::vector<std::uint8_t>& seam, double length, double maxEdge, float minCos, std::size_t stopAt,
+  std::size_t collapses, std::atomic<std::size_t>& done, const std::function<bool(double)>& keepGoing)
 {
-  std::size_t left = mesh.n_vertices(), done = 0;
+  std::size_t left = mesh.n_vertices();
   const double maxEdge2 = maxEdge * maxEdge;
   for (const double scale : { 0.5, 0.7, 0.85, 1.0 })
   {
@@ -171,7 +177,7 @@ void collapseShortEdges(Mesh& mesh, const Scene& scene, const OpenMesh::VPropHan
       {
         continue;
       }
-      if ((i & 0xffff) == 0 && progress && !progress("Decimate", std::min(1.0, double(done) / double(collapses))))
+      if ((i & 0xffff) == 0 && !keepGoing(std::min(1.0, double(done.load()) / double(collapses))))
       {
         throw Aborted();
       }
@@ -183,12 +189,11 @@ void collapseShortEdges(Mesh& mesh, const Scene& scene, const OpenMesh::VPropHan
       for (int side = 0; side < 2; ++side, h = mesh.opposite_halfedge_handle(h))
       {
         const Mesh::VertexHandle from = mesh.from_vertex_handle(h), to = mesh.to_vertex_handle(h);
-        if (mesh.status(from).locked() || !mesh.is_collapse_ok(h))
+        if (mesh.status(from).locked() || seam[mesh.property(source, to)] || !mesh.is_collapse_ok(h))
         {
           continue;
         }
-        const bool ok = keepsInputNormals(mesh, scene, source, from, to, minCos, maxEdge2);
-        if (ok)
+        if (keepsInputNormals(mesh, scene, source, from, to, minCos, maxEdge2))
         {
           mesh.collapse(h);
           --left;
@@ -198,6 +203,143 @@ void collapseShortEdges(Mesh& mesh, const Scene& scene, const OpenMesh::VPropHan
       }
     }
   }
+}
+
+/// The OpenMesh mesh of `triangles` (of the input's vertices), each vertex with its input
+/// index in `source`, boundary vertices locked. Returns how many triangles OpenMesh refused
+/// (they would make an edge non-manifold).
+std::size_t buildMesh(Mesh& mesh, const OpenMesh::VPropHandleT<Index>& source, const Scene& scene,
+  const std::vector<Triangle>& triangles)
+{
+  std::vector<Mesh::VertexHandle> handles(scene.vertexCount());
+  for (const Triangle& t : triangles)
+  {
+    for (const Index v : t.v)
+    {
+      if (!handles[v].is_valid())
+      {
+        const Vec3f& p = scene.positions[v];
+        handles[v] = mesh.add_vertex(Mesh::Point(p.x, p.y, p.z));
+        mesh.property(source, handles[v]) = v;
+      }
+    }
+  }
+  std::size_t dropped = 0;
+  for (const Triangle& t : triangles)
+  {
+    if (!mesh.add_face(handles[t.v[0]], handles[t.v[1]], handles[t.v[2]]).is_valid())
+    {
+      ++dropped;
+    }
+  }
+  mesh.update_face_normals();
+  // Boundary vertices stay: open borders and the seams of split normals keep their shape.
+  for (const auto v : mesh.vertices())
+  {
+    mesh.status(v).set_locked(mesh.is_boundary(v));
+  }
+  return dropped;
+}
+
+/// The triangles of `mesh` (not deleted) as input vertex indices.
+std::vector<Triangle> trianglesOf(const Mesh& mesh, const OpenMesh::VPropHandleT<Index>& source)
+{
+  std::vector<Triangle> out;
+  out.reserve(mesh.n_faces());
+  for (const auto f : mesh.faces())
+  {
+    Triangle t;
+    int k = 0;
+    for (const auto v : mesh.fv_range(f))
+    {
+      t.v[k++] = mesh.property(source, v);
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
+/// The sweep of a large decimation, in two halves at once: the triangles are cut in two by
+/// their centroids at the median along the longest axis, each half is built and swept on a
+/// thread of its own (OpenMesh's meshes are sequential), the vertices on the cut stay (a
+/// half's boundary is locked) and take no collapse, so the halves' new edges never meet,
+/// and the swept halves are joined. The cut is the same on any machine, so is the proxy.
+/// Returns the triangles of the swept surface (input vertex indices) and adds the triangles
+/// OpenMesh refused to `dropped`.
+std::vector<Triangle> sweepInHalves(const Scene& scene, double length, double maxEdge, float minCos,
+  std::size_t stopAt, std::size_t collapses, const ProgressCallback& progress, std::size_t& dropped)
+{
+  const std::size_t nt = scene.triangleCount();
+  Vec3f lo = scene.positions.front(), hi = lo;
+  for (const Vec3f& p : scene.positions)
+  {
+    lo = Vec3f(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+    hi = Vec3f(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+  }
+  const Vec3f extent = hi - lo;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  const auto key = [&](Index t) {
+    const Triangle& tri = scene.triangles[t];
+    return (scene.positions[tri.v[0]] + scene.positions[tri.v[1]] + scene.positions[tri.v[2]])[axis];
+  };
+  // The median triangle along the axis (ties broken by index: the cut does not depend on
+  // the library's nth_element); the halves keep the input's order, whose locality OpenMesh's
+  // construction and the sweep need.
+  std::vector<Index> order(nt);
+  std::iota(order.begin(), order.end(), Index(0));
+  const auto before = [&](Index a, Index b) {
+    const float ka = key(a), kb = key(b);
+    return ka < kb || (ka == kb && a < b);
+  };
+  std::nth_element(order.begin(), order.begin() + nt / 2, order.end(), before);
+  const Index median = order[nt / 2];
+  std::vector<Index>().swap(order);
+  std::vector<Triangle> half[2];
+  std::vector<std::uint8_t> side(scene.vertexCount(), 0);
+  for (Index t = 0; t < nt; ++t)
+  {
+    const int h = before(t, median) ? 0 : 1;
+    half[h].push_back(scene.triangles[t]);
+    for (const Index v : scene.triangles[t].v)
+    {
+      side[v] |= std::uint8_t(1 << h);
+    }
+  }
+  std::vector<std::uint8_t> seam(scene.vertexCount());
+  for (std::size_t v = 0; v < seam.size(); ++v)
+  {
+    seam[v] = side[v] == 3;
+  }
+  std::vector<std::uint8_t>().swap(side);
+  std::atomic<std::size_t> done{ 0 };
+  std::atomic<bool> stop{ false };
+  std::size_t refused[2] = { 0, 0 };
+  const auto sweep = [&](int h, const std::function<bool(double)>& keepGoing) {
+    Mesh mesh;
+    OpenMesh::VPropHandleT<Index> source;
+    mesh.add_property(source);
+    refused[h] = buildMesh(mesh, source, scene, half[h]);
+    // Each half stops at its share of the vertices to keep.
+    const std::size_t share = std::max<std::size_t>(1, stopAt * mesh.n_vertices() / scene.vertexCount());
+    collapseShortEdges(mesh, scene, source, seam, length, maxEdge, minCos, share, collapses, done, keepGoing);
+    mesh.garbage_collection();
+    half[h] = trianglesOf(mesh, source);
+  };
+  // This thread reports the progress of both and tells the other one to stop.
+  std::future<void> other = std::async(std::launch::async, [&] { sweep(1, [&stop](double) { return !stop; }); });
+  try
+  {
+    sweep(0, [&](double f) { return !progress || progress("Decimate", f); });
+  }
+  catch (...)
+  {
+    stop = true;
+    throw; // the future waits for the other half
+  }
+  other.get();
+  dropped += refused[0] + refused[1];
+  half[0].insert(half[0].end(), half[1].begin(), half[1].end());
+  return std::move(half[0]);
 }
 }
 
@@ -209,39 +351,14 @@ ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNorm
     throw Error("The proxy must have fewer vertices than the input (" + std::to_string(scene.vertexCount()) +
       ") and at least 1; got " + std::to_string(targetVertices) + ". Use 0 for no proxy.");
   }
-  Mesh mesh;
-  OpenMesh::VPropHandleT<Index> source; // survives garbage collection's renumbering
-  mesh.add_property(source);
-  std::vector<Mesh::VertexHandle> handles(scene.vertexCount());
-  for (std::size_t v = 0; v < handles.size(); ++v)
-  {
-    const Vec3f& p = scene.positions[v];
-    handles[v] = mesh.add_vertex(Mesh::Point(p.x, p.y, p.z));
-    mesh.property(source, handles[v]) = Index(v);
-  }
-  ProxyMesh out;
-  for (const Triangle& t : scene.triangles)
-  {
-    // OpenMesh refuses faces that would make an edge non-manifold (returns an invalid handle).
-    if (!mesh.add_face(handles[t.v[0]], handles[t.v[1]], handles[t.v[2]]).is_valid())
-    {
-      ++out.droppedTriangles;
-    }
-  }
-  mesh.update_face_normals();
-  // Boundary vertices stay: open borders and the seams of split normals keep their shape.
-  for (const auto v : mesh.vertices())
-  {
-    mesh.status(v).set_locked(mesh.is_boundary(v));
-  }
-
   // The light lives on the vertices: a flat wall (no quadric error) must not become two
   // triangles between its corners, whose light is that of the corners. Edges stay within
   // twice those of an even mesh of the target size (2 triangles per vertex).
   double area = 0.0;
-  for (const auto f : mesh.faces())
+  for (const Triangle& t : scene.triangles)
   {
-    area += mesh.calc_face_area(f);
+    const Vec3f& a = scene.positions[t.v[0]];
+    area += 0.5 * double(length(cross(scene.positions[t.v[1]] - a, scene.positions[t.v[2]] - a)));
   }
   const auto evenEdge = [area](double vertices) {
     return std::sqrt(4.0 * area / (2.0 * vertices * std::sqrt(3.0)));
@@ -251,12 +368,19 @@ ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNorm
   // about those of an even mesh of that size), and leaves the rest to the Decimater.
   const std::size_t sweptTo = 2 * targetVertices;
   const float minCos = float(std::cos(double(maxNormalDeviationDegrees) * 3.14159265358979 / 180.0));
+  ProxyMesh out;
+  Mesh mesh;
+  OpenMesh::VPropHandleT<Index> source; // survives garbage collection's renumbering
+  mesh.add_property(source);
   if (scene.vertexCount() > 2 * sweptTo)
   {
-    collapseShortEdges(mesh, scene, source, evenEdge(double(sweptTo)), 2.0 * evenEdge(double(targetVertices)),
-      minCos, sweptTo, collapses, progress);
-    mesh.garbage_collection();
-    mesh.update_face_normals();
+    const std::vector<Triangle> swept = sweepInHalves(scene, evenEdge(double(sweptTo)),
+      2.0 * evenEdge(double(targetVertices)), minCos, sweptTo, collapses, progress, out.droppedTriangles);
+    out.droppedTriangles += buildMesh(mesh, source, scene, swept);
+  }
+  else
+  {
+    out.droppedTriangles += buildMesh(mesh, source, scene, scene.triangles);
   }
 
   Decimater decimater(mesh);
@@ -300,7 +424,7 @@ ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNorm
 
   // The proxy: the kept vertices that still have faces, with the input's data for each.
   Scene& p = out.scene;
-  std::vector<Index> proxyIndex(mesh.n_vertices(), kInvalidIndex);
+  std::vector<Index> proxyIndex(scene.vertexCount(), kInvalidIndex); // by input vertex
   for (const auto v : mesh.vertices())
   {
     if (mesh.is_isolated(v))
@@ -308,7 +432,7 @@ ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNorm
       continue;
     }
     const Index from = mesh.property(source, v);
-    proxyIndex[v.idx()] = Index(out.sourceVertex.size());
+    proxyIndex[from] = Index(out.sourceVertex.size());
     out.sourceVertex.push_back(from);
     p.positions.push_back(scene.positions[from]);
     p.normals.push_back(scene.normals[from]);
@@ -318,13 +442,11 @@ ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNorm
       p.emission.push_back(scene.emission[from]);
     }
   }
-  for (const auto f : mesh.faces())
+  for (Triangle t : trianglesOf(mesh, source))
   {
-    Triangle t;
-    int k = 0;
-    for (const auto v : mesh.fv_range(f))
+    for (Index& v : t.v)
     {
-      t.v[k++] = proxyIndex[v.idx()];
+      v = proxyIndex[v];
     }
     p.triangles.push_back(t);
   }
