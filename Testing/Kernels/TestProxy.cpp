@@ -259,7 +259,9 @@ float squaredDistanceToTriangle(const Vec3f& p, const Vec3f& a, const Vec3f& b, 
 // A decimation to a tenth collapses the short edges first (without priorities) and leaves
 // the last collapses to the Decimater: the proxy still has the target's size, is made of
 // input vertices, and no triangle turns more than the normal deviation (60 degrees) from the
-// input normals at its corners, nor is a sliver.
+// input normals at its corners, nor is a sliver. The sweep runs in two halves at once; where
+// they meet, every edge still has at most one triangle on each side (no triangle refused,
+// none twice).
 TEST(TestProxy, ALargeDecimationReachesItsTargetWithoutTurningTriangles)
 {
   if (!proxyAvailable())
@@ -289,6 +291,18 @@ TEST(TestProxy, ALargeDecimationReachesItsTargetWithoutTurningTriangles)
     return count;
   };
   EXPECT_LE(slivers(proxy.scene), slivers(s));
+  EXPECT_EQ(proxy.droppedTriangles, 0u);
+  std::vector<std::pair<Index, Index>> directed;
+  for (const Triangle& t : proxy.scene.triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      directed.emplace_back(t.v[k], t.v[(k + 1) % 3]);
+    }
+  }
+  std::sort(directed.begin(), directed.end());
+  EXPECT_EQ(std::adjacent_find(directed.begin(), directed.end()), directed.end())
+    << "an edge with two triangles on the same side";
   std::size_t turned = 0;
   for (const Triangle& t : proxy.scene.triangles)
   {

@@ -31,9 +31,10 @@ struct ProxyMesh
 /// by more than that from the input normal at one of its corners, or a sliver; boundary
 /// vertices kept (so the borders of open surfaces and the creases a mesh builder splits stay
 /// where they are). Below a quarter of the input, a sweep over the mesh's short edges (the
-/// same rules, no priorities) first takes it to twice the target. The same input gives the
-/// same proxy on every run. Throws Error for
-/// a target of 0 or not smaller than the input, or where this build has no OpenMesh.
+/// same rules, no priorities) first takes it to twice the target, in two halves of the
+/// surface on two threads. The same input gives the same proxy on every run and machine.
+/// Throws Error for a target of 0 or not smaller than the input, or where this build has no
+/// OpenMesh.
 /// `progress` hears ("Decimate", fraction of the collapses done) about a hundred times; when
 /// it returns false the decimation stops and Aborted is thrown.
 ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNormalDeviationDegrees = 60.f,
