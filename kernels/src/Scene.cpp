@@ -40,9 +40,6 @@ bool sameScene(const Scene& a, const Scene& b)
     a.lengthExponent == b.lengthExponent;
 }
 
-namespace
-{
-/// The axis-aligned box of `positions` (lo = hi = 0 for none).
 void positionBounds(const std::vector<Vec3f>& positions, Vec3f& lo, Vec3f& hi)
 {
   lo = hi = positions.empty() ? Vec3f(0.f) : positions[0];
@@ -56,6 +53,8 @@ void positionBounds(const std::vector<Vec3f>& positions, Vec3f& lo, Vec3f& hi)
   }
 }
 
+namespace
+{
 /// The box diagonal, in double so that coordinates near the float limit do not overflow.
 float diagonalOf(const Vec3f& lo, const Vec3f& hi)
 {

@@ -152,6 +152,9 @@ bool sameBits(const std::vector<T>& a, const std::vector<T>& b)
 /// True if every array, light and the environment of `a` and `b` are bitwise equal.
 bool sameScene(const Scene& a, const Scene& b);
 
+/// The axis-aligned box of `positions` (lo = hi = 0 for none).
+void positionBounds(const std::vector<Vec3f>& positions, Vec3f& lo, Vec3f& hi);
+
 /// Axis-aligned bounding box diagonal length (used to scale ray offsets), computed in double
 /// (no overflow for coordinates near the float limit).
 float boundingDiagonal(const std::vector<Vec3f>& positions);

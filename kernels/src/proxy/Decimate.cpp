@@ -164,7 +164,7 @@ void collapseShortEdges(Mesh& mesh, const Scene& scene, const OpenMesh::VPropHan
   const std::vector<std::uint8_t>& seam, double length, double maxEdge, float minCos, std::size_t stopAt,
   std::size_t collapses, std::atomic<std::size_t>& done, const std::function<bool(double)>& keepGoing)
 {
-  std::size_t left = mesh.n_vertices();
+  std::size_t left = mesh.n_vertices(), mine = 0;
   const double maxEdge2 = maxEdge * maxEdge;
   for (const double scale : { 0.5, 0.7, 0.85, 1.0 })
   {
@@ -177,9 +177,14 @@ void collapseShortEdges(Mesh& mesh, const Scene& scene, const OpenMesh::VPropHan
       {
         continue;
       }
-      if ((i & 0xffff) == 0 && !keepGoing(std::min(1.0, double(done.load()) / double(collapses))))
+      if ((i & 0xffff) == 0)
       {
-        throw Aborted();
+        done += mine; // the shared count, not touched per collapse
+        mine = 0;
+        if (!keepGoing(std::min(1.0, double(done.load()) / double(collapses))))
+        {
+          throw Aborted();
+        }
       }
       Mesh::HalfedgeHandle h = mesh.halfedge_handle(e, 0);
       if ((mesh.point(mesh.to_vertex_handle(h)) - mesh.point(mesh.from_vertex_handle(h))).sqrnorm() >= limit2)
@@ -197,7 +202,7 @@ void collapseShortEdges(Mesh& mesh, const Scene& scene, const OpenMesh::VPropHan
         {
           mesh.collapse(h);
           --left;
-          ++done;
+          ++mine;
           break;
         }
       }
@@ -270,12 +275,8 @@ std::vector<Triangle> sweepInHalves(const Scene& scene, double length, double ma
   std::size_t stopAt, std::size_t collapses, const ProgressCallback& progress, std::size_t& dropped)
 {
   const std::size_t nt = scene.triangleCount();
-  Vec3f lo = scene.positions.front(), hi = lo;
-  for (const Vec3f& p : scene.positions)
-  {
-    lo = Vec3f(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
-    hi = Vec3f(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
-  }
+  Vec3f lo, hi;
+  positionBounds(scene.positions, lo, hi);
   const Vec3f extent = hi - lo;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
   const auto key = [&](Index t) {
@@ -295,22 +296,21 @@ std::vector<Triangle> sweepInHalves(const Scene& scene, double length, double ma
   const Index median = order[nt / 2];
   std::vector<Index>().swap(order);
   std::vector<Triangle> half[2];
-  std::vector<std::uint8_t> side(scene.vertexCount(), 0);
+  // Per input vertex: the halves it is in (bits), then whether it is on the cut (in both).
+  std::vector<std::uint8_t> seam(scene.vertexCount(), 0);
   for (Index t = 0; t < nt; ++t)
   {
     const int h = before(t, median) ? 0 : 1;
     half[h].push_back(scene.triangles[t]);
     for (const Index v : scene.triangles[t].v)
     {
-      side[v] |= std::uint8_t(1 << h);
+      seam[v] |= std::uint8_t(1 << h);
     }
   }
-  std::vector<std::uint8_t> seam(scene.vertexCount());
-  for (std::size_t v = 0; v < seam.size(); ++v)
+  for (std::uint8_t& v : seam)
   {
-    seam[v] = side[v] == 3;
+    v = v == 3;
   }
-  std::vector<std::uint8_t>().swap(side);
   std::atomic<std::size_t> done{ 0 };
   std::atomic<bool> stop{ false };
   std::size_t refused[2] = { 0, 0 };

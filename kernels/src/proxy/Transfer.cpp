@@ -60,12 +60,7 @@ class TriangleGrid
 public:
   explicit TriangleGrid(const Scene& proxy) : proxy(proxy)
   {
-    lo = hi = proxy.positions.front();
-    for (const Vec3f& p : proxy.positions)
-    {
-      lo = Vec3f(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
-      hi = Vec3f(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
-    }
+    positionBounds(proxy.positions, lo, hi);
     // About two triangles per occupied cell on a surface: cells of the mean edge length.
     const Vec3f extent = hi - lo;
     const float diagonal = std::max(length(extent), 1e-30f);
