@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 
 using namespace linkgi;
 
@@ -109,4 +110,59 @@ TEST(TestLinks, BackFacesBlockOrLinkToBackSides)
     toBacks += two.transport.weights[i];
   }
   EXPECT_NEAR(toBacks + rowSum(two.environment, x), kPi, 1e-4f);
+}
+
+TEST(TestLinks, RowsOfEveryBandAreWhereTheHitsPutThem)
+{
+  // The compression appends its rows to the CSR band by band (32768 rows at a time): on a
+  // mesh of three bands every row must hold exactly the links its own hits make. The squares
+  // face each other, so a front row's rays land on the other square's front (vertex
+  // columns, barycentric weights) or leave past its edge, and a back row's all leave.
+  const Scene s = test::twoSquares(false, 130);
+  const std::size_t nv = s.vertexCount(), n = 4;
+  ASSERT_GT(2 * nv, 2 * 32768u);
+  auto tracer = createCpuRayTracer();
+  tracer->build(s.positions, s.triangles);
+  const LinkOptions o{ std::uint32_t(n), true, true, 0 };
+  const LinkHits hits =
+    traceLinkRays(s, originShifts(s, Topology::build(nv, s.triangles)), *tracer, o);
+  const LinkStructure l = compressLinks(s, hits, frontFaceNormals(s), o);
+  ASSERT_EQ(l.transport.rows(), 2 * nv);
+  ASSERT_EQ(l.environment.rows(), 2 * nv);
+  const float w = kPi / float(n);
+  for (std::size_t x = 0; x < 2 * nv; ++x)
+  {
+    std::map<Index, float> expected;
+    int misses = 0;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const Hit& h = hits.hits[x * n + k];
+      if (h.triangle == kInvalidIndex)
+      {
+        ++misses;
+        continue;
+      }
+      ASSERT_LT(x, nv) << "a back side's ray hit the scene";
+      const float bary[3] = { 1.f - h.u - h.v, h.u, h.v };
+      for (int j = 0; j < 3; ++j)
+      {
+        if (bary[j] > 0.f)
+        {
+          expected[s.triangles[h.triangle].v[j]] += w * bary[j];
+        }
+      }
+    }
+    std::map<Index, float> got;
+    for (Offset i = l.transport.rowOffsets[x]; i < l.transport.rowOffsets[x + 1]; ++i)
+    {
+      got[l.transport.columns[i]] += l.transport.weights[i];
+    }
+    ASSERT_EQ(got.size(), expected.size()) << "row " << x;
+    for (const auto& [column, weight] : expected)
+    {
+      ASSERT_EQ(got.count(column), 1u) << "row " << x << " column " << column;
+      ASSERT_NEAR(got[column], weight, 1e-6f) << "row " << x << " column " << column;
+    }
+    ASSERT_NEAR(rowSum(l.environment, x), w * float(misses), 1e-5f) << "row " << x;
+  }
 }

@@ -196,50 +196,42 @@ struct ScratchRow
   }
 };
 
-/// Moves `from` into `to` and leaves `from` empty with room for a quarter more.
-template <typename T>
-void handOver(std::vector<T>& from, std::vector<T>& to)
-{
-  const std::size_t size = from.size();
-  to = std::move(from);
-  from = std::vector<T>();
-  from.reserve(size + size / 4 + 16);
-}
-
-/// Copies the chunks' rows into `m`, in parallel, freeing each chunk as soon as it is
-/// copied. The CSR is sized without a fill, so its pages become resident as the copies
-/// reach them while the chunks' pages go back: the peak is the links once plus a few
-/// chunks, not the chunks and the CSR side by side.
-void assembleCsr(std::vector<RowChunk>& chunks, const std::vector<Index>& rowCounts,
-  std::size_t chunkRows, bool environment, SparseMatrix& m)
+/// Appends a band's rows to `m`: their offsets from `rowCounts`, then every chunk's entries
+/// copied, in parallel, to where they belong. The arrays' capacity grows to the total the
+/// rows so far project (with a fifth to spare, never above `maxEntries`): reserved capacity
+/// is only address space until it is written, and a short projection costs one more copy,
+/// never a wrong result.
+void appendBand(const std::vector<RowChunk>& band, std::size_t chunkCount, std::size_t firstRow,
+  std::size_t chunkRows, const std::vector<Index>& rowCounts, std::size_t maxEntries,
+  bool environment, SparseMatrix& m)
 {
   const std::size_t rows = rowCounts.size();
-  exclusiveOffsets(rowCounts, 0, m.rowOffsets);
-  m.columns.clear();
-  m.weights.clear();
-  m.columns.resize(m.rowOffsets[rows]);
-  m.weights.resize(m.rowOffsets[rows]);
-  std::atomic<std::size_t> freed{ 0 }; // by all threads since the last trim
-  parallelRanges(chunks.size(), 16, [&](std::size_t begin, std::size_t end) {
+  const std::size_t lastRow = std::min(rows, firstRow + chunkCount * chunkRows);
+  for (std::size_t x = firstRow; x < lastRow; ++x)
+  {
+    m.rowOffsets[x + 1] = m.rowOffsets[x] + rowCounts[x]; // Offset + Index: no 32-bit wrap
+  }
+  const std::size_t size = m.rowOffsets[lastRow];
+  if (size > m.columns.capacity())
+  {
+    const double perRow = double(size) / double(lastRow);
+    const std::size_t projected = std::min(maxEntries,
+      std::max(size, static_cast<std::size_t>(perRow * 1.2 * double(rows))));
+    m.columns.reserve(projected);
+    m.weights.reserve(projected);
+  }
+  m.columns.resize(size);
+  m.weights.resize(size);
+  parallelRanges(chunkCount, 4, [&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c)
     {
-      auto& cols = environment ? chunks[c].envColumns : chunks[c].columns;
-      auto& ws = environment ? chunks[c].envWeights : chunks[c].weights;
-      const Offset first = m.rowOffsets[std::min(rows, c * chunkRows)];
+      const auto& cols = environment ? band[c].envColumns : band[c].columns;
+      const auto& ws = environment ? band[c].envWeights : band[c].weights;
+      const Offset first = m.rowOffsets[firstRow + c * chunkRows];
       std::copy(cols.begin(), cols.end(), m.columns.begin() + first);
       std::copy(ws.begin(), ws.end(), m.weights.begin() + first);
-      const std::size_t bytes = cols.capacity() * sizeof(Index) + ws.capacity() * sizeof(float);
-      std::vector<Index>().swap(cols);
-      std::vector<float>().swap(ws);
-      constexpr std::size_t kTrimEvery = std::size_t(256) << 20;
-      if ((freed += bytes) > kTrimEvery)
-      {
-        freed = 0;
-        returnFreedMemory();
-      }
     }
   });
-  returnFreedMemory();
 }
 
 /// Compresses every element's row from the hits `hitsOf(x, scratch)` gives (a pointer to
@@ -261,19 +253,31 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
   params.envWidth = env.hasTexture() ? env.width : 0;
   params.envHeight = env.hasTexture() ? env.height : 0;
 
-  constexpr std::size_t kChunkRows = 64;
-  std::vector<RowChunk> chunks((rows + kChunkRows - 1) / kChunkRows);
+  // The rows are compressed band by band: a band's chunks in parallel into buffers that
+  // are reused for every band (their pages stay resident and warm), then appended to the
+  // CSR. Chunks kept until the end and copied into the CSR after cost twice the links'
+  // size in fresh pages and a cold copy - a quarter of the compression at 1M vertices.
+  constexpr std::size_t kChunkRows = 64, kBandChunks = 512;
+  const std::size_t chunkCount = (rows + kChunkRows - 1) / kChunkRows;
+  std::vector<RowChunk> band(std::min(chunkCount, kBandChunks));
   std::vector<Index> rowCounts(rows), envRowCounts(rows);
-  parallelFor("compress", chunks.size(), 1,
-    [&](std::size_t begin, std::size_t end) {
+  LinkStructure out;
+  out.transport.rowOffsets.assign(rows + 1, 0);
+  out.environment.rowOffsets.assign(rows + 1, 0);
+  const std::size_t maxTransport = rows * std::min<std::size_t>(3 * n, rows);
+  const std::size_t maxEnvironment = rows * std::min(n, texels);
+  for (std::size_t firstChunk = 0; firstChunk < chunkCount; firstChunk += kBandChunks)
+  {
+    if (progress && !progress("compress", double(firstChunk) / double(chunkCount)))
+    {
+      throw Aborted();
+    }
+    const std::size_t bandChunks = std::min(kBandChunks, chunkCount - firstChunk);
+    parallelRanges(bandChunks, 1, [&](std::size_t begin, std::size_t end) {
       // Scratch rows stay all-zero between rows (flush clears them), so they are only
       // reallocated when the size changes.
       thread_local ScratchRow row, envRow;
       thread_local std::vector<Hit> hitScratch;
-      // A chunk's rows are gathered in the worker's buffers (kept between chunks) and copied
-      // once, at their size, into the chunk: no growth by doubling, whose copies and fresh
-      // pages cost as much as the rest of the compression on a large mesh.
-      thread_local RowChunk staging;
       if (row.value.size() != rows)
       {
         row.value.assign(rows, 0.f);
@@ -282,9 +286,14 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
       {
         envRow.value.assign(texels, 0.f);
       }
-      for (std::size_t c = begin; c < end; ++c)
+      for (std::size_t b = begin; b < end; ++b)
       {
-        RowChunk& chunk = chunks[c];
+        RowChunk& chunk = band[b];
+        chunk.columns.clear(); // the capacity stays
+        chunk.weights.clear();
+        chunk.envColumns.clear();
+        chunk.envWeights.clear();
+        const std::size_t c = firstChunk + b;
         for (std::size_t x = c * kChunkRows; x < std::min(rows, (c + 1) * kChunkRows); ++x)
         {
           if (options.rows && !options.rows[x])
@@ -306,31 +315,28 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
             }
             chunk.rawLinks += links.count;
           }
-          rowCounts[x] = Index(row.flush(staging.columns, staging.weights));
-          envRowCounts[x] = Index(envRow.flush(staging.envColumns, staging.envWeights));
+          rowCounts[x] = Index(row.flush(chunk.columns, chunk.weights));
+          envRowCounts[x] = Index(envRow.flush(chunk.envColumns, chunk.envWeights));
         }
-        // The chunk takes the worker's buffers as they are (no copy); the worker goes on
-        // with new ones reserved a quarter above this chunk's size, so the next chunk rarely
-        // grows by doubling (unwritten capacity is never resident).
-        handOver(staging.columns, chunk.columns);
-        handOver(staging.weights, chunk.weights);
-        handOver(staging.envColumns, chunk.envColumns);
-        handOver(staging.envWeights, chunk.envWeights);
       }
-    },
-    progress);
-
-  LinkStructure out;
-  returnFreedMemory(); // what the chunks' growth left behind
-  assembleCsr(chunks, rowCounts, kChunkRows, false, out.transport);
-  assembleCsr(chunks, envRowCounts, kChunkRows, true, out.environment);
+    });
+    const std::size_t firstRow = firstChunk * kChunkRows;
+    appendBand(band, bandChunks, firstRow, kChunkRows, rowCounts, maxTransport, false, out.transport);
+    appendBand(band, bandChunks, firstRow, kChunkRows, envRowCounts, maxEnvironment, true, out.environment);
+  }
+  if (progress && !progress("compress", 1.0))
+  {
+    throw Aborted();
+  }
   const std::size_t linked =
     options.rows ? std::size_t(std::count(options.rows, options.rows + rows, std::uint8_t(1))) : rows;
   out.rays = std::uint64_t(linked) * n;
-  for (const RowChunk& chunk : chunks)
+  for (const RowChunk& chunk : band)
   {
     out.rawLinks += chunk.rawLinks;
   }
+  std::vector<RowChunk>().swap(band);
+  returnFreedMemory(); // the band's buffers
   return out;
 }
 }
