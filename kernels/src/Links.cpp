@@ -197,29 +197,17 @@ struct ScratchRow
 };
 
 /// Appends a band's rows to `m`: their offsets from `rowCounts`, then every chunk's entries
-/// copied, in parallel, to where they belong. The arrays' capacity grows to the total the
-/// rows so far project (with a fifth to spare, never above `maxEntries`): reserved capacity
-/// is only address space until it is written, and a short projection costs one more copy,
-/// never a wrong result.
+/// copied, in parallel, to where they belong (after the previous bands', within the capacity
+/// that linkRows reserved).
 void appendBand(const std::vector<RowChunk>& band, std::size_t chunkCount, std::size_t firstRow,
-  std::size_t chunkRows, const std::vector<Index>& rowCounts, std::size_t maxEntries,
-  bool environment, SparseMatrix& m)
+  std::size_t chunkRows, const std::vector<Index>& rowCounts, bool environment, SparseMatrix& m)
 {
-  const std::size_t rows = rowCounts.size();
-  const std::size_t lastRow = std::min(rows, firstRow + chunkCount * chunkRows);
+  const std::size_t lastRow = std::min(rowCounts.size(), firstRow + chunkCount * chunkRows);
   for (std::size_t x = firstRow; x < lastRow; ++x)
   {
     m.rowOffsets[x + 1] = m.rowOffsets[x] + rowCounts[x]; // Offset + Index: no 32-bit wrap
   }
   const std::size_t size = m.rowOffsets[lastRow];
-  if (size > m.columns.capacity())
-  {
-    const double perRow = double(size) / double(lastRow);
-    const std::size_t projected = std::min(maxEntries,
-      std::max(size, static_cast<std::size_t>(perRow * 1.2 * double(rows))));
-    m.columns.reserve(projected);
-    m.weights.reserve(projected);
-  }
   m.columns.resize(size);
   m.weights.resize(size);
   parallelRanges(chunkCount, 4, [&](std::size_t begin, std::size_t end) {
@@ -261,11 +249,18 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
   const std::size_t chunkCount = (rows + kChunkRows - 1) / kChunkRows;
   std::vector<RowChunk> band(std::min(chunkCount, kBandChunks));
   std::vector<Index> rowCounts(rows), envRowCounts(rows);
+  // Both matrices reserve room for every link the rays could make: address space only until
+  // written, and never reallocated, so no band's append copies what came before or holds
+  // the links twice.
   LinkStructure out;
-  out.transport.rowOffsets.assign(rows + 1, 0);
-  out.environment.rowOffsets.assign(rows + 1, 0);
-  const std::size_t maxTransport = rows * std::min<std::size_t>(3 * n, rows);
-  const std::size_t maxEnvironment = rows * std::min(n, texels);
+  const LinksPerElement bound = LinksPerElement::bound(n, rows, texels);
+  for (SparseMatrix* m : { &out.transport, &out.environment })
+  {
+    const std::size_t entries = rows * (m == &out.transport ? bound.transport : bound.environment);
+    m->rowOffsets.assign(rows + 1, 0);
+    m->columns.reserve(entries);
+    m->weights.reserve(entries);
+  }
   for (std::size_t firstChunk = 0; firstChunk < chunkCount; firstChunk += kBandChunks)
   {
     if (progress && !progress("compress", double(firstChunk) / double(chunkCount)))
@@ -321,8 +316,8 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
       }
     });
     const std::size_t firstRow = firstChunk * kChunkRows;
-    appendBand(band, bandChunks, firstRow, kChunkRows, rowCounts, maxTransport, false, out.transport);
-    appendBand(band, bandChunks, firstRow, kChunkRows, envRowCounts, maxEnvironment, true, out.environment);
+    appendBand(band, bandChunks, firstRow, kChunkRows, rowCounts, false, out.transport);
+    appendBand(band, bandChunks, firstRow, kChunkRows, envRowCounts, true, out.environment);
   }
   if (progress && !progress("compress", 1.0))
   {

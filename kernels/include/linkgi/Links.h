@@ -7,6 +7,8 @@
 #include "linkgi/Scene.h"
 #include "linkgi/Topology.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace linkgi
@@ -49,6 +51,19 @@ struct SparseMatrix
       weights.size() * sizeof(float);
   }
   CsrRows view() const { return { rowOffsets.data(), columns.data(), weights.data(), rows(), 0 }; }
+};
+
+/// Upper bound of the compressed links one element keeps in W and Wenv: every ray gives at
+/// most 3 (a hit, spread over its triangle's vertices) or 1 (a miss, one texel), and a row
+/// has no more columns than there are elements or texels. The compression reserves this much
+/// (address space until written); the memory budget's estimate assumes it.
+struct LinksPerElement
+{
+  std::uint64_t transport = 0, environment = 0;
+  static LinksPerElement bound(std::uint64_t raysPerVertex, std::uint64_t elements, std::uint64_t texels)
+  {
+    return { std::min(3 * raysPerVertex, elements), std::min(raysPerVertex, texels) };
+  }
 };
 
 /// offsets[0] = first, offsets[i + 1] = offsets[i] + counts[i]: row offsets from per-row

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/Pipeline.h"
+#include "linkgi/Links.h"
 
 namespace linkgi::links
 {
@@ -14,14 +15,8 @@ enum Stage : std::size_t
   kBounceStage      ///< E_env, Jacobi bounces, smoothing, outgoing radiance
 };
 
-/// Upper bound of the compressed links one element keeps in W and Wenv: every ray gives at
-/// most 3 (a hit, spread over its triangle's vertices) or 1 (a miss, one texel), and a row
-/// has no more columns than there are elements or texels.
-struct LinksPerElement
-{
-  std::uint64_t transport = 0, environment = 0;
-  static LinksPerElement bound(const MemoryShape& shape, const SolverOptions& options);
-};
+/// LinksPerElement::bound for a mesh of this shape under these options.
+LinksPerElement linksPerElement(const MemoryShape& shape, const SolverOptions& options);
 
 /// The CPU backend's peak bytes for the stages `stale` (LinksCpu.cpp, beside what it allocates).
 MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& options, std::uint32_t stale);

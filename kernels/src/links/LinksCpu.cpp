@@ -175,13 +175,9 @@ private:
 };
 }
 
-LinksPerElement LinksPerElement::bound(const MemoryShape& shape, const SolverOptions& o)
+LinksPerElement linksPerElement(const MemoryShape& shape, const SolverOptions& o)
 {
-  const std::uint64_t elements = shape.vertices * (o.twoSided ? 2 : 1), n = o.raysPerVertex;
-  LinksPerElement b;
-  b.transport = std::min(3 * n, elements);
-  b.environment = std::min(n, shape.texels);
-  return b;
+  return LinksPerElement::bound(o.raysPerVertex, shape.vertices * (o.twoSided ? 2 : 1), shape.texels);
 }
 
 MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale)
@@ -204,7 +200,7 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
     // and the CSR they are copied into, the row counts and offsets; per worker a dense
     // scratch row, one element's rays and hits, and the staging of a chunk's rows (grown by
     // doubling, kept between chunks).
-    const LinksPerElement links = LinksPerElement::bound(shape, o);
+    const LinksPerElement links = linksPerElement(shape, o);
     const std::uint64_t perElement =
       (links.transport + links.environment) * csrEntry * 2 + 2 * (sizeof(Index) + sizeof(Offset));
     const std::uint64_t perWorker = (e + shape.texels) * sizeof(float) + n * (sizeof(Hit) + sizeof(Ray)) +

@@ -43,7 +43,7 @@ public:
     m.hostBytes = e * sizeof(Vec3f) * 16;
     if (stale & (1u << kLinkStage))
     {
-      const LinksPerElement links = LinksPerElement::bound(shape, o);
+      const LinksPerElement links = linksPerElement(shape, o);
       m.deviceBytes += e * (links.transport + links.environment) * (sizeof(Index) + sizeof(float));
     }
     m.deviceBytes += shape.triangles * 128 + e * 16 * 12;
