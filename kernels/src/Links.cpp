@@ -245,9 +245,14 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
   // are reused for every band (their pages stay resident and warm), then appended to the
   // CSR. Chunks kept until the end and copied into the CSR after cost twice the links'
   // size in fresh pages and a cold copy - a quarter of the compression at 1M vertices.
-  constexpr std::size_t kChunkRows = 64, kBandChunks = 512;
+  // As many bands as parallelFor has slices (up to 32, at least 8 chunks each), so that
+  // progress and an abort are asked as often; no more than 512 chunks a band, so that its
+  // buffers stay small (about 180 MB at 256 rays).
+  constexpr std::size_t kChunkRows = 64;
   const std::size_t chunkCount = (rows + kChunkRows - 1) / kChunkRows;
-  std::vector<RowChunk> band(std::min(chunkCount, kBandChunks));
+  const std::size_t bands = std::clamp<std::size_t>(chunkCount / 8, 1, 32);
+  const std::size_t bandSize = std::min<std::size_t>((chunkCount + bands - 1) / bands, 512);
+  std::vector<RowChunk> band(std::min(chunkCount, bandSize));
   std::vector<Index> rowCounts(rows), envRowCounts(rows);
   // Both matrices reserve room for every link the rays could make: address space only until
   // written, and never reallocated, so no band's append copies what came before or holds
@@ -261,13 +266,13 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
     m->columns.reserve(entries);
     m->weights.reserve(entries);
   }
-  for (std::size_t firstChunk = 0; firstChunk < chunkCount; firstChunk += kBandChunks)
+  for (std::size_t firstChunk = 0; firstChunk < chunkCount; firstChunk += bandSize)
   {
     if (progress && !progress("compress", double(firstChunk) / double(chunkCount)))
     {
       throw Aborted();
     }
-    const std::size_t bandChunks = std::min(kBandChunks, chunkCount - firstChunk);
+    const std::size_t bandChunks = std::min(bandSize, chunkCount - firstChunk);
     parallelRanges(bandChunks, 1, [&](std::size_t begin, std::size_t end) {
       // Scratch rows stay all-zero between rows (flush clears them), so they are only
       // reallocated when the size changes.
