@@ -245,12 +245,12 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
   // are reused for every band (their pages stay resident and warm), then appended to the
   // CSR. Chunks kept until the end and copied into the CSR after cost twice the links'
   // size in fresh pages and a cold copy - a quarter of the compression at 1M vertices.
-  // As many bands as parallelFor has slices (up to 32, at least 8 chunks each), so that
-  // progress and an abort are asked as often; no more than 512 chunks a band, so that its
-  // buffers stay small (about 180 MB at 256 rays).
+  // As many bands as parallelFor has slices, so that progress and an abort are asked as
+  // often; no more than 512 chunks a band, so that its buffers stay small (about 180 MB at
+  // 256 rays).
   constexpr std::size_t kChunkRows = 64;
   const std::size_t chunkCount = (rows + kChunkRows - 1) / kChunkRows;
-  const std::size_t bands = std::clamp<std::size_t>(chunkCount / 8, 1, 32);
+  const std::size_t bands = progressSlices(chunkCount, 1);
   const std::size_t bandSize = std::min<std::size_t>((chunkCount + bands - 1) / bands, 512);
   std::vector<RowChunk> band(std::min(chunkCount, bandSize));
   std::vector<Index> rowCounts(rows), envRowCounts(rows);

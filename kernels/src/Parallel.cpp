@@ -52,6 +52,11 @@ void parallelRanges(std::size_t n, std::size_t grain,
 }
 #endif
 
+std::size_t progressSlices(std::size_t n, std::size_t grain)
+{
+  return std::min<std::size_t>(32, std::max<std::size_t>(1, n / (grain * 8)));
+}
+
 void parallelFor(const char* stage, std::size_t n, std::size_t grain,
   const std::function<void(std::size_t begin, std::size_t end)>& body,
   const ProgressCallback& progress)
@@ -61,9 +66,7 @@ void parallelFor(const char* stage, std::size_t n, std::size_t grain,
     parallelRanges(n, grain, body);
     return;
   }
-  // Enough slices for a smooth progress bar and a prompt abort, few enough that the
-  // synchronisation between them costs nothing measurable.
-  const std::size_t slices = std::min<std::size_t>(32, std::max<std::size_t>(1, n / (grain * 8)));
+  const std::size_t slices = progressSlices(n, grain);
   for (std::size_t s = 0; s < slices; ++s)
   {
     if (!progress(stage, static_cast<double>(s) / slices))

@@ -14,8 +14,13 @@ using ProgressCallback = std::function<bool(const char* stage, double fraction)>
 void parallelRanges(std::size_t n, std::size_t grain,
   const std::function<void(std::size_t begin, std::size_t end)>& body);
 
-/// Like parallelRanges, cut into a few sequential slices; `progress` is asked between slices
-/// (on the calling thread, so it may touch GUI or VTK state) and can abort the loop.
+/// How many sequential slices parallelFor cuts [0, n) into: enough for a smooth progress bar
+/// and a prompt abort (up to 32), few enough that the synchronisation between them costs
+/// nothing measurable (at least 8 grains each).
+std::size_t progressSlices(std::size_t n, std::size_t grain);
+
+/// Like parallelRanges, cut into progressSlices sequential slices; `progress` is asked between
+/// slices (on the calling thread, so it may touch GUI or VTK state) and can abort the loop.
 void parallelFor(const char* stage, std::size_t n, std::size_t grain,
   const std::function<void(std::size_t begin, std::size_t end)>& body,
   const ProgressCallback& progress);
