@@ -28,6 +28,16 @@ constexpr std::chrono::milliseconds kContinuous{ 1000 };
 /// How often the worker checks that an idle-class update is not starving.
 constexpr std::chrono::milliseconds kStarvationWindow{ 500 };
 
+/// The calling thread's kernel id (0 where there is none to tell).
+long threadId()
+{
+#ifdef __linux__
+  return static_cast<long>(syscall(SYS_gettid));
+#else
+  return 0;
+#endif
+}
+
 /// Lowers the calling thread's priority: the idle scheduling class where `idle` is asked
 /// for and allowed, nice 10 otherwise. Returns whether it is in the idle class.
 bool lowerPriority(bool idle)
@@ -41,11 +51,31 @@ bool lowerPriority(bool idle)
       return true;
     }
   }
-  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
+  setpriority(PRIO_PROCESS, static_cast<id_t>(threadId()), 10);
 #else
   (void)idle;
 #endif
   return false;
+}
+
+/// Moves `thread` (whose kernel id is `tid`) from the idle scheduling class to nice 10, where
+/// the process may (root, CAP_SYS_NICE or an RLIMIT_NICE of 10 or more; an unprivileged
+/// thread cannot leave the idle class). Returns whether it did.
+bool raiseFromIdle(std::thread& thread, long tid)
+{
+#ifdef __linux__
+  sched_param none{};
+  if (tid <= 0 || pthread_setschedparam(thread.native_handle(), SCHED_OTHER, &none) != 0)
+  {
+    return false;
+  }
+  setpriority(PRIO_PROCESS, static_cast<id_t>(tid), 10);
+  return true;
+#else
+  (void)thread;
+  (void)tid;
+  return false;
+#endif
 }
 
 void nameThread(const char* name)
@@ -98,6 +128,7 @@ struct AsyncSolver::Impl
   bool continuous = false;         // it came less than kContinuous after the one before
   bool yieldToInteraction = true;
   bool idleClass = false; // the running update is in the idle scheduling class
+  long updateTid = 0;     // ... on this kernel thread
   bool starved = false;   // ... and is to stop, to be run again at nice 10
   bool solved = false;    // the update thread is done
   std::shared_ptr<const AsyncResult> published;
@@ -285,6 +316,7 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
     {
       std::lock_guard<std::mutex> lock(mutex);
       idleClass = inIdleClass;
+      updateTid = threadId();
     }
     solve(request);
     {
@@ -310,7 +342,9 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
   }
   // An idle-class update gets no CPU while anything else wants it. That is the point while
   // the changes go on; once they stopped, an update that still gets under half a core is
-  // stopped (at its next progress check) and run again at nice 10.
+  // moved to nice 10 where the process may, keeping its work, and else stopped (at its next
+  // progress check, which a thread that gets a few thousandths of a core may reach only
+  // once the other load ends) and run again at nice 10.
   std::unique_lock<std::mutex> lock(mutex);
   double cpuBefore = cpuSeconds(thread);
   Clock::time_point before = Clock::now();
@@ -321,7 +355,14 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
     const double share = (cpu - cpuBefore) / std::chrono::duration<double>(now - before).count();
     if (idleClass && cpuBefore >= 0.0 && cpu >= 0.0 && now - lastRequestAt > kContinuous && share < 0.5)
     {
-      starved = true;
+      if (raiseFromIdle(thread, updateTid))
+      {
+        idleClass = false;
+      }
+      else
+      {
+        starved = true;
+      }
     }
     cpuBefore = cpu;
     before = now;

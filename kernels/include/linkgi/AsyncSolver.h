@@ -36,8 +36,10 @@ struct AsyncResult
 /// once; on a two-core machine that is what keeps an orbit's frame time close to one without
 /// global illumination, for fewer global-illumination updates per second while it lasts. Once
 /// the changes stop (no request for a second) an idle-class update that still gets less than
-/// half a core (another program keeps the cores busy) is aborted and run again at nice 10, so
-/// it never starves: an unprivileged thread cannot leave the idle class, hence the new thread.
+/// half a core (another program keeps the cores busy) is moved to nice 10 and goes on, where
+/// the process may do that (root, CAP_SYS_NICE, an RLIMIT_NICE of 10 or more); an unprivileged
+/// thread cannot leave the idle class, so there it is aborted at its next progress check and
+/// run again at nice 10 on a new thread. Either way it never starves.
 /// setYieldToInteraction(false) keeps every update at nice 10.
 ///
 /// Temporal blending (optional): with blend factor a in (0, 1], the indirect irradiance is
@@ -86,7 +88,7 @@ public:
   /// above; Linux only, elsewhere updates always run at the lower priority).
   void setYieldToInteraction(bool yield);
   /// True while the running update is in the idle scheduling class and not found starving
-  /// (from then on it is being stopped, to run again at nice 10).
+  /// (from then on it runs at nice 10, or is being stopped to run again there).
   bool yielding() const;
   /// Called on the update's thread after each publish (e.g. to wake a render loop).
   void setOnPublish(std::function<void(std::uint64_t request)> callback);
