@@ -436,8 +436,9 @@ std::string memoryJson(const Scene& scene, const UpdateRuns& runs)
 }
 
 /// The same scene through a ProxySolver: fresh solvers (decimation included) and light
-/// moves, medians, and the carried indirect light against the full solve's.
-std::string proxyJson(const Scene& scene, const UpdateRuns* full, const Args& args)
+/// moves, medians, and the carried indirect light against the full solve's: `full`'s when
+/// it ran, else `reference`'s (one stored by --dump) when there is one.
+std::string proxyJson(const Scene& scene, const UpdateRuns* full, const Solution* reference, const Args& args)
 {
   const Scene moved = movedLights(scene);
   std::vector<double> fullTimes, lightTimes, decimate, transfer, inputDirect;
@@ -477,11 +478,15 @@ std::string proxyJson(const Scene& scene, const UpdateRuns* full, const Args& ar
     out << (i ? "," : "") << fullTimes[i];
   }
   out << "]";
-  if (full) // against the full solve, where there is one
+  if (full)
   {
-    const ErrorMetrics e = relativeRmse(solution.indirect, full->solution.indirect, areas);
-    out << ",\"speedup_full_update\":" << median(full->fullTimes) / median(fullTimes)
-        << ",\"indirect_rel_rmse_luminance\":" << e.relRmseLuminance << ",\"indirect_rel_rmse_max_channel\":"
+    out << ",\"speedup_full_update\":" << median(full->fullTimes) / median(fullTimes);
+    reference = &full->solution;
+  }
+  if (reference)
+  {
+    const ErrorMetrics e = relativeRmse(solution.indirect, reference->indirect, areas);
+    out << ",\"indirect_rel_rmse_luminance\":" << e.relRmseLuminance << ",\"indirect_rel_rmse_max_channel\":"
         << std::max({ e.relRmse.x, e.relRmse.y, e.relRmse.z });
   }
   out << ",\"host_peak_bytes_per_vertex\":" << double(peak) / double(std::max<std::size_t>(1, scene.vertexCount()))
@@ -521,10 +526,18 @@ std::string refineJson(const Scene& scene, const Args& args)
 void benchScene(const std::string& name, const Args& args)
 {
   const Scene scene = bench::makeScene(name);
+  const std::string stored = args.compare.empty() ? std::string() : args.compare + "/" + name + ".bin";
   if (args.proxyOnly)
   {
+    Solution reference;
+    const bool compared = !stored.empty() && std::ifstream(stored);
+    if (compared)
+    {
+      reference = bench::readSolution(stored);
+    }
     std::printf("{\"scene\":\"%s\",\"vertices\":%zu,\"triangles\":%zu,\"rays_per_vertex\":%u%s}\n", name.c_str(),
-      scene.vertexCount(), scene.triangleCount(), args.options.raysPerVertex, proxyJson(scene, nullptr, args).c_str());
+      scene.vertexCount(), scene.triangleCount(), args.options.raysPerVertex,
+      proxyJson(scene, nullptr, compared ? &reference : nullptr, args).c_str());
     return;
   }
   const UpdateRuns runs = runUpdates(scene, args);
@@ -534,15 +547,15 @@ void benchScene(const std::string& name, const Args& args)
   {
     bench::writeSolution(args.dump + "/" + name + ".bin", runs.solution);
   }
-  if (!args.compare.empty() && std::ifstream(args.compare + "/" + name + ".bin"))
+  if (!stored.empty() && std::ifstream(stored))
   {
-    const Solution reference = bench::readSolution(args.compare + "/" + name + ".bin");
+    const Solution reference = bench::readSolution(stored);
     extra += ",\"agreement\":" + bench::agreement(scene, runs.solution, reference);
   }
   extra += yardstickJson(scene, runs.full, args);
   if (args.proxyVertices > 0)
   {
-    extra += proxyJson(scene, &runs, args);
+    extra += proxyJson(scene, &runs, nullptr, args);
   }
   if (args.refineVertices > 0)
   {
