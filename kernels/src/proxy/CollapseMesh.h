@@ -1,0 +1,190 @@
+// The decimation's OpenMesh mesh, with the halfedge collapse and its topology test compiled
+// here, from OpenMesh's inline accessors. The library's own (PolyConnectivity::collapse,
+// TriConnectivity::is_collapse_ok) live in libOpenMeshCore, which Debian builds with its
+// assertions on: there every status lookup builds and compares two type-name strings and
+// every handle is checked by an out-of-line call, about half of a 1M-vertex decimation's time.
+// Hiding the two members by name makes OpenMesh's decimaters, which are templates on the
+// mesh type, call these too.
+#pragma once
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+namespace linkgi
+{
+struct CollapseMeshTraits : OpenMesh::DefaultTraits
+{
+  VertexAttributes(OpenMesh::Attributes::Status);
+  EdgeAttributes(OpenMesh::Attributes::Status);
+  FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
+  HalfedgeAttributes(OpenMesh::Attributes::Status);
+};
+
+class CollapseMesh : public OpenMesh::TriMesh_ArrayKernelT<CollapseMeshTraits>
+{
+public:
+  /// Whether collapsing `v0v1` (its from-vertex into its to-vertex) keeps the mesh a
+  /// manifold: OpenMesh's rules (neither end nor the edge deleted; not both other edges of
+  /// a triangle on the boundary; the one-rings share only the two opposite vertices; an
+  /// edge between two boundary vertices is a boundary edge). Uses the vertices' tag bits.
+  bool is_collapse_ok(HalfedgeHandle v0v1)
+  {
+    if (status(edge_handle(v0v1)).deleted())
+    {
+      return false;
+    }
+    const HalfedgeHandle v1v0 = opposite_halfedge_handle(v0v1);
+    const VertexHandle v0 = to_vertex_handle(v1v0), v1 = to_vertex_handle(v0v1);
+    if (status(v0).deleted() || status(v1).deleted())
+    {
+      return false;
+    }
+    // The vertex opposite the edge in the triangle left of `h`, if any; invalid when the
+    // triangle's two other edges are both boundary edges (a collapse would leave a dangling
+    // triangle).
+    bool dangling = false;
+    const auto opposite = [&](HalfedgeHandle h) {
+      if (is_boundary(h))
+      {
+        return VertexHandle();
+      }
+      const HalfedgeHandle h1 = next_halfedge_handle(h), h2 = next_halfedge_handle(h1);
+      dangling |= is_boundary(opposite_halfedge_handle(h1)) && is_boundary(opposite_halfedge_handle(h2));
+      return to_vertex_handle(h1);
+    };
+    const VertexHandle vl = opposite(v0v1), vr = opposite(v1v0);
+    if (dangling || vl == vr)
+    {
+      return false;
+    }
+    forOutgoing(v0, [&](HalfedgeHandle h) { status(to_vertex_handle(h)).set_tagged(false); });
+    forOutgoing(v1, [&](HalfedgeHandle h) { status(to_vertex_handle(h)).set_tagged(true); });
+    bool shared = false;
+    forOutgoing(v0, [&](HalfedgeHandle h) {
+      const VertexHandle v = to_vertex_handle(h);
+      shared |= status(v).tagged() && v != vl && v != vr;
+    });
+    if (shared)
+    {
+      return false;
+    }
+    return !(is_boundary(v0) && is_boundary(v1) && !is_boundary(v0v1) && !is_boundary(v1v0));
+  }
+
+  /// Collapses the from-vertex of `h` into its to-vertex, as OpenMesh's collapse does:
+  /// the edge goes, and so do the triangles on its sides (now loops of two edges).
+  void collapse(HalfedgeHandle h)
+  {
+    const HalfedgeHandle h1 = next_halfedge_handle(h);
+    const HalfedgeHandle o1 = next_halfedge_handle(opposite_halfedge_handle(h));
+    collapseEdge(h);
+    if (next_halfedge_handle(next_halfedge_handle(h1)) == h1)
+    {
+      collapseLoop(next_halfedge_handle(h1));
+    }
+    if (next_halfedge_handle(next_halfedge_handle(o1)) == o1)
+    {
+      collapseLoop(o1);
+    }
+  }
+
+private:
+  /// Calls f on each halfedge going out of `v` (none for an isolated vertex).
+  template <class F>
+  void forOutgoing(VertexHandle v, F&& f) const
+  {
+    const HalfedgeHandle first = halfedge_handle(v);
+    if (!first.is_valid())
+    {
+      return;
+    }
+    HalfedgeHandle h = first;
+    do
+    {
+      f(h);
+      h = next_halfedge_handle(opposite_halfedge_handle(h));
+    } while (h != first);
+  }
+
+  /// A vertex's outgoing halfedge is a boundary one where it has any, as OpenMesh keeps it.
+  void adjustOutgoing(VertexHandle v)
+  {
+    const HalfedgeHandle first = halfedge_handle(v);
+    if (!first.is_valid())
+    {
+      return;
+    }
+    HalfedgeHandle h = first;
+    do
+    {
+      if (is_boundary(h))
+      {
+        set_halfedge_handle(v, h);
+        return;
+      }
+      h = next_halfedge_handle(opposite_halfedge_handle(h));
+    } while (h != first);
+  }
+
+  /// Removes the edge of `h`, moving every halfedge that ended at its from-vertex to its
+  /// to-vertex; leaves the two triangles beside it as loops of two halfedges.
+  void collapseEdge(HalfedgeHandle h)
+  {
+    const HalfedgeHandle hn = next_halfedge_handle(h), hp = prev_halfedge_handle(h);
+    const HalfedgeHandle o = opposite_halfedge_handle(h);
+    const HalfedgeHandle on = next_halfedge_handle(o), op = prev_halfedge_handle(o);
+    const FaceHandle fh = face_handle(h), fo = face_handle(o);
+    const VertexHandle vh = to_vertex_handle(h), vo = to_vertex_handle(o);
+    // Incoming halfedges of vo are the opposites of its outgoing ones.
+    forOutgoing(vo, [&](HalfedgeHandle out) { set_vertex_handle(opposite_halfedge_handle(out), vh); });
+    set_next_halfedge_handle(hp, hn);
+    set_next_halfedge_handle(op, on);
+    if (fh.is_valid())
+    {
+      set_halfedge_handle(fh, hn);
+    }
+    if (fo.is_valid())
+    {
+      set_halfedge_handle(fo, on);
+    }
+    if (halfedge_handle(vh) == o)
+    {
+      set_halfedge_handle(vh, hn);
+    }
+    adjustOutgoing(vh);
+    set_isolated(vo);
+    status(edge_handle(h)).set_deleted(true);
+    status(vo).set_deleted(true);
+    status(h).set_deleted(true);
+    status(o).set_deleted(true);
+  }
+
+  /// Removes a loop of two halfedges (`h0` and the next one): its face and h0's edge go,
+  /// the other halfedge takes h0's opposite's place.
+  void collapseLoop(HalfedgeHandle h0)
+  {
+    const HalfedgeHandle h1 = next_halfedge_handle(h0);
+    const HalfedgeHandle o0 = opposite_halfedge_handle(h0), o1 = opposite_halfedge_handle(h1);
+    const VertexHandle v0 = to_vertex_handle(h0), v1 = to_vertex_handle(h1);
+    const FaceHandle fh = face_handle(h0), fo = face_handle(o0);
+    set_next_halfedge_handle(h1, next_halfedge_handle(o0));
+    set_next_halfedge_handle(prev_halfedge_handle(o0), h1);
+    set_face_handle(h1, fo);
+    set_halfedge_handle(v0, h1);
+    adjustOutgoing(v0);
+    set_halfedge_handle(v1, o1);
+    adjustOutgoing(v1);
+    if (fo.is_valid() && halfedge_handle(fo) == o0)
+    {
+      set_halfedge_handle(fo, h1);
+    }
+    if (fh.is_valid())
+    {
+      set_halfedge_handle(fh, InvalidHalfedgeHandle);
+      status(fh).set_deleted(true);
+    }
+    status(edge_handle(h0)).set_deleted(true);
+    status(h0).set_deleted(true);
+    status(o0).set_deleted(true);
+  }
+};
+}
