@@ -1,6 +1,6 @@
-// The decimation's OpenMesh mesh, with the halfedge collapse and its topology test compiled
-// here, from OpenMesh's inline accessors. The library's own (PolyConnectivity::collapse,
-// TriConnectivity::is_collapse_ok) live in libOpenMeshCore, which Debian builds with its
+// The decimation's OpenMesh mesh, with the halfedge collapse, its topology test and adding a
+// triangle compiled here, from OpenMesh's inline accessors. The library's own
+// (PolyConnectivity::collapse and add_face, TriConnectivity::is_collapse_ok) live in libOpenMeshCore, which Debian builds with its
 // assertions on: there every status lookup builds and compares two type-name strings and
 // every handle is checked by an out-of-line call, about half of a 1M-vertex decimation's time.
 // Hiding the two members by name makes OpenMesh's decimaters, which are templates on the
@@ -16,7 +16,9 @@ struct CollapseMeshTraits : OpenMesh::DefaultTraits
   VertexAttributes(OpenMesh::Attributes::Status);
   EdgeAttributes(OpenMesh::Attributes::Status);
   FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
-  HalfedgeAttributes(OpenMesh::Attributes::Status);
+  // With the previous halfedge stored, finding it is a lookup instead of a walk around the
+  // face or the boundary loop (which is long while a mesh is being built).
+  HalfedgeAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::PrevHalfedge);
 };
 
 class CollapseMesh : public OpenMesh::TriMesh_ArrayKernelT<CollapseMeshTraits>
@@ -87,7 +89,140 @@ public:
     }
   }
 
+  /// Adds triangle abc as OpenMesh's add_face does, with the same refusals (an invalid
+  /// handle, nothing changed): a corner that is not on the boundary (complex vertex), an
+  /// edge that already has a triangle on this side (complex edge), or a fan that cannot be
+  /// re-linked around a corner.
+  FaceHandle addTriangle(VertexHandle a, VertexHandle b, VertexHandle c)
+  {
+    const VertexHandle corner[3] = { a, b, c };
+    HalfedgeHandle inner[3]; // corner[i] -> corner[i + 1]
+    bool fresh[3], adjust[3] = { false, false, false };
+    for (int i = 0; i < 3; ++i)
+    {
+      if (!is_boundary(corner[i]))
+      {
+        return FaceHandle();
+      }
+      inner[i] = findHalfedge(corner[i], corner[(i + 1) % 3]);
+      fresh[i] = !inner[i].is_valid();
+      if (!fresh[i] && !is_boundary(inner[i]))
+      {
+        return FaceHandle();
+      }
+    }
+    // The next-links to set, all at the end (at most 3 per corner, as OpenMesh's cache).
+    std::pair<HalfedgeHandle, HalfedgeHandle> links[9];
+    int linkCount = 0;
+    // Two existing edges at a corner that do not follow each other: the fan between them
+    // moves into a free gap of the corner's boundary.
+    for (int i = 0; i < 3; ++i)
+    {
+      const int j = (i + 1) % 3;
+      if (fresh[i] || fresh[j] || next_halfedge_handle(inner[i]) == inner[j])
+      {
+        continue;
+      }
+      const HalfedgeHandle outerPrev = opposite_halfedge_handle(inner[j]);
+      HalfedgeHandle boundaryPrev = outerPrev;
+      do
+      {
+        boundaryPrev = opposite_halfedge_handle(next_halfedge_handle(boundaryPrev));
+      } while (!is_boundary(boundaryPrev));
+      if (boundaryPrev == inner[i])
+      {
+        return FaceHandle();
+      }
+      const HalfedgeHandle boundaryNext = next_halfedge_handle(boundaryPrev);
+      links[linkCount++] = { boundaryPrev, next_halfedge_handle(inner[i]) };
+      links[linkCount++] = { prev_halfedge_handle(inner[j]), boundaryNext };
+      links[linkCount++] = { inner[i], inner[j] };
+    }
+    for (int i = 0; i < 3; ++i)
+    {
+      if (fresh[i])
+      {
+        inner[i] = new_edge(corner[i], corner[(i + 1) % 3]);
+      }
+    }
+    const FaceHandle face = new_face();
+    set_halfedge_handle(face, inner[2]);
+    for (int i = 0; i < 3; ++i)
+    {
+      const int j = (i + 1) % 3;
+      const VertexHandle v = corner[j];
+      const HalfedgeHandle outerPrev = opposite_halfedge_handle(inner[j]);
+      const HalfedgeHandle outerNext = opposite_halfedge_handle(inner[i]);
+      if (fresh[i] && !fresh[j])
+      {
+        links[linkCount++] = { prev_halfedge_handle(inner[j]), outerNext };
+        set_halfedge_handle(v, outerNext);
+      }
+      else if (!fresh[i] && fresh[j])
+      {
+        const HalfedgeHandle boundaryNext = next_halfedge_handle(inner[i]);
+        links[linkCount++] = { outerPrev, boundaryNext };
+        set_halfedge_handle(v, boundaryNext);
+      }
+      else if (fresh[i] && fresh[j])
+      {
+        if (!halfedge_handle(v).is_valid())
+        {
+          set_halfedge_handle(v, outerNext);
+          links[linkCount++] = { outerPrev, outerNext };
+        }
+        else
+        {
+          const HalfedgeHandle boundaryNext = halfedge_handle(v);
+          links[linkCount++] = { prev_halfedge_handle(boundaryNext), outerNext };
+          links[linkCount++] = { outerPrev, boundaryNext };
+        }
+      }
+      else
+      {
+        adjust[j] = halfedge_handle(v) == inner[j];
+      }
+      if (fresh[i] || fresh[j])
+      {
+        links[linkCount++] = { inner[i], inner[j] };
+      }
+      set_face_handle(inner[i], face);
+    }
+    for (int k = 0; k < linkCount; ++k)
+    {
+      set_next_halfedge_handle(links[k].first, links[k].second);
+    }
+    for (int i = 0; i < 3; ++i)
+    {
+      if (adjust[i])
+      {
+        adjustOutgoing(corner[i]);
+      }
+    }
+    return face;
+  }
+
 private:
+  /// The halfedge from `from` to `to`, or an invalid one.
+  HalfedgeHandle findHalfedge(VertexHandle from, VertexHandle to) const
+  {
+    const HalfedgeHandle first = halfedge_handle(from);
+    if (!first.is_valid())
+    {
+      return first;
+    }
+    HalfedgeHandle h = first;
+    do
+    {
+      if (to_vertex_handle(h) == to)
+      {
+        return h;
+      }
+      h = next_halfedge_handle(opposite_halfedge_handle(h));
+    } while (h != first);
+    return HalfedgeHandle();
+  }
+
   /// Calls f on each halfedge going out of `v` (none for an isolated vertex).
   template <class F>
   void forOutgoing(VertexHandle v, F&& f) const

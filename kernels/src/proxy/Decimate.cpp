@@ -230,7 +230,7 @@ std::size_t buildMesh(Mesh& mesh, const OpenMesh::VPropHandleT<Index>& source, c
   std::size_t dropped = 0;
   for (const Triangle& t : triangles)
   {
-    if (!mesh.add_face(handles[t.v[0]], handles[t.v[1]], handles[t.v[2]]).is_valid())
+    if (!mesh.addTriangle(handles[t.v[0]], handles[t.v[1]], handles[t.v[2]]).is_valid())
     {
       ++dropped;
     }
