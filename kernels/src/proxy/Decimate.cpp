@@ -235,7 +235,6 @@ std::size_t buildMesh(Mesh& mesh, const OpenMesh::VPropHandleT<Index>& source, c
       ++dropped;
     }
   }
-  mesh.update_face_normals();
   // Boundary vertices stay: open borders and the seams of split normals keep their shape.
   for (const auto v : mesh.vertices())
   {
@@ -325,8 +324,7 @@ std::vector<Triangle> sweepInHalves(const Scene& scene, double length, double ma
     const std::size_t share = onCut +
       std::max<std::size_t>(1, stopAt * (mesh.n_vertices() - onCut) / (scene.vertexCount() - onCut));
     collapseShortEdges(mesh, scene, source, seam, length, maxEdge, minCos, share, collapses, done, keepGoing);
-    mesh.garbage_collection();
-    half[h] = trianglesOf(mesh, source);
+    half[h] = trianglesOf(mesh, source); // the faces left, no garbage collection needed
   };
   // This thread reports the progress of both and tells the other one to stop.
   std::future<void> other = std::async(std::launch::async, [&] { sweep(1, [&stop](double) { return !stop; }); });
@@ -395,6 +393,8 @@ ProxyMesh decimate(const Scene& scene, std::size_t targetVertices, float maxNorm
     out.droppedTriangles += buildMesh(mesh, source, scene, scene.triangles);
   }
 
+  // The sweeps need none; the Decimater's modules start from them.
+  mesh.update_face_normals();
   Decimater decimater(mesh);
   OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
   OpenMesh::Decimater::ModNormalDeviationT<Mesh>::Handle deviation;
