@@ -135,6 +135,30 @@ TEST(TestProxy, DecimationReachesTheTargetAndKeepsInputVertices)
   EXPECT_EQ(hi, 2.f);
 }
 
+TEST(TestProxy, ATinyClosedSurfaceDecimatesToOneVertex)
+{
+  // A tetrahedron to one vertex takes the large decimation's path (the target is far below
+  // the input), where every vertex lies on the cut between the halves: nothing to sweep
+  // there, and the decimater does what it can (a closed surface keeps at least a triangle).
+  if (!proxyAvailable())
+  {
+    GTEST_SKIP() << "This build has no OpenMesh.";
+  }
+  Scene s;
+  s.positions = { { 1.f, 1.f, 1.f }, { 1.f, -1.f, -1.f }, { -1.f, 1.f, -1.f }, { -1.f, -1.f, 1.f } };
+  s.normals = s.positions;
+  s.triangles = { { { 0, 1, 2 } }, { { 0, 3, 1 } }, { { 0, 2, 3 } }, { { 1, 3, 2 } } };
+  s.albedo.assign(4, Vec3f(0.5f));
+  s = validated(s);
+  const ProxyMesh proxy = decimate(s, 1);
+  EXPECT_GE(proxy.scene.vertexCount(), 1u);
+  EXPECT_LE(proxy.scene.vertexCount(), 4u);
+  for (std::size_t v = 0; v < proxy.scene.vertexCount(); ++v)
+  {
+    EXPECT_EQ(proxy.scene.positions[v], s.positions[proxy.sourceVertex[v]]);
+  }
+}
+
 TEST(TestProxy, ALightMoveDoesNotDecimateAgainAndDirectLightIsTheInputs)
 {
   if (!proxyAvailable())

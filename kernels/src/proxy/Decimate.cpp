@@ -146,10 +146,10 @@ private:
 /// The first, fast part of a large decimation: sweeps over the edges collapsing each one
 /// shorter than `length`, the first time with half of it and then longer, until at most
 /// `stopAt` vertices are left. A collapse removes an unlocked end, never into a vertex that
-/// `seam` marks (by input vertex; empty: none), and is refused where OpenMesh's topology test refuses it,
-/// where it would make an edge longer than `maxEdge`, or where a triangle around the
-/// removed vertex would turn away (by more than `minCos`'s angle) from an input normal at
-/// one of its corners (keepsInputNormals). It needs no priorities: on a 1M-vertex
+/// `seam` marks (by input vertex; empty: none), and is refused where OpenMesh's topology
+/// test refuses it, where it would make an edge longer than `maxEdge`, or where a triangle
+/// around the removed vertex would turn away (by more than `minCos`'s angle) from an input
+/// normal at one of its corners (keepsInputNormals). It needs no priorities: on a 1M-vertex
 /// isosurface a collapse takes 0.5-0.7 us against the multiple-choice Decimater's 20-40 us,
 /// whose quadric order then takes the last collapses to the target. `done` counts the
 /// collapses of every sweep that runs at the same time; `keepGoing` is asked now and then
@@ -265,7 +265,8 @@ std::vector<Triangle> trianglesOf(const Mesh& mesh, const OpenMesh::VPropHandleT
 /// their centroids at the median along the longest axis, each half is built and swept on a
 /// thread of its own (OpenMesh's meshes are sequential), the vertices on the cut stay (a
 /// half's boundary is locked) and take no collapse, so the halves' new edges never meet,
-/// and the swept halves are joined, with `stopAt` vertices plus those of the cut. The cut is the same on any machine, so is the proxy.
+/// and the swept halves are joined, with `stopAt` vertices plus those of the cut. The cut
+/// is the same on any machine, so is the proxy.
 /// Returns the triangles of the swept surface (input vertex indices) and adds the triangles
 /// OpenMesh refused to `dropped`.
 std::vector<Triangle> sweepInHalves(const Scene& scene, double length, double maxEdge, float minCos,
@@ -320,9 +321,11 @@ std::vector<Triangle> sweepInHalves(const Scene& scene, double length, double ma
     OpenMesh::VPropHandleT<Index> source;
     mesh.add_property(source);
     refused[h] = buildMesh(mesh, source, scene, half[h]);
-    // Each half stops at its share of the vertices to keep, plus the cut's, which it keeps.
-    const std::size_t share = onCut +
-      std::max<std::size_t>(1, stopAt * (mesh.n_vertices() - onCut) / (scene.vertexCount() - onCut));
+    // Each half stops at its share of the vertices to keep, plus the cut's, which it keeps
+    // (on a tiny closed surface every vertex can be on the cut: then there is none to take).
+    const std::size_t inside = scene.vertexCount() - onCut;
+    const std::size_t share =
+      onCut + (inside == 0 ? 0 : std::max<std::size_t>(1, stopAt * (mesh.n_vertices() - onCut) / inside));
     collapseShortEdges(mesh, scene, source, seam, length, maxEdge, minCos, share, collapses, done, keepGoing);
     half[h] = trianglesOf(mesh, source); // the faces left, no garbage collection needed
   };
