@@ -1,9 +1,10 @@
 // The decimation's OpenMesh mesh, with the halfedge collapse, its topology test and adding a
-// triangle compiled here, from OpenMesh's inline accessors. The library's own
-// (PolyConnectivity::collapse and add_face, TriConnectivity::is_collapse_ok) live in libOpenMeshCore, which Debian builds with its
-// assertions on: there every status lookup builds and compares two type-name strings and
-// every handle is checked by an out-of-line call, about half of a 1M-vertex decimation's time.
-// Hiding the two members by name makes OpenMesh's decimaters, which are templates on the
+// triangle compiled here from OpenMesh's inline accessors, with the library's logic. The
+// library's own (PolyConnectivity::collapse and add_face, TriConnectivity::is_collapse_ok)
+// live in libOpenMeshCore, which Debian builds with its assertions on: there every status
+// lookup builds and compares two type-name strings and every handle is checked by an
+// out-of-line call, over a third of a 1M-vertex decimation's time. collapse and
+// is_collapse_ok keep the library's names, so that OpenMesh's decimaters, templates on the
 // mesh type, call these too.
 #pragma once
 
