@@ -115,9 +115,9 @@ TEST(TestLinks, BackFacesBlockOrLinkToBackSides)
 TEST(TestLinks, RowsOfEveryBandAreWhereTheHitsPutThem)
 {
   // The compression appends its rows to the CSR band by band (about 32 bands of chunks of
-  // 64 rows): on a mesh of 32 bands every row must hold exactly the links its own hits make. The squares
-  // face each other, so a front row's rays land on the other square's front (vertex
-  // columns, barycentric weights) or leave past its edge, and a back row's all leave.
+  // 64 rows): on a mesh of 32 bands every row must hold exactly the links its own hits make.
+  // The squares face each other, so a front row's rays land on the other square's front
+  // (vertex columns, barycentric weights) or leave past its edge, and a back row's all leave.
   const Scene s = test::twoSquares(false, 130);
   const std::size_t nv = s.vertexCount(), n = 4;
   ASSERT_GT(2 * nv, 32 * 2 * 64u); // bands of more than one chunk

@@ -204,61 +204,51 @@ public:
   }
 
 private:
-  /// The halfedge from `from` to `to`, or an invalid one.
-  HalfedgeHandle findHalfedge(VertexHandle from, VertexHandle to) const
+  /// The first halfedge going out of `v` for which `match` is true, or an invalid one (also
+  /// for an isolated vertex). The one loop around a vertex that everything here uses.
+  template <class Match>
+  HalfedgeHandle findOutgoing(VertexHandle v, Match&& match) const
   {
-    const HalfedgeHandle first = halfedge_handle(from);
-    if (!first.is_valid())
+    const HalfedgeHandle first = halfedge_handle(v);
+    if (first.is_valid())
     {
-      return first;
-    }
-    HalfedgeHandle h = first;
-    do
-    {
-      if (to_vertex_handle(h) == to)
+      HalfedgeHandle h = first;
+      do
       {
-        return h;
-      }
-      h = next_halfedge_handle(opposite_halfedge_handle(h));
-    } while (h != first);
+        if (match(h))
+        {
+          return h;
+        }
+        h = next_halfedge_handle(opposite_halfedge_handle(h));
+      } while (h != first);
+    }
     return HalfedgeHandle();
   }
 
-  /// Calls f on each halfedge going out of `v` (none for an isolated vertex).
+  /// Calls f on each halfedge going out of `v`.
   template <class F>
   void forOutgoing(VertexHandle v, F&& f) const
   {
-    const HalfedgeHandle first = halfedge_handle(v);
-    if (!first.is_valid())
-    {
-      return;
-    }
-    HalfedgeHandle h = first;
-    do
-    {
+    findOutgoing(v, [&](HalfedgeHandle h) {
       f(h);
-      h = next_halfedge_handle(opposite_halfedge_handle(h));
-    } while (h != first);
+      return false;
+    });
+  }
+
+  /// The halfedge from `from` to `to`, or an invalid one.
+  HalfedgeHandle findHalfedge(VertexHandle from, VertexHandle to) const
+  {
+    return findOutgoing(from, [&](HalfedgeHandle h) { return to_vertex_handle(h) == to; });
   }
 
   /// A vertex's outgoing halfedge is a boundary one where it has any, as OpenMesh keeps it.
   void adjustOutgoing(VertexHandle v)
   {
-    const HalfedgeHandle first = halfedge_handle(v);
-    if (!first.is_valid())
+    const HalfedgeHandle boundary = findOutgoing(v, [&](HalfedgeHandle h) { return is_boundary(h); });
+    if (boundary.is_valid())
     {
-      return;
+      set_halfedge_handle(v, boundary);
     }
-    HalfedgeHandle h = first;
-    do
-    {
-      if (is_boundary(h))
-      {
-        set_halfedge_handle(v, h);
-        return;
-      }
-      h = next_halfedge_handle(opposite_halfedge_handle(h));
-    } while (h != first);
   }
 
   /// Removes the edge of `h`, moving every halfedge that ended at its from-vertex to its
