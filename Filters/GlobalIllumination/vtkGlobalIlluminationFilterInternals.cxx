@@ -13,6 +13,7 @@
 
 #include "linkgi/Error.h"
 #include "linkgi/Memory.h"
+#include "linkgi/Orientation.h"
 
 #include <algorithm>
 #include <chrono>
@@ -121,7 +122,7 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
   for (vtkLight* light : this->Lights)
   {
     linkgi::Light converted;
-    const auto status = Builder::ConvertLight(light, self->LightIntensityScale, converted);
+    const auto status = Builder::ConvertLight(light, self->LightIntensityScale, this->Mesh.Origin, converted);
     if (status == vtkGlobalIlluminationLights::CONVERTED)
     {
       scene.lights.push_back(converted);
@@ -131,6 +132,17 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
     {
       this->Warnings.push_back(skipped);
     }
+  }
+  this->Warnings.insert(this->Warnings.end(), this->Mesh.Warnings.begin(), this->Mesh.Warnings.end());
+  for (std::string& turned : Builder::OrientToLights(this->Mesh, !self->TwoSided))
+  {
+    this->Warnings.push_back(std::move(turned));
+  }
+  if (!self->TwoSided && linkgi::litOnlyFromBehind(scene))
+  {
+    this->Warnings.emplace_back("Every light is behind the surface (on the side its normals point "
+                                "away from), so it receives no direct light. Turn TwoSided on to "
+                                "light both sides, or reverse the normals (vtkReverseSense).");
   }
   scene.environment = Builder::ConvertEnvironment(self->EnvironmentColor, self->EnvironmentTexture);
   if (self->EnvironmentTexture && scene.environment.color == linkgi::Vec3f(0.f))
@@ -450,12 +462,13 @@ void vtkGlobalIlluminationFilter::vtkInternals::ShapeOutput(vtkPolyData* input, 
   const linkgi::Scene& scene = refined.scene;
   const vtkIdType n = static_cast<vtkIdType>(scene.vertexCount());
   vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
+  points->SetDataType(input->GetPoints()->GetDataType()); // double stays double (UTM data)
   points->SetNumberOfPoints(n);
   for (vtkIdType v = 0; v < n; ++v)
   {
     const linkgi::Vec3f& p = scene.positions[static_cast<std::size_t>(v)];
-    points->SetPoint(v, p.x, p.y, p.z);
+    const std::array<double, 3>& o = this->Mesh.Origin;
+    points->SetPoint(v, o[0] + p.x, o[1] + p.y, o[2] + p.z);
   }
   vtkNew<vtkCellArray> polys;
   polys->AllocateExact(static_cast<vtkIdType>(scene.triangleCount()), 3 * static_cast<vtkIdType>(scene.triangleCount()));

@@ -22,7 +22,9 @@
 #include "vtkTypeUInt64Array.h"
 
 #include "linkgi/Error.h"
+#include "linkgi/Orientation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -157,6 +159,81 @@ linkgi::Vec3f ToVec3f(const double v[3])
   return { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
 }
 
+// The centre of the bounds of the points that triangles use.
+std::array<double, 3> BoundsCentre(vtkPolyData* mesh, const std::vector<unsigned char>& used)
+{
+  double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+  double hi[3] = { VTK_DOUBLE_MIN, VTK_DOUBLE_MIN, VTK_DOUBLE_MIN };
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    if (used[p])
+    {
+      double x[3];
+      mesh->GetPoint(p, x);
+      for (int k = 0; k < 3; ++k)
+      {
+        lo[k] = std::min(lo[k], x[k]);
+        hi[k] = std::max(hi[k], x[k]);
+      }
+    }
+  }
+  std::array<double, 3> centre{};
+  for (int k = 0; k < 3; ++k)
+  {
+    centre[k] = lo[k] <= hi[k] ? 0.5 * (lo[k] + hi[k]) : 0.0;
+  }
+  return centre;
+}
+
+// Finds the inward closed surfaces (OrientToLights turns them), and warns where normals
+// and winding disagree (the mapper, like VTK, follows the winding there).
+void FindInwardSurfaces(vtkGlobalIlluminationSceneBuilder::Mesh& mesh)
+{
+  std::vector<std::uint64_t> points(mesh.ElementPoint.begin(), mesh.ElementPoint.end());
+  mesh.Orientation = linkgi::findInwardSurfaces(mesh.Scene, points);
+  mesh.Flipped.assign(mesh.Orientation.inward.size(), 0);
+  const std::size_t against = mesh.Orientation.againstWinding;
+  if (against > 0 && !mesh.NormalsComputed)
+  {
+    std::ostringstream msg;
+    msg << against << " of " << mesh.Scene.triangleCount()
+        << " triangles have point normals against their winding: LinkGI lights the side"
+        << " the normals point to, while VTK's two-sided lighting draws that side dark."
+        << " Turn ComputeNormals on, or fix the normals or the winding of those cells.";
+    mesh.Warnings.push_back(msg.str());
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::string> vtkGlobalIlluminationSceneBuilder::OrientToLights(Mesh& mesh, bool turn)
+{
+  std::size_t flipped = 0, triangles = 0;
+  for (std::size_t i = 0; i < mesh.Orientation.inward.size(); ++i)
+  {
+    const linkgi::InwardSurface& surface = mesh.Orientation.inward[i];
+    const unsigned char outward = turn && !linkgi::hasLightInside(mesh.Scene, surface) ? 1 : 0;
+    if (outward != mesh.Flipped[i])
+    {
+      linkgi::flipNormals(mesh.Scene, surface);
+      mesh.Flipped[i] = outward;
+    }
+    flipped += outward;
+    triangles += outward ? surface.triangles.size() : 0;
+  }
+  if (flipped == 0)
+  {
+    return {};
+  }
+  std::ostringstream msg;
+  msg << flipped << " closed surface(s) (" << triangles << " triangles) have normals pointing"
+      << " inward and no light inside; they are lit from outside. To fix the data itself:"
+      << " vtkPolyDataNormals with AutoOrientNormalsOn (ParaView: Generate Surface Normals).";
+  return { msg.str() };
+}
+
+namespace
+{
 linkgi::Vec3f ColorOf(vtkDataArray* array, vtkIdType tuple)
 {
   return ToVec3f(vtkGlobalIlluminationColors::Read(array, tuple).data());
@@ -212,6 +289,7 @@ vtkGlobalIlluminationSceneBuilder::Mesh vtkGlobalIlluminationSceneBuilder::Build
   std::vector<unsigned char> used(static_cast<std::size_t>(meshPoints), 0);
   MarkUsed(tri->GetPolys(), used);
   std::vector<linkgi::Index> element(static_cast<std::size_t>(meshPoints), linkgi::kInvalidIndex);
+  mesh.Origin = BoundsCentre(tri, used);
   linkgi::Scene& scene = mesh.Scene;
   for (vtkIdType p = 0; p < meshPoints; ++p)
   {
@@ -223,6 +301,10 @@ vtkGlobalIlluminationSceneBuilder::Mesh vtkGlobalIlluminationSceneBuilder::Build
     const vtkIdType original = pointIds->GetValue(p);
     double x[3], n[3];
     tri->GetPoint(p, x);
+    for (int k = 0; k < 3; ++k)
+    {
+      x[k] -= mesh.Origin[k]; // in double, before the rounding to float
+    }
     normals->GetTuple(mesh.NormalsComputed ? p : original, n);
     scene.positions.push_back(ToVec3f(x));
     scene.normals.push_back(ToVec3f(n)); // the engine normalizes and repairs zero normals
@@ -246,6 +328,7 @@ vtkGlobalIlluminationSceneBuilder::Mesh vtkGlobalIlluminationSceneBuilder::Build
   {
     Fail("The input's polygons and strips make no triangles (they have fewer than 3 points).");
   }
+  FindInwardSurfaces(mesh);
   return mesh;
 }
 
@@ -362,7 +445,7 @@ std::vector<linkgi::Vec3f> vtkGlobalIlluminationSceneBuilder::GatherColors(vtkPo
 
 //------------------------------------------------------------------------------
 vtkGlobalIlluminationLights::Status vtkGlobalIlluminationSceneBuilder::ConvertLight(
-  vtkLight* light, double scale, linkgi::Light& out)
+  vtkLight* light, double scale, const std::array<double, 3>& origin, linkgi::Light& out)
 {
   vtkGlobalIlluminationLights::Light l;
   const vtkGlobalIlluminationLights::Status status =
@@ -376,7 +459,9 @@ vtkGlobalIlluminationLights::Status vtkGlobalIlluminationSceneBuilder::ConvertLi
       int(linkgi::LightType::Directional) == vtkGlobalIlluminationLights::Light::DIRECTIONAL,
     "one numbering of the light types");
   out.type = static_cast<linkgi::LightType>(l.Type);
-  out.position = ToVec3f(l.Position.data());
+  const double local[3] = { l.Position[0] - origin[0], l.Position[1] - origin[1],
+    l.Position[2] - origin[2] };
+  out.position = ToVec3f(local);
   out.direction = ToVec3f(l.Direction.data());
   out.intensity = ToVec3f(l.Intensity.data());
   out.coneAngleDegrees = static_cast<float>(l.ConeAngle);

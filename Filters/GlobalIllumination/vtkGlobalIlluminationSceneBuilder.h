@@ -23,9 +23,11 @@
 #include "vtkSmartPointer.h"                       // for vtkSmartPointer
 #include "vtkType.h"                               // for vtkIdType
 
+#include "linkgi/Orientation.h" // for linkgi::SurfaceOrientation
 #include "linkgi/Scene.h"  // for linkgi::Scene
 #include "linkgi/Solver.h" // for linkgi::SolverStats
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -50,15 +52,37 @@ public:
     std::vector<vtkIdType> TriangleCell; ///< input cell id of each triangle
     vtkIdType InputPointCount = 0;
     bool NormalsComputed = false;
+    /// The engine's positions are the input's minus Origin (the centre of the surface's
+    /// bounds, in double precision): single precision then resolves a surface at UTM
+    /// coordinates as finely as one at the origin, and a translation changes no result.
+    std::array<double, 3> Origin{};
+    /// What BuildMesh noticed about the geometry, for every update's LinkGI.Warnings.
+    std::vector<std::string> Warnings;
+    /// The closed surfaces whose normals point inward, and which of them OrientToLights
+    /// turned outward (their normals in Scene are negated).
+    linkgi::SurfaceOrientation Orientation;
+    std::vector<unsigned char> Flipped;
   };
 
   /**
    * Triangulates the polygons and strips of `input` (vertices and lines are ignored), and
    * takes normals from the input's point normals, or computes them with vtkPolyDataNormals
    * (splitting at `featureAngle` degrees) when `computeNormals` is set or the input has
-   * none. Throws for an input without polygons or strips and for non-finite coordinates.
+   * none, and finds the closed surfaces whose normals point inward
+   * (linkgi::findInwardSurfaces). Throws for an input without polygons or strips and for
+   * non-finite coordinates.
    */
   static Mesh BuildMesh(vtkPolyData* input, bool computeNormals, double featureAngle);
+
+  /**
+   * Lights every inward closed surface of `mesh` from the side its lights are on, once the
+   * scene has its lights and emission: a surface with a light inside (a room) keeps its
+   * normals, one without (an object wound inside out, like the Stanford bunny's PLY file)
+   * has them turned outward. With `turn` false (two-sided elements, lit on both sides
+   * anyway, front arrays on the normals' side) every surface keeps the input's normals.
+   * Returns the warning that says what was turned, if anything.
+   */
+  static std::vector<std::string> OrientToLights(Mesh& mesh, bool turn);
 
   /**
    * One linear RGB value per element, read from the array `arrayName` of the input's point
@@ -83,11 +107,11 @@ public:
 
   /**
    * Converts a vtkLight as vtkGlobalIlluminationLights::Convert does (the mapper uses the
-   * same function) into the engine's light; `out` is written only if that returns
-   * CONVERTED.
+   * same function) into the engine's light, positioned relative to `origin` (the mesh's
+   * Origin); `out` is written only if that returns CONVERTED.
    */
   static vtkGlobalIlluminationLights::Status ConvertLight(
-    vtkLight* light, double scale, linkgi::Light& out);
+    vtkLight* light, double scale, const std::array<double, 3>& origin, linkgi::Light& out);
 
   /**
    * A constant sky `color`, multiplied by the lat-long `texture` when one is given (its

@@ -217,6 +217,18 @@ inline vtkDataArray* PointArray(vtkPolyData* pd, const char* name)
   return pd->GetPointData()->GetArray(name);
 }
 
+/// The output's LinkGI.Warnings (empty without the array).
+inline std::vector<std::string> Warnings(vtkPolyData* pd)
+{
+  std::vector<std::string> out;
+  auto* array = vtkStringArray::SafeDownCast(pd->GetFieldData()->GetAbstractArray("LinkGI.Warnings"));
+  for (vtkIdType i = 0; array && i < array->GetNumberOfValues(); ++i)
+  {
+    out.push_back(array->GetValue(i));
+  }
+  return out;
+}
+
 /// Component c of tuple i of point array `name`.
 inline double Value(vtkPolyData* pd, const char* name, vtkIdType i, int c = 0)
 {

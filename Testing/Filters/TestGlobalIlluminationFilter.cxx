@@ -142,10 +142,31 @@ TEST(GlobalIlluminationFilter, AgreesWithTheEngineOnTheCornellBox)
   filter->Update();
   vtkPolyData* out = filter->GetOutput();
 
+  // The filter solves relative to the centre of the surface's bounds (in double precision).
+  linkgi::Scene local = scene;
+  double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  for (const linkgi::Vec3f& p : scene.positions)
+  {
+    const double x[3] = { p.x, p.y, p.z };
+    for (int k = 0; k < 3; ++k)
+    {
+      lo[k] = std::min(lo[k], x[k]);
+      hi[k] = std::max(hi[k], x[k]);
+    }
+  }
+  const auto toLocal = [&](linkgi::Vec3f& p) {
+    p = { float(p.x - 0.5 * (lo[0] + hi[0])), float(p.y - 0.5 * (lo[1] + hi[1])),
+      float(p.z - 0.5 * (lo[2] + hi[2])) };
+  };
+  std::for_each(local.positions.begin(), local.positions.end(), toLocal);
+  for (linkgi::Light& light : local.lights)
+  {
+    toLocal(light.position);
+  }
   linkgi::SolverOptions options;
   options.raysPerVertex = 64;
   linkgi::Solver solver;
-  const linkgi::Solution& reference = solver.update(scene, options);
+  const linkgi::Solution& reference = solver.update(local, options);
   ASSERT_EQ(Stat(out, "Elements"), static_cast<double>(reference.elementCount()));
   const std::pair<const char*, const std::vector<linkgi::Vec3f>*> arrays[] = {
     { "DirectIrradiance", &reference.direct }, { "IndirectIrradiance", &reference.indirect },

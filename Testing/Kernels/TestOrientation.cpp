@@ -1,0 +1,243 @@
+// findInwardSurfaces, hasLightInside and litOnlyFromBehind on shapes whose inside and
+// outside are known: closed surfaces wound either way, surfaces with small holes, open
+// surfaces (a bowl, a tube) that have no inside, and a room with its lamp inside.
+#include "linkgi/Orientation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace linkgi;
+
+namespace
+{
+/// A latitude-longitude sphere of radius r around c, normals outward (or inward), from
+/// polar angle 0 down to `endTheta` (pi: closed; pi/2: a bowl); the poles are single points.
+Scene Sphere(const Vec3f& c, float r, float endTheta, bool inward, int rings = 24, int segments = 32)
+{
+  Scene s;
+  const bool closed = endTheta >= kPi;
+  const int lastRing = closed ? rings - 1 : rings;
+  s.positions.push_back(c + Vec3f(0.f, 0.f, r));
+  for (int i = 1; i <= lastRing; ++i)
+  {
+    const float t = endTheta * float(i) / float(rings);
+    for (int j = 0; j < segments; ++j)
+    {
+      const float p = 2.f * kPi * float(j) / float(segments);
+      s.positions.push_back(c + Vec3f(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)) * r);
+    }
+  }
+  if (closed)
+  {
+    s.positions.push_back(c + Vec3f(0.f, 0.f, -r));
+  }
+  const auto ring = [&](int i, int j) { return Index(1 + (i - 1) * segments + (j % segments)); };
+  const auto add = [&](Index a, Index b, Index d) {
+    s.triangles.push_back(inward ? Triangle{ { a, d, b } } : Triangle{ { a, b, d } });
+  };
+  for (int j = 0; j < segments; ++j)
+  {
+    add(0, ring(1, j), ring(1, j + 1));
+    for (int i = 1; i < lastRing; ++i)
+    {
+      add(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1));
+      add(ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
+    }
+    if (closed)
+    {
+      add(ring(lastRing, j), Index(s.positions.size() - 1), ring(lastRing, j + 1));
+    }
+  }
+  for (const Vec3f& p : s.positions)
+  {
+    s.normals.push_back(normalize(p - c) * (inward ? -1.f : 1.f));
+  }
+  return s;
+}
+
+/// A tube of radius 1 along z from 0 to 2, open at both ends, normals outward or inward.
+Scene Tube(bool inward)
+{
+  Scene s;
+  const int segments = 32;
+  for (int k = 0; k < 2; ++k)
+  {
+    for (int j = 0; j < segments; ++j)
+    {
+      const float p = 2.f * kPi * float(j) / float(segments);
+      s.positions.push_back({ std::cos(p), std::sin(p), 2.f * float(k) });
+      s.normals.push_back(Vec3f(std::cos(p), std::sin(p), 0.f) * (inward ? -1.f : 1.f));
+    }
+  }
+  for (int j = 0; j < segments; ++j)
+  {
+    const Index a = Index(j), b = Index((j + 1) % segments), d = a + segments, e = b + segments;
+    s.triangles.push_back(inward ? Triangle{ { a, d, b } } : Triangle{ { a, b, d } });
+    s.triangles.push_back(inward ? Triangle{ { b, d, e } } : Triangle{ { b, e, d } });
+  }
+  return s;
+}
+
+bool NormalsEqual(const Scene& a, const Scene& b, float sign)
+{
+  for (std::size_t v = 0; v < a.vertexCount(); ++v)
+  {
+    if (!(a.normals[v] == b.normals[v] * sign))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+}
+
+TEST(TestOrientation, InwardClosedSurfaceIsFoundAndOutwardIsNot)
+{
+  for (const Vec3f& centre : { Vec3f(0.f), Vec3f(3.e5f, -2.e6f, 40.f) })
+  {
+    const Scene inward = Sphere(centre, 2.f, kPi, true);
+    const SurfaceOrientation found = findInwardSurfaces(inward, {});
+    EXPECT_EQ(found.surfaces, 1u);
+    ASSERT_EQ(found.inward.size(), 1u);
+    EXPECT_EQ(found.inward[0].triangles.size(), inward.triangleCount());
+    EXPECT_EQ(found.inward[0].vertices.size(), inward.vertexCount());
+    EXPECT_EQ(found.againstWinding, 0u);
+    EXPECT_TRUE(findInwardSurfaces(Sphere(centre, 2.f, kPi, false), {}).inward.empty());
+
+    Scene flipped = inward;
+    flipNormals(flipped, found.inward[0]);
+    EXPECT_TRUE(NormalsEqual(flipped, inward, -1.f));
+    EXPECT_TRUE(findInwardSurfaces(flipped, {}).inward.empty());
+  }
+}
+
+TEST(TestOrientation, OnlyTheInwardOfTwoSurfacesIsFound)
+{
+  Scene s = Sphere(Vec3f(0.f), 1.f, kPi, false);
+  const Scene second = Sphere(Vec3f(5.f, 0.f, 0.f), 1.f, kPi, true);
+  const Index first = Index(s.vertexCount());
+  for (std::size_t v = 0; v < second.vertexCount(); ++v)
+  {
+    s.positions.push_back(second.positions[v]);
+    s.normals.push_back(second.normals[v]);
+  }
+  for (const Triangle& t : second.triangles)
+  {
+    s.triangles.push_back({ { t.v[0] + first, t.v[1] + first, t.v[2] + first } });
+  }
+  const SurfaceOrientation found = findInwardSurfaces(s, {});
+  EXPECT_EQ(found.surfaces, 2u);
+  ASSERT_EQ(found.inward.size(), 1u);
+  EXPECT_EQ(found.inward[0].vertices.size(), second.vertexCount());
+  EXPECT_EQ(found.inward[0].vertices.front(), first);
+}
+
+TEST(TestOrientation, VerticesSplitFromOnePointBelongToOneSurface)
+{
+  // Every vertex of the inward sphere duplicated per triangle (as splitting at sharp edges
+  // does to a cube): without the point ids no edge is shared and nothing is closed.
+  const Scene welded = Sphere(Vec3f(0.f), 1.f, kPi, true, 8, 12);
+  Scene split;
+  std::vector<std::uint64_t> pointIds;
+  for (const Triangle& t : welded.triangles)
+  {
+    Triangle copy;
+    for (int k = 0; k < 3; ++k)
+    {
+      copy.v[k] = Index(split.positions.size());
+      split.positions.push_back(welded.positions[t.v[k]]);
+      split.normals.push_back(welded.normals[t.v[k]]);
+      pointIds.push_back(t.v[k] * 7919u + 3u); // any ids, equal for copies of one point
+    }
+    split.triangles.push_back(copy);
+  }
+  EXPECT_TRUE(findInwardSurfaces(split, {}).inward.empty());
+  const SurfaceOrientation found = findInwardSurfaces(split, pointIds);
+  EXPECT_EQ(found.surfaces, 1u);
+  EXPECT_EQ(found.inward.size(), 1u);
+}
+
+TEST(TestOrientation, SmallHolesStillCloseASurface)
+{
+  // Polar caps of 5 degrees cut out at both ends: border length^2 / area = 0.1.
+  Scene s = Sphere(Vec3f(0.f), 1.f, kPi, true, 36, 32);
+  Scene holed;
+  holed.positions = s.positions;
+  holed.normals = s.normals;
+  const Index last = Index(s.vertexCount() - 1);
+  for (const Triangle& t : s.triangles)
+  {
+    const bool pole = t.v[0] == 0 || t.v[1] == 0 || t.v[2] == 0 || t.v[0] == last ||
+      t.v[1] == last || t.v[2] == last;
+    if (!pole)
+    {
+      holed.triangles.push_back(t);
+    }
+  }
+  EXPECT_EQ(findInwardSurfaces(holed, {}).inward.size(), 1u);
+}
+
+TEST(TestOrientation, OpenSurfacesHaveNoInside)
+{
+  for (const bool inward : { false, true })
+  {
+    for (const Scene& s : { Sphere(Vec3f(0.f), 1.f, 0.5f * kPi, inward),
+           Sphere(Vec3f(0.f), 1.f, 0.7f * kPi, inward), Tube(inward) })
+    {
+      EXPECT_TRUE(findInwardSurfaces(s, {}).inward.empty()) << inward;
+    }
+  }
+}
+
+TEST(TestOrientation, NormalsAgainstTheWindingAreCounted)
+{
+  Scene s = Sphere(Vec3f(0.f), 1.f, kPi, false);
+  for (Triangle& t : s.triangles)
+  {
+    std::swap(t.v[1], t.v[2]); // winding inward, normals still outward
+  }
+  const SurfaceOrientation found = findInwardSurfaces(s, {});
+  EXPECT_EQ(found.againstWinding, s.triangleCount());
+  EXPECT_TRUE(found.inward.empty()); // the normals decide which side is the front
+}
+
+TEST(TestOrientation, ALampInsideMakesARoomOfAnInwardSurface)
+{
+  Scene room = Sphere(Vec3f(10.f, 0.f, 0.f), 3.f, kPi, true);
+  const InwardSurface surface = findInwardSurfaces(room, {}).inward.at(0);
+  Light lamp;
+  lamp.position = { 10.5f, 1.f, -2.f }; // inside
+  room.lights = { lamp };
+  EXPECT_TRUE(hasLightInside(room, surface));
+  room.lights[0].position = { 10.f, 0.f, 3.5f }; // outside, just above the top
+  EXPECT_FALSE(hasLightInside(room, surface));
+  room.lights[0].type = LightType::Directional; // from infinitely far: outside
+  EXPECT_FALSE(hasLightInside(room, surface));
+
+  // An emitting vertex inside (a lamp modelled as geometry), or the surface's own emission.
+  room.lights.clear();
+  room.positions.push_back({ 10.f, 0.f, 0.f });
+  room.normals.push_back({ 0.f, 0.f, 1.f });
+  room.emission.assign(room.vertexCount(), Vec3f(0.f));
+  EXPECT_FALSE(hasLightInside(room, surface));
+  room.emission.back() = Vec3f(1.f);
+  EXPECT_TRUE(hasLightInside(room, surface));
+  room.emission.back() = Vec3f(0.f);
+  room.emission[surface.vertices[5]] = Vec3f(1.f);
+  EXPECT_TRUE(hasLightInside(room, surface));
+}
+
+TEST(TestOrientation, LitOnlyFromBehind)
+{
+  Scene s = Sphere(Vec3f(0.f), 1.f, 0.5f * kPi, false); // a dome, normals up and out
+  Light light;
+  light.position = { 0.f, 0.f, 0.5f }; // under the dome
+  s.lights = { light };
+  EXPECT_TRUE(litOnlyFromBehind(s));
+  s.lights[0].position = { 0.f, 0.f, 3.f };
+  EXPECT_FALSE(litOnlyFromBehind(s));
+  s.lights[0].position = { 0.f, 0.f, 0.5f };
+  s.lights[0].intensity = Vec3f(0.f); // a black light lights no side
+  EXPECT_FALSE(litOnlyFromBehind(s));
+}

@@ -1,0 +1,54 @@
+// Which side of a surface is its front, checked before lighting: real data is often wound
+// inward (scanned models saved with clockwise triangles) or lit from behind.
+#pragma once
+
+#include "linkgi/Scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace linkgi
+{
+/// A closed surface whose normals point inward: an object wound inside out, or a room.
+struct InwardSurface
+{
+  std::vector<Index> vertices;
+  std::vector<Index> triangles;
+};
+
+/// The connected surfaces of a scene and those among them that are closed and face inward.
+struct SurfaceOrientation
+{
+  std::size_t surfaces = 0; ///< connected through shared points
+  std::vector<InwardSurface> inward;
+  /// Triangles whose winding disagrees with their vertices' normals (the engine follows the
+  /// normals; VTK's two-sided lighting follows the winding and draws them dark).
+  std::size_t againstWinding = 0;
+};
+
+/// Finds the closed surfaces whose normals point inward. A surface is a set of triangles
+/// connected through shared points: `pointIds` gives each vertex the id of the point it was
+/// split from at sharp edges (empty: every vertex is its own point).
+/// A surface counts as closed when its holes are small: the squared length of their
+/// borders is at most 3x its area (the Stanford bunny's five holes: 2.0; an open bowl 6.3,
+/// a tube open at both ends 12.6, a square 16). It faces inward when its volume, integrated
+/// over the sides its normals point to, is negative and decisive: above 2x its bounding
+/// radius times its vector area (what the holes leave open, zero when closed) and above
+/// 1e-3 of its area times that radius. Open surfaces (planes, bowls, tunnels, terrain) have
+/// no inside and are never listed. Positions are taken relative to each surface's centre,
+/// so a translation changes no decision.
+SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std::uint64_t>& pointIds);
+
+/// Whether a light of the scene is inside `surface`: a point or spot light, or an emitting
+/// vertex of another surface, where the surface's winding number is at least 1/2. A room
+/// lit from within faces inward by design; an object wound inside out has its lights outside.
+bool hasLightInside(const Scene& scene, const InwardSurface& surface);
+
+/// Negates the normals of `surface`'s vertices (the engine's front is where they point).
+void flipNormals(Scene& scene, const InwardSurface& surface);
+
+/// Whether the scene's lights reach only the back of a one-sided scene: no vertex receives
+/// light on the side its normal points to, and some vertex would on the other side (a
+/// surface whose normals face away from every light). Visibility is not traced.
+bool litOnlyFromBehind(const Scene& scene);
+}
