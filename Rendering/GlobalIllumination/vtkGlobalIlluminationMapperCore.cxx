@@ -31,19 +31,21 @@
 #include "vtkGlobalIlluminationVertexImpl.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace
 {
 using ShadowMaps = vtkGlobalIlluminationShadowMaps;
 
-void ToColumnMajor(vtkMatrix4x4* m, float out[16])
+/// A row-major double matrix as the column-major floats a uniform takes.
+void ToColumnMajor(const std::array<double, 16>& m, float out[16])
 {
   for (int r = 0; r < 4; ++r)
   {
     for (int c = 0; c < 4; ++c)
     {
-      out[c * 4 + r] = static_cast<float>(m->GetElement(r, c));
+      out[c * 4 + r] = static_cast<float>(m[4 * r + c]);
     }
   }
 }
@@ -67,6 +69,30 @@ std::array<double, 16> ModelToWorld(vtkOpenGLVertexBufferObject* positions, vtkA
   std::array<double, 16> m;
   std::copy(&result->Element[0][0], &result->Element[0][0] + 16, m.begin());
   return m;
+}
+
+/// `m` (row-major) followed by a translation by -origin.
+void MoveOrigin(std::array<double, 16>& m, const std::array<double, 3>& origin)
+{
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      m[4 * r + c] -= origin[r] * m[12 + c];
+    }
+  }
+}
+
+/// The centre of `bounds`, or the origin for empty bounds.
+std::array<double, 3> Centre(const std::array<double, 6>& bounds)
+{
+  std::array<double, 3> centre{};
+  for (int k = 0; k < 3; ++k)
+  {
+    const double lo = bounds[2 * k], hi = bounds[2 * k + 1];
+    centre[k] = lo <= hi && std::isfinite(lo) && std::isfinite(hi) ? 0.5 * (lo + hi) : 0.0;
+  }
+  return centre;
 }
 }
 
@@ -171,7 +197,14 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::AddGlobalCasters(
 void vtkGlobalIlluminationMapperCore::Prepare(
   vtkRenderer* renderer, vtkActor* actor, const ShadowMaps::Casters& ownCasters)
 {
-  const ShadowMaps::Casters casters = this->AddGlobalCasters(ownCasters, actor);
+  ShadowMaps::Casters casters = this->AddGlobalCasters(ownCasters, actor);
+  this->Origin = Centre(casters.WorldBounds);
+  MoveOrigin(casters.ModelToWorld, this->Origin);
+  MoveOrigin(casters.RemoteToWorld, this->Origin);
+  for (int k = 0; k < 6; ++k)
+  {
+    casters.WorldBounds[k] -= this->Origin[k / 2];
+  }
   const double scale = this->Shading ? this->Shading->GetLightIntensityScale() : 1.0;
   const int maximum = vtkGlobalIlluminationShading::GetMaximumNumberOfLights();
   this->Lights.clear();
@@ -194,6 +227,10 @@ void vtkGlobalIlluminationMapperCore::Prepare(
     {
       if (static_cast<int>(this->Lights.size()) < maximum)
       {
+        for (int k = 0; k < 3; ++k)
+        {
+          converted.Position[k] -= this->Origin[k];
+        }
         this->Lights.push_back(converted);
         atEye.push_back(light->LightTypeIsHeadlight());
       }
@@ -298,8 +335,11 @@ void vtkGlobalIlluminationMapperCore::SetShaderParameters(
   vtkCamera* camera = renderer->GetActiveCamera();
   vtkNew<vtkMatrix4x4> viewToWorld;
   vtkMatrix4x4::Invert(camera->GetModelViewTransformMatrix(), viewToWorld);
+  std::array<double, 16> viewToLocal;
+  std::copy(&viewToWorld->Element[0][0], &viewToWorld->Element[0][0] + 16, viewToLocal.begin());
+  MoveOrigin(viewToLocal, this->Origin);
   float matrix[16];
-  ToColumnMajor(viewToWorld, matrix);
+  ToColumnMajor(viewToLocal, matrix);
   program->SetUniformMatrix4x4("giViewToWorld", matrix);
   float eye[4] = { 0.f, 0.f, 0.f, 0.f };
   double v[3];
@@ -315,6 +355,10 @@ void vtkGlobalIlluminationMapperCore::SetShaderParameters(
   else
   {
     camera->GetPosition(v);
+    for (int k = 0; k < 3; ++k)
+    {
+      v[k] -= this->Origin[k];
+    }
   }
   std::copy(v, v + 3, eye);
   program->SetUniform4fv("giCamera", 1, eye);

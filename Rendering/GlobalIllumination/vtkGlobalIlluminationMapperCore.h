@@ -184,6 +184,10 @@ private:
 
   vtkObject* Owner;
   vtkGlobalIlluminationShading* Shading = nullptr;
+  /// The shaders' and shadow maps' frame is the world moved by -Origin (the centre of the
+  /// casters' bounds, in double precision): single-precision positions then resolve data
+  /// at UTM coordinates as finely as data at the origin. Lights and casters are in it.
+  std::array<double, 3> Origin{};
   std::vector<vtkGlobalIlluminationShadowMaps::Light> Lights;
   std::vector<vtkSmartPointer<vtkFloatArray>> Kept;
   vtkGlobalIlluminationShadowMaps ShadowMaps;

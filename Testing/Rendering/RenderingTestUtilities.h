@@ -299,6 +299,49 @@ inline double Pixel(vtkImageData* image, int x, int y, int k)
   return image->GetScalarComponentAsDouble(x, y, 0, k);
 }
 
+/// How two images of the same size differ: the mean absolute difference over all pixels
+/// and channels (levels of 255), and the number of pixels with a channel more than
+/// `threshold` levels apart.
+struct ImageDifference
+{
+  double Mean = 0.0;
+  int Above = 0;
+};
+
+/// Compares `a` and `b`; writes 4x the difference into `scaled` when given.
+inline ImageDifference Difference(vtkImageData* a, vtkImageData* b, double threshold,
+  vtkImageData* scaled = nullptr)
+{
+  int dims[3];
+  a->GetDimensions(dims);
+  if (scaled)
+  {
+    scaled->DeepCopy(a);
+  }
+  ImageDifference result;
+  double total = 0.0;
+  for (int y = 0; y < dims[1]; ++y)
+  {
+    for (int x = 0; x < dims[0]; ++x)
+    {
+      double largest = 0.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        const double d = std::abs(Pixel(a, x, y, k) - b->GetScalarComponentAsDouble(x, y, 0, k));
+        total += d;
+        largest = std::max(largest, d);
+        if (scaled)
+        {
+          scaled->SetScalarComponentFromDouble(x, y, 0, k, std::min(255.0, 4.0 * d));
+        }
+      }
+      result.Above += largest > threshold ? 1 : 0;
+    }
+  }
+  result.Mean = total / (3.0 * double(dims[0]) * dims[1]);
+  return result;
+}
+
 /// The value following `flag` on the command line, or "".
 inline std::string Argument(int argc, char* argv[], const char* flag)
 {
@@ -363,30 +406,11 @@ inline int CompareWithBaseline(int argc, char* argv[], vtkRenderWindow* window)
     return 1;
   }
   vtkNew<vtkImageData> difference;
-  difference->DeepCopy(image);
-  double total = 0.0;
-  int differing = 0;
+  const ImageDifference d = Difference(image, valid, 16.0, difference);
   const int n = a[0] * a[1];
-  for (int y = 0; y < a[1]; ++y)
-  {
-    for (int x = 0; x < a[0]; ++x)
-    {
-      double largest = 0.0;
-      for (int k = 0; k < 3; ++k)
-      {
-        const double d =
-          std::abs(Pixel(image, x, y, k) - valid->GetScalarComponentAsDouble(x, y, 0, k));
-        total += d;
-        largest = std::max(largest, d);
-        difference->SetScalarComponentFromDouble(x, y, 0, k, std::min(255.0, 4.0 * d));
-      }
-      differing += largest > 16.0 ? 1 : 0;
-    }
-  }
-  const double mean = total / (3.0 * n);
   std::printf("baseline %s: mean difference %.3f levels, %d of %d pixels differ by more than 16\n",
-    name.c_str(), mean, differing, n);
-  if (mean <= 1.0 && differing <= n / 500)
+    name.c_str(), d.Mean, d.Above, n);
+  if (d.Mean <= 1.0 && d.Above <= n / 500)
   {
     return 0;
   }
