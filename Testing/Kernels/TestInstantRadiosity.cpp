@@ -301,13 +301,13 @@ TEST(TestInstantRadiosity, CpuAndCudaGatherTheSameVplSetWithinOnePercent)
   const auto tracer = createCpuRayTracer();
   tracer->build(s.positions, s.triangles);
   const Topology topology = Topology::build(s.vertexCount(), s.triangles);
-  const std::vector<Vec3f> shifts = originShifts(s, topology), faceNormals = frontFaceNormals(s);
-  const ir::PathSetup setup = ir::buildPathSetup(s, faceNormals, o);
+  const std::vector<RayOrigin> origins = rayOrigins(s, topology);
+  const std::vector<Vec3f> faceNormals = frontFaceNormals(s);
+  const ir::PathSetup setup = ir::buildPathSetup(s, faceNormals, origins, o);
   const ir::VplSet vpls = ir::traceVplsCpu(setup, *tracer, o.instantRadiosity.interleave);
   ir::GatherParams gp;
   gp.dmin = setup.dmin;
-  gp.eps = rayEpsilon(s);
-  const std::vector<Vec3f> cpu = ir::gatherCpu(s, shifts, vpls, tracer.get(), gp, false);
+  const std::vector<Vec3f> cpu = ir::gatherCpu(s, origins, vpls, tracer.get(), gp, false);
   const std::vector<Vec3f> gpu = ir::gatherCuda(s, vpls, gp, false);
   const float error = test::relativeError(gpu, cpu);
   std::printf("cornell, %zu VPLs: CPU/GPU gather relative RMSE %.5f\n", vpls.count(), error);

@@ -18,7 +18,7 @@ LinkStructure linksOf(const Scene& s, std::uint32_t rays, bool twoSided = false)
   tracer->build(s.positions, s.triangles);
   const LinkOptions o{ rays, twoSided, true, 0 };
   const Topology topo = Topology::build(s.vertexCount(), s.triangles);
-  const LinkHits hits = traceLinkRays(s, originShifts(s, topo), *tracer, o);
+  const LinkHits hits = traceLinkRays(s, rayOrigins(s, topo), *tracer, o);
   return compressLinks(s, hits, frontFaceNormals(s), o);
 }
 
@@ -125,7 +125,7 @@ TEST(TestLinks, RowsOfEveryBandAreWhereTheHitsPutThem)
   tracer->build(s.positions, s.triangles);
   const LinkOptions o{ std::uint32_t(n), true, true, 0 };
   const LinkHits hits =
-    traceLinkRays(s, originShifts(s, Topology::build(nv, s.triangles)), *tracer, o);
+    traceLinkRays(s, rayOrigins(s, Topology::build(nv, s.triangles)), *tracer, o);
   const LinkStructure l = compressLinks(s, hits, frontFaceNormals(s), o);
   ASSERT_EQ(l.transport.rows(), 2 * nv);
   ASSERT_EQ(l.environment.rows(), 2 * nv);

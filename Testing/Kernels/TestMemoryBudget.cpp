@@ -205,10 +205,11 @@ TEST(TestMemoryBudget, LinksBuiltElementByElementAreTheTwoPassLinks)
     tracer->build(s.positions, s.triangles);
     const LinkOptions o{ 64, twoSided, true, 3 };
     const Topology topo = Topology::build(s.vertexCount(), s.triangles);
-    const std::vector<Vec3f> shifts = originShifts(s, topo), faces = frontFaceNormals(s);
-    const LinkStructure twoPass = compressLinks(s, traceLinkRays(s, shifts, *tracer, o), faces, o);
+    const std::vector<RayOrigin> origins = rayOrigins(s, topo);
+    const std::vector<Vec3f> faces = frontFaceNormals(s);
+    const LinkStructure twoPass = compressLinks(s, traceLinkRays(s, origins, *tracer, o), faces, o);
     double msCompress = -1.0;
-    const LinkStructure fused = buildLinks(s, shifts, *tracer, faces, o, {}, &msCompress);
+    const LinkStructure fused = buildLinks(s, origins, *tracer, faces, o, {}, &msCompress);
     EXPECT_GE(msCompress, 0.0);
     EXPECT_EQ(fused.rays, twoPass.rays);
     EXPECT_EQ(fused.rawLinks, twoPass.rawLinks);

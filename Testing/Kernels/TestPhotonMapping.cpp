@@ -99,7 +99,7 @@ TEST(TestPhotonMapping, PhotonsInAClosedBoxCarryTheLightsPower)
   o.bounces = 1;
   o.photonMapping.photons = 20000;
   pm::PhotonMap map;
-  pm::tracePhotons(s, frontFaceNormals(s), *tracer, o, map);
+  pm::tracePhotons(s, frontFaceNormals(s), rayOrigins(s, Topology::build(s.vertexCount(), s.triangles)), *tracer, o, map);
   ASSERT_GT(map.count(), 19000u);
   const Vec3f sum = map.totalFlux(), expected = s.lights[0].intensity * (4.f * kPi * 0.6f);
   for (int c = 0; c < 3; ++c)
@@ -108,7 +108,7 @@ TEST(TestPhotonMapping, PhotonsInAClosedBoxCarryTheLightsPower)
   }
   // Three bounces with Russian roulette: rho + rho^2 + rho^3 of it, within the sampling noise.
   o.bounces = 3;
-  pm::tracePhotons(s, frontFaceNormals(s), *tracer, o, map);
+  pm::tracePhotons(s, frontFaceNormals(s), rayOrigins(s, Topology::build(s.vertexCount(), s.triangles)), *tracer, o, map);
   const double series = 0.6 + 0.36 + 0.216;
   EXPECT_NEAR(map.totalFlux().x / (expected.x / 0.6 * series), 1.0, 0.03);
 }

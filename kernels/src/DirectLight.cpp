@@ -45,12 +45,11 @@ std::vector<float> sampleVisibility(const Light& light, std::size_t count,
 }
 
 DirectLightResult computeDirectLight(const Scene& scene, const Topology& topology,
-  const std::vector<Vec3f>& shifts, const RayTracer& tracer, bool twoSided, bool oversampling,
+  const std::vector<RayOrigin>& origins, const RayTracer& tracer, bool twoSided, bool oversampling,
   const ProgressCallback& progress)
 {
   const Elements elements{ scene.vertexCount(), twoSided };
   const std::size_t nv = scene.vertexCount();
-  const float eps = rayEpsilon(scene);
   DirectLightResult result;
   result.irradiance.assign(elements.count(), Vec3f(0.f));
   std::atomic<std::uint64_t> rays{ 0 };
@@ -89,7 +88,7 @@ DirectLightResult computeDirectLight(const Scene& scene, const Topology& topolog
       const auto lit = [&unshadowed](Index v) { return maxComponent(unshadowed[v]) > 0.f; };
       const std::vector<float> vertexVisible = sampleVisibility(light, nv,
         [&](std::size_t v, Vec3f& o) {
-          o = vertexLightOrigin(scene.positions[v], scene.normals[v], shifts[v], sign, eps);
+          o = vertexLightOrigin(scene.positions[v], scene.normals[v], origins[v], sign);
           return lit(Index(v));
         },
         tracer, rays, "light links", passProgress());
@@ -100,7 +99,7 @@ DirectLightResult computeDirectLight(const Scene& scene, const Topology& topolog
           [&](std::size_t e, Vec3f& o) {
             const auto [a, b] = topology.edges[e];
             o = edgeLightOrigin(scene.positions[a], scene.positions[b], scene.normals[a],
-              scene.normals[b], shifts[a], shifts[b], sign, eps);
+              scene.normals[b], origins[a], origins[b], sign);
             return lit(a) || lit(b);
           },
           tracer, rays, "light links (one-ring)", passProgress());

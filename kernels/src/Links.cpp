@@ -58,25 +58,6 @@ std::vector<Vec3f> environmentTexelRadiance(const Environment& env)
   return radiance;
 }
 
-float rayEpsilon(const Scene& scene)
-{
-  return 1e-4f * boundingDiagonal(scene.positions);
-}
-
-std::vector<Vec3f> originShifts(const Scene& scene, const Topology& topology)
-{
-  std::vector<Vec3f> shifts(scene.vertexCount());
-  parallelRanges(shifts.size(), 4096, [&](std::size_t first, std::size_t last) {
-    for (std::size_t v = first; v < last; ++v)
-    {
-      const Index begin = topology.neighbourOffsets[v], end = topology.neighbourOffsets[v + 1];
-      shifts[v] = originShift(scene.positions.data(), scene.positions[v], scene.normals[v],
-        topology.neighbours.data() + begin, end - begin);
-    }
-  });
-  return shifts;
-}
-
 std::vector<Vec3f> frontFaceNormals(const Scene& scene)
 {
   std::vector<Vec3f> normals(scene.triangleCount());
@@ -93,14 +74,14 @@ namespace
 {
 /// Traces element x's rays - the shared directions in its twisted frame, from its shifted
 /// origin - into `hits` (rays.size() of them).
-void traceElement(const Scene& scene, const std::vector<Vec3f>& shifts, const std::vector<Vec3f>& dirs,
-  const Elements& elements, const LinkOptions& options, float eps, std::size_t x,
+void traceElement(const Scene& scene, const std::vector<RayOrigin>& origins, const std::vector<Vec3f>& dirs,
+  const Elements& elements, const LinkOptions& options, std::size_t x,
   const RayTracer& tracer, std::vector<Ray>& rays, Hit* hits)
 {
   const Index v = elements.vertexOf(x);
   const Vec3f normal = scene.normals[v] * elements.sideSign(x);
   const Frame frame = vertexFrame(normal, options.twist, options.seed, Index(x));
-  const Vec3f origin = elementRayOrigin(scene.positions[v], normal, shifts[v], eps);
+  const Vec3f origin = elementRayOrigin(scene.positions[v], normal, origins[v]);
   for (std::size_t k = 0; k < rays.size(); ++k)
   {
     rays[k].origin = origin;
@@ -110,22 +91,21 @@ void traceElement(const Scene& scene, const std::vector<Vec3f>& shifts, const st
 }
 }
 
-LinkHits traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
+LinkHits traceLinkRays(const Scene& scene, const std::vector<RayOrigin>& origins,
   const RayTracer& tracer, const LinkOptions& options, const ProgressCallback& progress)
 {
   LinkHits out;
-  traceLinkRays(scene, shifts, tracer, options, out, progress);
+  traceLinkRays(scene, origins, tracer, options, out, progress);
   return out;
 }
 
-void traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
+void traceLinkRays(const Scene& scene, const std::vector<RayOrigin>& origins,
   const RayTracer& tracer, const LinkOptions& options, LinkHits& out,
   const ProgressCallback& progress)
 {
   const std::vector<Vec3f> dirs = makeDirectionSet(options.raysPerVertex);
   const Elements elements{ scene.vertexCount(), options.twoSided };
   const std::size_t n = dirs.size();
-  const float eps = rayEpsilon(scene);
   out.raysPerVertex = options.raysPerVertex;
   // Every hit is overwritten below; a buffer of the right size from the last update is
   // reused as it is (no fill, no fresh pages: that was ~12% of link generation).
@@ -139,7 +119,7 @@ void traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
       std::vector<Ray> rays(n);
       for (std::size_t x = begin; x < end; ++x)
       {
-        traceElement(scene, shifts, dirs, elements, options, eps, x, tracer, rays, &out.hits[x * n]);
+        traceElement(scene, origins, dirs, elements, options, x, tracer, rays, &out.hits[x * n]);
       }
     },
     progress);
@@ -350,14 +330,13 @@ LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
     [&](std::size_t x, std::vector<Hit>&) { return &hits.hits[x * n]; });
 }
 
-LinkStructure buildLinks(const Scene& scene, const std::vector<Vec3f>& shifts,
+LinkStructure buildLinks(const Scene& scene, const std::vector<RayOrigin>& origins,
   const RayTracer& tracer, const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
   const ProgressCallback& progress, double* msCompress)
 {
   const std::vector<Vec3f> dirs = makeDirectionSet(options.raysPerVertex);
   const Elements elements{ scene.vertexCount(), options.twoSided };
   const std::size_t n = dirs.size();
-  const float eps = rayEpsilon(scene);
   std::atomic<std::int64_t> traceNs{ 0 };
   const auto start = std::chrono::steady_clock::now();
   LinkStructure out = linkRows(scene, options.raysPerVertex, faceNormals, options, progress,
@@ -366,7 +345,7 @@ LinkStructure buildLinks(const Scene& scene, const std::vector<Vec3f>& shifts,
       thread_local std::vector<Ray> rays;
       rays.resize(n);
       hits.resize(n);
-      traceElement(scene, shifts, dirs, elements, options, eps, x, tracer, rays, hits.data());
+      traceElement(scene, origins, dirs, elements, options, x, tracer, rays, hits.data());
       traceNs += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t).count();
       return hits.data();
     });

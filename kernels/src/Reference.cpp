@@ -81,7 +81,7 @@ struct Context
   const Scene& scene;
   const RayTracer& tracer;
   const ReferenceOptions& options;
-  float eps = 0.f;
+  std::vector<RayOrigin> origins; ///< per vertex, as the solvers' (rayOrigins)
   bool hasEmission = false;
   bool environmentBlack = true;
   std::vector<Vec3f> frontNormals; ///< per triangle, unit, on the vertex normals' side (frontFaceNormals)
@@ -91,6 +91,7 @@ struct Context
 struct SurfacePoint
 {
   Vec3f position, normal, albedo, emission;
+  float offset = 0.f; ///< of rays leaving it (triangleOffset)
 };
 
 /// Interpolated shading data at a hit; false if the hit is on a blocking (black) back side.
@@ -109,6 +110,7 @@ bool surfaceAt(const Context& ctx, const Ray& ray, const Hit& hit, SurfacePoint&
   if (n == Vec3f(0.f)) // opposing vertex normals cancel: fall back to the face
     n = normalize(ctx.frontNormals[hit.triangle]);
   s.normal = back ? -n : n;
+  s.offset = triangleOffset(ctx.origins.data(), tri);
   s.emission = Vec3f(0.f);
   if (ctx.hasEmission && !back)
     s.emission = scene.emission[a] * w + scene.emission[b] * hit.u + scene.emission[c] * hit.v;
@@ -154,7 +156,7 @@ void gatherDirect(const Context& ctx, Wavefront& wf, std::size_t count, Vec3f& s
     for (std::size_t i = 0; i < count; ++i)
     {
       const SurfacePoint& s = wf.lit[i];
-      if (lightSample(light, s.position, s.normal, s.position + s.normal * ctx.eps,
+      if (lightSample(light, s.position, s.normal, s.position + s.normal * s.offset,
             wf.shadowIrradiance[m], wf.shadows[m]))
         wf.owner[m++] = static_cast<std::uint32_t>(i);
     }
@@ -212,7 +214,7 @@ Vec3f traceChunk(const Context& ctx, Wavefront& wf, std::size_t count)
       Pcg32 rng = wf.rngs[i];
       const float u1 = rng.uniform(), u2 = rng.uniform();
       const Vec3f dir = Frame::fromNormal(s.normal).toWorld(cosineHemisphere(u1, u2));
-      wf.rays[alive] = Ray{ s.position + s.normal * ctx.eps, 0.f, dir, 3.0e38f };
+      wf.rays[alive] = Ray{ s.position + s.normal * s.offset, 0.f, dir, 3.0e38f };
       wf.throughput[alive] = throughput * s.albedo;
       wf.rngs[alive++] = rng;
     }
@@ -224,12 +226,12 @@ Vec3f traceChunk(const Context& ctx, Wavefront& wf, std::size_t count)
 
 /// E_ind at one element: pi/M times the sum of the radiance that M cosine-weighted paths bring.
 Vec3f estimateIndirect(const Context& ctx, Wavefront& wf, const Vec3f& p, const Vec3f& n,
-  std::size_t element)
+  float offset, std::size_t element)
 {
   const std::uint32_t paths = ctx.options.pathsPerVertex;
   const auto strata = static_cast<std::uint32_t>(std::sqrt(static_cast<double>(paths)));
   const Frame frame = Frame::fromNormal(n);
-  const Vec3f origin = p + n * ctx.eps;
+  const Vec3f origin = p + n * offset;
   double total[3] = { 0.0, 0.0, 0.0 };
   for (std::uint32_t start = 0; start < paths; start += kChunk)
   {
@@ -310,17 +312,24 @@ ReferenceSolution solveReference(const Scene& scene, const RayTracer& tracer,
   const ReferenceOptions& options, const ProgressCallback& progress)
 {
   checkScene(scene, options);
-  Context ctx{ scene, tracer, options, 0.f, false, true, {} };
-  ctx.eps = options.rayOffset > 0.f ? options.rayOffset : 1e-4f * boundingDiagonal(scene.positions);
+  Context ctx{ scene, tracer, options, {}, false, true, {} };
   ctx.hasEmission = !scene.emission.empty();
   ctx.environmentBlack = scene.environment.isBlack();
   ctx.frontNormals = frontFaceNormals(scene);
 
   const std::size_t vertices = scene.vertexCount();
   const std::size_t elements = options.twoSided ? 2 * vertices : vertices;
-  // The same in-surface shift of ray origins as the link solver: a vertex in a concave corner
-  // lies in the other surface's plane, and rays starting on that plane leak through it.
-  const std::vector<Vec3f> shifts = originShifts(scene, Topology::build(vertices, scene.triangles));
+  // The same ray origins as the solvers: a vertex in a concave corner lies in the other
+  // surface's plane, and rays starting on that plane leak through it.
+  ctx.origins = rayOrigins(scene, Topology::build(vertices, scene.triangles));
+  if (options.rayOffset > 0.f)
+  {
+    for (RayOrigin& o : ctx.origins)
+    {
+      o.offset = options.rayOffset;
+    }
+  }
+  const std::vector<RayOrigin>& origins = ctx.origins;
   ReferenceSolution result;
   result.direct.resize(elements);
   result.indirect.resize(elements);
@@ -333,9 +342,10 @@ ReferenceSolution solveReference(const Scene& scene, const RayTracer& tracer,
         const std::size_t v = e % vertices;
         const Vec3f n = e < vertices ? normalize(scene.normals[v]) : -normalize(scene.normals[v]);
         const Vec3f& p = scene.positions[v];
-        result.direct[e] = directIrradiance(scene, p, n, tracer, ctx.eps, shifts[v]);
+        const RayOrigin& o = origins[v];
+        result.direct[e] = directIrradiance(scene, p, n, tracer, o.offset, o.shift);
         result.indirect[e] =
-          maxSegments(ctx) > 0 ? estimateIndirect(ctx, wf, p + shifts[v], n, e) : Vec3f(0.f);
+          maxSegments(ctx) > 0 ? estimateIndirect(ctx, wf, p + o.shift, n, o.offset, e) : Vec3f(0.f);
       }
     },
     progress);

@@ -18,14 +18,13 @@ namespace
 std::vector<RTCRayHit> linkRays(const Scene& scene, const SolverOptions& o)
 {
   const std::vector<Vec3f> dirs = makeDirectionSet(o.raysPerVertex);
-  const std::vector<Vec3f> shifts = originShifts(scene, Topology::build(scene.vertexCount(), scene.triangles));
-  const float eps = rayEpsilon(scene);
+  const std::vector<RayOrigin> origins = rayOrigins(scene, Topology::build(scene.vertexCount(), scene.triangles));
   std::vector<RTCRayHit> rays(scene.vertexCount() * dirs.size());
   parallelRanges(scene.vertexCount(), 64, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v)
     {
       const Frame f = vertexFrame(scene.normals[v], o.twist, o.seed, Index(v));
-      const Vec3f org = elementRayOrigin(scene.positions[v], scene.normals[v], shifts[v], eps);
+      const Vec3f org = elementRayOrigin(scene.positions[v], scene.normals[v], origins[v]);
       for (std::size_t k = 0; k < dirs.size(); ++k)
       {
         RTCRayHit& r = rays[v * dirs.size() + k];

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "linkgi/Parallel.h"
+#include "linkgi/RayOrigin.h"
 #include "linkgi/RayTracer.h"
 #include "linkgi/Topology.h"
 
@@ -73,26 +74,6 @@ LINKGI_HOST_DEVICE inline Ray shadowRay(const Light& light, const Vec3f& origin,
   return r;
 }
 
-/// Shadow-ray origin of vertex v's sample on side `sign` (+1 front, -1 back).
-LINKGI_HOST_DEVICE inline Vec3f vertexLightOrigin(const Vec3f& p, const Vec3f& n, const Vec3f& shift,
-  float sign, float eps)
-{
-  return p + n * (sign * eps) + shift;
-}
-
-/// Shadow-ray origin of the midpoint sample of edge (a, b): offset along the mean normal
-/// (a's normal where the two cancel) and by the mean origin shift.
-LINKGI_HOST_DEVICE inline Vec3f edgeLightOrigin(const Vec3f& pa, const Vec3f& pb, const Vec3f& na,
-  const Vec3f& nb, const Vec3f& shiftA, const Vec3f& shiftB, float sign, float eps)
-{
-  Vec3f n = normalize(na + nb);
-  if (dot(n, n) == 0.f)
-  {
-    n = na;
-  }
-  return (pa + pb) * 0.5f + n * (sign * eps) + (shiftA + shiftB) * 0.5f;
-}
-
 /// Hat-weighted visibility of vertex v: its own sample (weight 1) and the midpoints of its
 /// incident edges (weight 1/2 each) when oversampling.
 LINKGI_HOST_DEVICE inline float oversampledVisibility(Index v, const float* vertexVisible,
@@ -122,6 +103,6 @@ struct DirectLightResult
 /// one-ring - so a shadow edge crossing the one-ring darkens the vertex partially instead of
 /// snapping on or off. Edge samples are shared by both end points.
 DirectLightResult computeDirectLight(const Scene& scene, const Topology& topology,
-  const std::vector<Vec3f>& shifts, const RayTracer& tracer, bool twoSided, bool oversampling,
+  const std::vector<RayOrigin>& origins, const RayTracer& tracer, bool twoSided, bool oversampling,
   const ProgressCallback& progress = {});
 }

@@ -3,6 +3,7 @@
 
 #include "linkgi/NoFillVector.h"
 #include "linkgi/Parallel.h"
+#include "linkgi/RayOrigin.h"
 #include "linkgi/RayTracer.h"
 #include "linkgi/Scene.h"
 #include "linkgi/Topology.h"
@@ -154,35 +155,6 @@ LINKGI_HOST_DEVICE inline RayLinks linksOfRay(const Hit& h, const Vec3f& directi
   return r;
 }
 
-/// Where element rays start: off the surface along the side's normal, and shifted towards
-/// the one-ring centroid (see originShifts).
-LINKGI_HOST_DEVICE inline Vec3f elementRayOrigin(const Vec3f& position, const Vec3f& sideNormal,
-  const Vec3f& shift, float eps)
-{
-  return position + sideNormal * eps + shift;
-}
-
-/// The shift of a vertex's ray origins (see originShifts): 1% of the way to the centroid of
-/// its one-ring `ring[0, ringSize)`, in its tangent plane.
-LINKGI_HOST_DEVICE inline Vec3f originShift(const Vec3f* positions, const Vec3f& position,
-  const Vec3f& normal, const Index* ring, Index ringSize)
-{
-  constexpr float kShift = 0.01f;
-  if (ringSize == 0)
-  {
-    return Vec3f(0.f);
-  }
-  Vec3f centroid(0.f);
-  for (Index i = 0; i < ringSize; ++i)
-  {
-    centroid += positions[ring[i]];
-  }
-  centroid = centroid / float(ringSize);
-  Vec3f toCentroid = centroid - position;
-  toCentroid -= normal * dot(normal, toCentroid); // stay in the tangent plane
-  return toCentroid * kShift;
-}
-
 /// A triangle's front-side normal (see frontFaceNormals).
 LINKGI_HOST_DEVICE inline Vec3f frontFaceNormal(const Vec3f* positions, const Vec3f* normals, const Triangle& t)
 {
@@ -196,23 +168,15 @@ LINKGI_HOST_DEVICE inline Vec3f frontFaceNormal(const Vec3f* positions, const Ve
 /// colour, for a constant environment; colour x texel for a lat-long map).
 std::vector<Vec3f> environmentTexelRadiance(const Environment& environment);
 
-/// Ray offset along the normal used throughout: a small fraction of the scene size.
-float rayEpsilon(const Scene& scene);
-
-/// Per vertex, a tiny shift of ray origins towards the centroid of its one-ring. A vertex in
-/// a concave corner (floor meeting a wall) lies exactly in the other surface's plane, so
-/// half its rays would otherwise start on that plane and leak through it.
-std::vector<Vec3f> originShifts(const Scene& scene, const Topology& topology);
-
 /// Front-side normal of each triangle: the winding normal, flipped where it disagrees with
 /// the sum of its vertex normals (so inconsistent winding does not turn surfaces black).
 std::vector<Vec3f> frontFaceNormals(const Scene& scene);
 
 /// Stage 1: shoots raysPerVertex rays from every element.
-LinkHits traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
+LinkHits traceLinkRays(const Scene& scene, const std::vector<RayOrigin>& origins,
   const RayTracer& tracer, const LinkOptions& options, const ProgressCallback& progress = {});
 /// The same into `out`, whose hit buffer is reused when it already has the right size.
-void traceLinkRays(const Scene& scene, const std::vector<Vec3f>& shifts,
+void traceLinkRays(const Scene& scene, const std::vector<RayOrigin>& origins,
   const RayTracer& tracer, const LinkOptions& options, LinkHits& out,
   const ProgressCallback& progress = {});
 
@@ -226,7 +190,7 @@ LinkStructure compressLinks(const Scene& scene, const LinkHits& hits,
 /// at once, so no buffer holds every hit (raysPerVertex x 16 bytes per element) and the
 /// compressed rows are kept at their size. The same rows as compressLinks(traceLinkRays()).
 /// `msCompress`, when given, receives the compression's share of the wall time.
-LinkStructure buildLinks(const Scene& scene, const std::vector<Vec3f>& shifts,
+LinkStructure buildLinks(const Scene& scene, const std::vector<RayOrigin>& origins,
   const RayTracer& tracer, const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
   const ProgressCallback& progress = {}, double* msCompress = nullptr);
 }

@@ -26,7 +26,8 @@ struct ReferenceOptions
   /// not emit: emission is front-only), and every vertex gets a back element too.
   bool twoSided = false;
   /// Ray origins are moved this far along the normal to avoid self-hits.
-  /// 0 (default): 1e-4 times the bounding-box diagonal of the scene.
+  /// 0 (default): each vertex's offset as the solvers take it (linkgi::rayOrigins: 1% of
+  /// its shortest edge, at most 1e-4 of the scene's diagonal).
   float rayOffset = 0.f;
 };
 
@@ -43,8 +44,8 @@ struct ReferenceSolution
 ///   spot:        the same times cos(angle to axis)^spotExponent inside the cone of half
 ///                angle coneAngleDegrees, 0 outside
 ///   directional: V * intensity * max(0, dot(n, -direction))
-/// V comes from one shadow ray whose origin is p + eps * n + shift (`shift`: the in-surface
-/// origin shift of linkgi::originShifts for vertices, zero elsewhere); for point and spot
+/// V comes from one shadow ray whose origin is p + eps * n + shift (for a vertex, its
+/// linkgi::rayOrigins offset and shift; zero shift elsewhere); for point and spot
 /// lights the ray stops just short of the light (linkgi::shadowRay).
 Vec3f lightIrradiance(const Light& light, const Vec3f& p, const Vec3f& n,
   const RayTracer& tracer, float eps, const Vec3f& shift = {});

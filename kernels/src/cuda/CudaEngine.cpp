@@ -309,7 +309,7 @@ void Engine::updateGeometry(const engine::StageContext& c)
   const Index nv = Index(s.vertexCount()), nt = Index(s.triangleCount());
   if (mask.positions)
   {
-    eps = rayEpsilon(s); // a pass over the positions: once per geometry, not per light change
+    eps = rayEpsilon(s); // the ray origins' bound: once per geometry, not per light change
   }
   // The input goes up once, to the first partition, through pinned memory; the others copy
   // it from there (one host copy however many GPUs).
@@ -363,10 +363,10 @@ void Engine::updateGeometry(const engine::StageContext& c)
       }
       if (mask.geometry)
       {
-        d.shifts.resize(nv);
+        d.origins.resize(nv);
         d.faceNormals.resize(nt);
-        originShifts(d.positions.data(), d.normals.data(), d.topology.neighbourOffsets.data(),
-          d.topology.neighbours.data(), nv, d.shifts.data(), d.stream);
+        rayOrigins(d.positions.data(), d.normals.data(), d.topology.neighbourOffsets.data(),
+          d.topology.neighbours.data(), nv, eps, d.origins.data(), d.stream);
         frontFaceNormals(d.positions.data(), d.normals.data(), d.triangles.data(), nt, d.faceNormals.data(), d.stream);
       }
       c.part("Topology", msSince(t)); // the host's part: queueing uploads and kernels
@@ -403,7 +403,7 @@ void Engine::updateGeometry(const engine::StageContext& c)
     LINKGI_CUDA_CHECK(cudaEventRecord(d0.ready, d0.stream));
     for (std::size_t i = 1; i < devices.size(); ++i)
     {
-      copyFrom(d0, *devices[i], &EngineDevice::shifts);
+      copyFrom(d0, *devices[i], &EngineDevice::origins);
       copyFrom(d0, *devices[i], &EngineDevice::faceNormals);
     }
   }
@@ -418,7 +418,7 @@ void Engine::computeDirectLight(const engine::StageContext& c)
 {
   EngineDevice& d = *devices[0];
   d.use();
-  queueDirectLight(c.scene, c.options, { d.bvh, d.positions, d.normals, d.shifts, d.topology, edgeCount, eps },
+  queueDirectLight(c.scene, c.options, { d.bvh, d.positions, d.normals, d.origins, d.topology, edgeCount },
     { d.lights, d.vertexVisible, d.edgeVisible, d.direct, d.counter }, d.stream);
   // No wait here: the bounces queue behind the light links, the ray count arrives with
   // their outputs, and the other partitions copy E_d after this event.

@@ -89,7 +89,7 @@ private:
 
   std::vector<std::unique_ptr<EngineDevice>> devices;
   Index edgeCount = 0; ///< of the topology on the first partition
-  float eps = 0.f; ///< rayEpsilon of the positions, set by the geometry stage (not per stage)
+  float eps = 0.f; ///< rayEpsilon of the positions (the ray origins' bound), set by the geometry stage
   std::string name;
   int physicalDevices = 0;
   /// Every partition is the same kind of GPU (the same model, or shares of one): the next

@@ -174,7 +174,7 @@ void linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
   p.trace.bvh = d.bvh.view();
   p.trace.positions = d.positions.data();
   p.trace.normals = d.normals.data();
-  p.trace.shifts = d.shifts.data();
+  p.trace.origins = d.origins.data();
   p.trace.directions = d.directions.data();
   p.trace.firstElement = first;
   p.trace.elementCount = count;
@@ -231,7 +231,7 @@ void linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
 
 namespace
 {
-LinkJob makeJob(const Scene& s, const SolverOptions& options, float eps)
+LinkJob makeJob(const Scene& s, const SolverOptions& options)
 {
   const std::size_t elements = Elements{ s.vertexCount(), options.twoSided }.count();
   if (elements >= kInvalidIndex)
@@ -246,7 +246,6 @@ LinkJob makeJob(const Scene& s, const SolverOptions& options, float eps)
   t.vertexCount = Index(s.vertexCount());
   t.twist = options.twist;
   t.seed = options.seed;
-  t.eps = eps;
   job.params.twoSided = options.twoSided;
   job.params.envWidth = s.environment.hasTexture() ? s.environment.width : 0;
   job.params.envHeight = s.environment.hasTexture() ? s.environment.height : 0;
@@ -377,7 +376,7 @@ void Engine::buildLinks(const engine::StageContext& c)
 {
   const SolverOptions& options = c.options;
   const auto start = std::chrono::steady_clock::now();
-  const LinkJob job = makeJob(c.scene, options, eps);
+  const LinkJob job = makeJob(c.scene, options);
   const Index ne = job.elements, n = options.raysPerVertex;
   const std::vector<Vec3f> dirs = makeDirectionSet(n);
   std::vector<EngineDevice*> all;

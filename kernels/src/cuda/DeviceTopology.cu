@@ -138,14 +138,14 @@ __global__ void offsetsKernel(const std::uint64_t* unique, const Offset* counts,
   }
 }
 
-__global__ void shiftsKernel(const Vec3f* positions, const Vec3f* normals, const Index* offsets,
-  const Index* neighbours, Index vertexCount, Vec3f* shifts)
+__global__ void originsKernel(const Vec3f* positions, const Vec3f* normals, const Index* offsets,
+  const Index* neighbours, Index vertexCount, float bound, RayOrigin* origins)
 {
   const Index v = blockIdx.x * blockDim.x + threadIdx.x;
   if (v < vertexCount)
   {
     const Index begin = offsets[v];
-    shifts[v] = originShift(positions, positions[v], normals[v], neighbours + begin, offsets[v + 1] - begin);
+    origins[v] = rayOrigin(positions, positions[v], normals[v], neighbours + begin, offsets[v + 1] - begin, bound);
   }
 }
 
@@ -231,14 +231,14 @@ void DeviceTopology::build(const Triangle* triangles, Index triangleCount, Index
   LINKGI_CUDA_CHECK(cudaMemcpyAsync(counts, deviceCounts.data(), 2 * sizeof(Offset), cudaMemcpyDeviceToHost, stream));
 }
 
-void originShifts(const Vec3f* positions, const Vec3f* normals, const Index* neighbourOffsets,
-  const Index* neighbours, Index vertexCount, Vec3f* shifts, cudaStream_t stream)
+void rayOrigins(const Vec3f* positions, const Vec3f* normals, const Index* neighbourOffsets,
+  const Index* neighbours, Index vertexCount, float bound, RayOrigin* origins, cudaStream_t stream)
 {
   if (vertexCount)
   {
-    shiftsKernel<<<blocksFor(vertexCount), kThreads, 0, stream>>>(positions, normals, neighbourOffsets,
-      neighbours, vertexCount, shifts);
-    LINKGI_CUDA_CHECK_LAUNCH("shiftsKernel");
+    originsKernel<<<blocksFor(vertexCount), kThreads, 0, stream>>>(positions, normals, neighbourOffsets,
+      neighbours, vertexCount, bound, origins);
+    LINKGI_CUDA_CHECK_LAUNCH("originsKernel");
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include "GPUBuffer.h"
 
+#include "linkgi/RayOrigin.h"
 #include "linkgi/Scene.h"
 
 namespace linkgi::cuda
@@ -36,9 +37,10 @@ private:
   Offset* counts = nullptr; ///< pinned: neighbour entries, edges
 };
 
-/// shifts[v] = originShift(...) over v's ring (Links.h), as the CPU computes it.
-void originShifts(const Vec3f* positions, const Vec3f* normals, const Index* neighbourOffsets,
-  const Index* neighbours, Index vertexCount, Vec3f* shifts, cudaStream_t stream);
+/// origins[v] = rayOrigin(...) over v's ring with `bound` = rayEpsilon (RayOrigin.h), as
+/// the CPU computes it.
+void rayOrigins(const Vec3f* positions, const Vec3f* normals, const Index* neighbourOffsets,
+  const Index* neighbours, Index vertexCount, float bound, RayOrigin* origins, cudaStream_t stream);
 /// out[t] = frontFaceNormal(...) (Links.h).
 void frontFaceNormals(const Vec3f* positions, const Vec3f* normals, const Triangle* triangles,
   Index triangleCount, Vec3f* out, cudaStream_t stream);

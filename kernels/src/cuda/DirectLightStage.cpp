@@ -30,13 +30,12 @@ void queueDirectLight(const Scene& s, const SolverOptions& options, const Direct
   p.bvh = mesh.bvh.view();
   p.positions = mesh.positions.data();
   p.normals = mesh.normals.data();
-  p.shifts = mesh.shifts.data();
+  p.origins = mesh.origins.data();
   p.edges = mesh.topology.edges.data();
   p.neighbourOffsets = mesh.topology.neighbourOffsets.data();
   p.vertexEdges = mesh.topology.vertexEdges.data();
   p.vertexCount = nv;
   p.edgeCount = mesh.edgeCount;
-  p.eps = mesh.eps;
   p.oversampling = options.lightOversampling;
   for (int side = 0; side < (options.twoSided ? 2 : 1); ++side)
   {

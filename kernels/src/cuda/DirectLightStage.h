@@ -17,10 +17,9 @@ struct DirectLightMesh
   const DeviceBvh& bvh;
   const GPUBuffer<Vec3f>& positions;
   const GPUBuffer<Vec3f>& normals;
-  const GPUBuffer<Vec3f>& shifts; ///< ray-origin shifts per vertex
+  const GPUBuffer<RayOrigin>& origins; ///< where each vertex's rays start
   const DeviceTopology& topology;
   Index edgeCount; ///< the topology's, read once it is valid on the host
-  float eps;       ///< rayEpsilon of the scene
 };
 
 /// The backend's buffers the stage fills; kept between updates so equal sizes allocate nothing.

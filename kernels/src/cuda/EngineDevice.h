@@ -75,7 +75,8 @@ struct EngineDevice
   unsigned long long* tracedLightRays = nullptr;
 
   // Geometry (every partition).
-  GPUBuffer<Vec3f> positions, normals, shifts, faceNormals, directions;
+  GPUBuffer<Vec3f> positions, normals, faceNormals, directions;
+  GPUBuffer<RayOrigin> origins;
   GPUBuffer<Triangle> triangles;
   DeviceBvh bvh;
   double bvhBuildCost = 0.0; ///< DeviceBvh::cost() right after the last build

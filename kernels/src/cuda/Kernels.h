@@ -7,6 +7,7 @@
 #include "CudaCheck.h"
 
 #include "linkgi/Bvh.h"
+#include "linkgi/RayOrigin.h"
 #include "linkgi/Scene.h"
 
 #include <cuda_runtime_api.h>
@@ -72,13 +73,12 @@ struct LinkTraceParams
   BvhView bvh;
   const Vec3f* positions = nullptr;
   const Vec3f* normals = nullptr;
-  const Vec3f* shifts = nullptr;
+  const RayOrigin* origins = nullptr;
   const Vec3f* directions = nullptr; ///< raysPerVertex local directions
   Index raysPerVertex = 0;
   Index vertexCount = 0;
   bool twist = true;
   std::uint32_t seed = 0;
-  float eps = 0.f;
   Index firstElement = 0; ///< the batch: elements [firstElement, firstElement + elementCount)
   Index elementCount = 0;
 };
@@ -131,13 +131,12 @@ struct DirectLightParams
   BvhView bvh;
   const Vec3f* positions = nullptr;
   const Vec3f* normals = nullptr;
-  const Vec3f* shifts = nullptr;
+  const RayOrigin* origins = nullptr;
   const Index* edges = nullptr; ///< pairs (a, b)
   const Index* neighbourOffsets = nullptr;
   const Index* vertexEdges = nullptr;
   Index vertexCount = 0;
   Index edgeCount = 0;
-  float eps = 0.f;
   bool oversampling = true;
 };
 /// Adds the shadowed irradiance of lights[0, lightCount) (device memory) on one side (sign

@@ -40,7 +40,7 @@ __global__ void shadowSamplesKernel(DirectLightParams p, const Light* lights, fl
     if (lit(p, light, s, sign, e))
     {
       visible = visibility(p.bvh, light,
-        vertexLightOrigin(p.positions[s], p.normals[s], p.shifts[s], sign, p.eps));
+        vertexLightOrigin(p.positions[s], p.normals[s], p.origins[s], sign));
       traced = true;
     }
     vertexVisible[s] = visible;
@@ -54,7 +54,7 @@ __global__ void shadowSamplesKernel(DirectLightParams p, const Light* lights, fl
     if (lit(p, light, a, sign, ea) | lit(p, light, b, sign, eb))
     {
       visible = visibility(p.bvh, light, edgeLightOrigin(p.positions[a], p.positions[b],
-        p.normals[a], p.normals[b], p.shifts[a], p.shifts[b], sign, p.eps));
+        p.normals[a], p.normals[b], p.origins[a], p.origins[b], sign));
       traced = true;
     }
     edgeVisible[edge] = visible;

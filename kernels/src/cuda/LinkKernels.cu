@@ -39,7 +39,7 @@ __global__ void __launch_bounds__(kThreads, 6) traceLinksKernel(LinkTraceParams 
   const Vec3f normal = p.normals[v] * (x < p.vertexCount ? 1.f : -1.f);
   const Frame frame = vertexFrame(normal, p.twist, p.seed, x);
   Ray ray;
-  ray.origin = elementRayOrigin(p.positions[v], normal, p.shifts[v], p.eps);
+  ray.origin = elementRayOrigin(p.positions[v], normal, p.origins[v]);
   ray.direction = frame.toWorld(p.directions[k]);
   Hit h;
   bvh::traverse<false>(p.bvh, ray, h);

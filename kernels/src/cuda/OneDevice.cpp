@@ -36,10 +36,10 @@ void DeviceMesh::update(const Scene& s, Changes changes, cudaStream_t stream, So
   {
     topology.build(triangles.data(), triangleCount, vertexCount, stream);
   }
-  shifts.resize(vertexCount);
+  origins.resize(vertexCount);
   faceNormals.resize(triangleCount);
-  originShifts(positions.data(), normals.data(), topology.neighbourOffsets.data(),
-    topology.neighbours.data(), vertexCount, shifts.data(), stream);
+  rayOrigins(positions.data(), normals.data(), topology.neighbourOffsets.data(),
+    topology.neighbours.data(), vertexCount, extent.eps, origins.data(), stream);
   frontFaceNormals(positions.data(), normals.data(), triangles.data(), triangleCount,
     faceNormals.data(), stream);
   if (changes & kTopology)
@@ -115,7 +115,7 @@ void DeviceDirectLight::queue(const Scene& scene, const SolverOptions& options, 
   unsigned long long* pinnedCount, cudaStream_t stream)
 {
   queueDirectLight(scene, options,
-    { mesh.bvh, mesh.positions, mesh.normals, mesh.shifts, mesh.topology, mesh.topology.edgeCount(), mesh.extent.eps },
+    { mesh.bvh, mesh.positions, mesh.normals, mesh.origins, mesh.topology, mesh.topology.edgeCount() },
     { lights, vertexVisible, edgeVisible, direct, counter }, stream);
   LINKGI_CUDA_CHECK(cudaMemcpyAsync(pinnedCount, counter.data(), sizeof(unsigned long long), cudaMemcpyDeviceToHost,
     stream));

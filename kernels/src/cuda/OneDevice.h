@@ -18,10 +18,11 @@
 
 namespace linkgi::cuda
 {
-/// The mesh on the GPU: arrays, topology, shifts, face normals and BVH.
+/// The mesh on the GPU: arrays, topology, ray origins, face normals and BVH.
 struct DeviceMesh
 {
-  GPUBuffer<Vec3f> positions, normals, shifts, faceNormals;
+  GPUBuffer<Vec3f> positions, normals, faceNormals;
+  GPUBuffer<RayOrigin> origins;
   GPUBuffer<Triangle> triangles;
   DeviceTopology topology;
   DeviceBvh bvh;

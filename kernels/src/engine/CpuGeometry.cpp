@@ -16,7 +16,7 @@ void CpuGeometry::update(const StageContext& c)
   {
     topology = Topology::build(s.vertexCount(), s.triangles);
   }
-  shifts = originShifts(s, topology);
+  origins = rayOrigins(s, topology);
   faceNormals = frontFaceNormals(s);
   c.part("Topology", msSince(start));
   if (!tracer)

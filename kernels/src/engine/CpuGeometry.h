@@ -1,9 +1,10 @@
-// What every CPU method's geometry stage keeps: one-ring topology, ray-origin shifts, front
+// What every CPU method's geometry stage keeps: one-ring topology, ray origins, front
 // face normals and the ray tracer, brought up to date with the changes of an update.
 #pragma once
 
 #include "engine/Pipeline.h"
 
+#include "linkgi/RayOrigin.h"
 #include "linkgi/RayTracer.h"
 #include "linkgi/Topology.h"
 
@@ -13,7 +14,8 @@ struct CpuGeometry
 {
   std::unique_ptr<RayTracer> tracer;
   Topology topology;
-  std::vector<Vec3f> shifts, faceNormals;
+  std::vector<RayOrigin> origins;
+  std::vector<Vec3f> faceNormals;
 
   /// Rebuilds the topology on a topology change, the shifts and face normals always, and
   /// builds (topology) or refits (positions) the tracer; records the part "Topology" and

@@ -9,7 +9,7 @@ namespace linkgi::ir
 /// The stages, in the order of IrMethod.cpp's table.
 enum Stage : std::size_t
 {
-  kGeometryStage,  ///< topology, ray-origin shifts, face normals, acceleration structure
+  kGeometryStage,  ///< topology, ray origins, face normals, acceleration structure
   kProxyStage,     ///< the coarse visibility proxy (nothing when proxy visibility is off)
   kVplStage,       ///< light paths from every source: the VPL set
   kLightLinkStage, ///< shadow rays to the point, spot and directional lights: E_d
@@ -35,7 +35,7 @@ VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32
 /// against `visibility` (the mesh, or the proxy when params.proxyMargin > 0). `rays` gets
 /// the shadow rays traced. With `rows` (one flag per element), only those elements gather;
 /// the others are zero.
-std::vector<Vec3f> gatherCpu(const Scene& scene, const std::vector<Vec3f>& shifts,
+std::vector<Vec3f> gatherCpu(const Scene& scene, const std::vector<RayOrigin>& origins,
   const VplSet& vpls, const RayTracer* visibility, const GatherParams& params, bool twoSided,
   std::uint64_t* rays = nullptr, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 

@@ -51,7 +51,7 @@ VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32
   return packVpls(slots, counts, slotsPerPath, subsets);
 }
 
-std::vector<Vec3f> gatherCpu(const Scene& s, const std::vector<Vec3f>& shifts, const VplSet& set,
+std::vector<Vec3f> gatherCpu(const Scene& s, const std::vector<RayOrigin>& origins, const VplSet& set,
   const RayTracer* visibility, const GatherParams& gp, bool twoSided, std::uint64_t* rays,
   const ProgressCallback& progress, const std::uint8_t* rows)
 {
@@ -73,15 +73,15 @@ std::vector<Vec3f> gatherCpu(const Scene& s, const std::vector<Vec3f>& shifts, c
       const Index v = elements.vertexOf(e);
       const float sign = elements.sideSign(e);
       const Vec3f n = s.normals[v] * sign;
-      const Vec3f x = s.positions[v] + shifts[v];
-      const Vec3f origin = vertexLightOrigin(s.positions[v], s.normals[v], shifts[v], sign, gp.eps);
+      const Vec3f x = s.positions[v] + origins[v].shift;
+      const Vec3f origin = vertexLightOrigin(s.positions[v], s.normals[v], origins[v], sign);
       const std::uint32_t r = vertexSubset(v, subsets, gp.seed);
       batch.clear();
       contribution.clear();
       for (std::uint32_t k = set.subsetOffsets[r]; k < set.subsetOffsets[r + 1]; ++k)
       {
         Ray ray;
-        const Vec3f e_k = vplIrradiance(set.vpls[k], x, origin, n, gp.dmin, gp.eps, ray);
+        const Vec3f e_k = vplIrradiance(set.vpls[k], x, origin, n, gp.dmin, ray);
         if (maxComponent(e_k) > 0.f && (gp.proxyMargin <= 0.f || proxyShadowRay(ray, gp.proxyMargin)))
         {
           batch.push_back(ray);
@@ -136,7 +136,7 @@ public:
       case kVplStage:
         return traceVpls(c);
       case kLightLinkStage:
-        direct.stage() = computeDirectLight(c.scene, geometry.topology, geometry.shifts,
+        direct.stage() = computeDirectLight(c.scene, geometry.topology, geometry.origins,
           *geometry.tracer, c.options.twoSided, c.options.lightOversampling, c.progress);
         return;
       case kGatherStage:
@@ -196,7 +196,7 @@ private:
 
   void traceVpls(const StageContext& c)
   {
-    const PathSetup setup = buildPathSetup(c.scene, geometry.faceNormals, c.options);
+    const PathSetup setup = buildPathSetup(c.scene, geometry.faceNormals, geometry.origins, c.options);
     vpls.stage() = traceVplsCpu(setup, *geometry.tracer, c.options.instantRadiosity.interleave, c.progress);
   }
 
@@ -205,7 +205,6 @@ private:
     const VplSet& set = vpls.now();
     GatherParams gp;
     gp.dmin = c.options.instantRadiosity.clampDistance * boundingDiagonal(c.scene.positions);
-    gp.eps = rayEpsilon(c.scene);
     gp.proxyMargin = c.options.instantRadiosity.proxyVisibility ? proxyMargin : 0.f;
     gp.seed = c.options.seed;
     const RayTracer* visibility = gp.proxyMargin > 0.f ? proxyTracer.get() : geometry.tracer.get();
@@ -213,7 +212,7 @@ private:
     // that the smoothing across partition boundaries sees its neighbours.
     const std::uint8_t* rows = ownRows(c.options, Elements{ c.scene.vertexCount(), c.options.twoSided }.count());
     Gathered& out = gathered.stage();
-    out.irradiance = gatherCpu(c.scene, geometry.shifts, set, visibility, gp, c.options.twoSided, &out.rays,
+    out.irradiance = gatherCpu(c.scene, geometry.origins, set, visibility, gp, c.options.twoSided, &out.rays,
       c.progress, rows);
     if (rows)
     {

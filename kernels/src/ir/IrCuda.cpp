@@ -66,7 +66,7 @@ gpu::GatherLaunch gatherLaunch(const DeviceMesh& mesh, const DeviceVpls& vpls, B
   g.visibility = visibility;
   g.positions = mesh.positions.data();
   g.normals = mesh.normals.data();
-  g.shifts = mesh.shifts.data();
+  g.origins = mesh.origins.data();
   g.vertexCount = mesh.vertexCount;
   g.twoSided = twoSided;
   g.vpls = vpls.vpls.data();
@@ -144,7 +144,7 @@ private:
   void traceVpls(const StageContext& c)
   {
     const Scene& s = c.scene;
-    PathSetup setup = buildPathSetup(s, {}, c.options, &mesh.extent);
+    PathSetup setup = buildPathSetup(s, {}, {}, c.options, &mesh.extent);
     // Instant radiosity lights mirrors and glass as diffuse surfaces (warned).
     PathScene view = pathScene.upload(s, setup, c.changes, mesh, false, stream);
     const std::size_t found = gpu::traceAllPaths(view, mesh.bvh.view(), setup.targetVpls, paths,
@@ -164,7 +164,6 @@ private:
     const Elements elements{ c.scene.vertexCount(), c.options.twoSided };
     GatherParams gp;
     gp.dmin = c.options.instantRadiosity.clampDistance * mesh.extent.diagonal;
-    gp.eps = mesh.extent.eps;
     gp.proxyMargin = c.options.instantRadiosity.proxyVisibility ? proxyMargin : 0.f;
     gp.seed = c.options.seed;
     const BvhView visibility = gp.proxyMargin > 0.f

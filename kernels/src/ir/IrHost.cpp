@@ -55,7 +55,8 @@ SceneExtent sceneExtent(const Scene& s)
   return e;
 }
 
-PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals, const SolverOptions& o,
+PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals,
+  const std::vector<RayOrigin>& origins, const SolverOptions& o,
   const SceneExtent* known)
 {
   PathSetup setup;
@@ -147,7 +148,7 @@ PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals, 
   v.twoSided = o.twoSided;
   v.russianRoulette = o.instantRadiosity.russianRoulette;
   v.seed = o.seed;
-  v.eps = extent.eps;
+  v.origins = origins.empty() ? nullptr : origins.data();
   setup.dmin = o.instantRadiosity.clampDistance * extent.diagonal;
   setup.targetVpls = o.instantRadiosity.vplCount;
   return setup;

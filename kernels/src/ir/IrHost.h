@@ -35,7 +35,7 @@ std::uint32_t secondPassPaths(std::uint32_t paths, std::size_t found, std::uint3
   std::uint32_t slotsPerPath);
 
 /// What the set-up reads from the positions alone: their box, boundingDiagonal and
-/// rayEpsilon. A backend that keeps it from its geometry stage spares a light move the passes
+/// rayEpsilon (the bound of the ray origins' offsets). A backend that keeps it from its geometry stage spares a light move the passes
 /// over the positions.
 struct SceneExtent
 {
@@ -49,7 +49,7 @@ SceneExtent sceneExtent(const Scene& scene);
 /// light-link stage's). A scene with no source gets an empty table and no VPLs. `extent`:
 /// sceneExtent(scene) where the caller kept it (computed here otherwise).
 PathSetup buildPathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals,
-  const SolverOptions& options, const SceneExtent* extent = nullptr);
+  const std::vector<RayOrigin>& origins, const SolverOptions& options, const SceneExtent* extent = nullptr);
 
 /// A VPL set: VPLs of subset r are [subsetOffsets[r], subsetOffsets[r + 1]), each subset a
 /// contiguous run of light paths (a run of the Halton sequence is itself well spread),

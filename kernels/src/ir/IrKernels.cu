@@ -38,8 +38,8 @@ __global__ void gatherKernel(GatherLaunch p, cuda::Rgba* out, unsigned long long
   const float sign = e < p.vertexCount ? 1.f : -1.f;
   const GatherParams& gp = p.params;
   const Vec3f n = p.normals[v] * sign;
-  const Vec3f x = p.positions[v] + p.shifts[v];
-  const Vec3f origin = vertexLightOrigin(p.positions[v], p.normals[v], p.shifts[v], sign, gp.eps);
+  const Vec3f x = p.positions[v] + p.origins[v].shift;
+  const Vec3f origin = vertexLightOrigin(p.positions[v], p.normals[v], p.origins[v], sign);
   const std::uint32_t r = vertexSubset(v, gp.subsets, gp.seed);
   // As gatherCpu sums: the VPLs too close for the proxy to tell, then the visible ones.
   Vec3f near(0.f), far(0.f);
@@ -47,7 +47,7 @@ __global__ void gatherKernel(GatherLaunch p, cuda::Rgba* out, unsigned long long
   for (std::uint32_t k = p.subsetOffsets[r]; k < p.subsetOffsets[r + 1]; ++k)
   {
     Ray ray;
-    const Vec3f ek = vplIrradiance(p.vpls[k], x, origin, n, gp.dmin, gp.eps, ray);
+    const Vec3f ek = vplIrradiance(p.vpls[k], x, origin, n, gp.dmin, ray);
     if (!(maxComponent(ek) > 0.f))
     {
       continue;
@@ -258,6 +258,7 @@ PathScene DevicePathScene::upload(const Scene& s, const PathSetup& setup, engine
   view.emission = s.emission.empty() ? nullptr : emission.data();
   view.triangles = mesh.triangles.data();
   view.faceNormals = mesh.faceNormals.data();
+  view.origins = mesh.origins.data();
   view.lights = lights.data();
   view.sources = sources.data();
   view.cdf = cdf.data();

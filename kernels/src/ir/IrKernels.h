@@ -89,7 +89,7 @@ struct GatherLaunch
   BvhView visibility; ///< the mesh, or the proxy; no triangles = everything visible
   const Vec3f* positions = nullptr;
   const Vec3f* normals = nullptr;
-  const Vec3f* shifts = nullptr;
+  const RayOrigin* origins = nullptr;
   Index vertexCount = 0;
   bool twoSided = false;
   const Vpl* vpls = nullptr;

@@ -12,7 +12,7 @@ namespace linkgi::ir
 /// One virtual point light: a diffuse emitter at a point, or a direction of the sky.
 struct Vpl
 {
-  Vec3f position; ///< the surface point (shadow rays end eps off it along `normal`)
+  Vec3f position; ///< the surface point (shadow rays end `offset` off it along `normal`)
   Vec3f normal;   ///< unit normal of the side that emits; for a sky VPL the direction to the sky
   /// Surface VPL: reflected flux Phi / paths, so that E(x) = Phi/pi cos cos / d^2.
   /// Sky VPL: irradiance on a surface facing it, E(x) = flux * cos.
@@ -21,6 +21,7 @@ struct Vpl
   /// Left at a diffuse surface by a path that met only mirrors and glass since its light
   /// (light - specular+ - diffuse): photon mapping's caustic photons.
   std::uint32_t caustic = 0;
+  float offset = 0.f; ///< the ray offset of the triangle it lies on (triangleOffset)
 };
 
 /// Kinds of light-path sources.
@@ -63,7 +64,7 @@ struct PathScene
   bool twoSided = false;
   bool russianRoulette = false;
   std::uint32_t seed = 0;
-  float eps = 0.f; ///< ray offset along the normal
+  const RayOrigin* origins = nullptr; ///< per vertex: paths leave a triangle by triangleOffset
   /// Per triangle (MaterialType), or null: every surface diffuse (instant radiosity lights
   /// mirrors and glass as diffuse; photon mapping passes them).
   const std::uint8_t* materials = nullptr;
@@ -153,7 +154,7 @@ LINKGI_HOST_DEVICE inline float distanceBound(float distance, float dmin)
 /// needed) when either side faces away. The cosines take the surface points themselves, so
 /// a vertex where two surfaces meet sees the other one as the link method's rays do.
 LINKGI_HOST_DEVICE inline Vec3f vplIrradiance(const Vpl& vpl, const Vec3f& x, const Vec3f& origin,
-  const Vec3f& n, float dmin, float eps, Ray& shadow)
+  const Vec3f& n, float dmin, Ray& shadow)
 {
   shadow.origin = origin;
   shadow.tnear = 0.f;
@@ -166,7 +167,7 @@ LINKGI_HOST_DEVICE inline Vec3f vplIrradiance(const Vpl& vpl, const Vec3f& x, co
   }
   const Vec3f d = vpl.position - x;
   const float d2 = dot(d, d);
-  shadow.direction = vpl.position + vpl.normal * eps - origin;
+  shadow.direction = vpl.position + vpl.normal * vpl.offset - origin;
   shadow.tfar = 1.f - 1e-4f;
   if (!(d2 > 0.f))
   {
@@ -205,7 +206,6 @@ LINKGI_HOST_DEVICE inline std::uint32_t vertexSubset(Index v, std::uint32_t subs
 struct GatherParams
 {
   float dmin = 0.f;        ///< distanceBound's minimum distance
-  float eps = 0.f;         ///< ray offset along the normal (rayEpsilon)
   float proxyMargin = 0.f; ///< > 0: shadow rays test the proxy (proxyShadowRay)
   std::uint32_t subsets = 1;
   std::uint32_t seed = 0;
@@ -311,13 +311,14 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
     }
     const Vec3f le = s.emission[t.v[0]] * b0 + s.emission[t.v[1]] * b1 + s.emission[t.v[2]] * b2;
     power = le * (kPi * src.area * scale);
-    out[count++] = { p, n, power, 0u };
+    const float offset = triangleOffset(s.origins, t);
+    out[count++] = { p, n, power, 0u, 0u, offset };
     if (s.bounces == 0)
     {
       return count;
     }
     hits = s.bounces - 1;
-    ray.origin = p + n * s.eps;
+    ray.origin = p + n * offset;
     ray.direction = Frame::fromNormal(n).toWorld(cosineHemisphere(u(3), u(4)));
   }
   else
@@ -374,7 +375,7 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
         next = dielectricDirection(d, facing, back ? ior : 1.f / ior, u(40 + specular));
       }
       const Vec3f geometric = dot(next, fn) > 0.f ? fn : -fn; // the side the path leaves by
-      ray.origin = p + geometric * s.eps;
+      ray.origin = p + geometric * triangleOffset(s.origins, t);
       ray.direction = next;
       ray.tnear = 0.f;
       ray.tfar = 3.0e38f;
@@ -388,8 +389,9 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
     const Vec3f side = back ? -n : n, geometric = back ? -fn : fn;
     const Vec3f rho = s.albedo[t.v[0]] * b0 + s.albedo[t.v[1]] * h.u + s.albedo[t.v[2]] * h.v;
     power = power * rho;
-    const Vec3f origin = p + geometric * s.eps;
-    out[count++] = { p, side, power, 0u, onlySpecular && metSpecular ? 1u : 0u };
+    const float offset = triangleOffset(s.origins, t);
+    const Vec3f origin = p + geometric * offset;
+    out[count++] = { p, side, power, 0u, onlySpecular && metSpecular ? 1u : 0u, offset };
     onlySpecular = false;
     if (++bounce == hits)
     {

@@ -126,7 +126,7 @@ struct LeafLinks
 /// `rows` (per leaf, or null for all): the leaves to push to; the others get empty rows
 /// (a process's share under MPI, SolverOptions::partition).
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
-  const Environment& environment, const std::vector<Vec3f>& receiverOffsets,
+  const Environment& environment, const std::vector<RayOrigin>& receivers,
   const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 
 /// (Each function reports its own fraction in [0, 1] through `progress`.)

@@ -72,7 +72,7 @@ private:
   {
     const Scene& s = c.scene;
     geometryTouched = true;
-    geometry.update(c); // one-ring, ray-origin shifts, shadow-ray BVH (shared)
+    geometry.update(c); // one-ring, ray origins, shadow-ray BVH (shared)
     const auto t = std::chrono::steady_clock::now();
     areas = vertexAreas(s);
     if ((c.changes & kTopology) || tree.leafCount != s.vertexCount())
@@ -104,14 +104,14 @@ private:
     const NodeLinks created = createNodeLinks(tree, bins, lo, within(0.0, 0.6), rows);
     const auto t = std::chrono::steady_clock::now();
     Links& next = links.stage();
-    next.leaves = pushToLeaves(tree, created, bins, c.scene.environment, geometry.shifts, within(0.6, 1.0), rows);
+    next.leaves = pushToLeaves(tree, created, bins, c.scene.environment, geometry.origins, within(0.6, 1.0), rows);
     next.nodeLinks = created.byReceiver.nonZeros();
     c.part("RefinePush", msSince(t));
   }
 
   void lightLinks(const StageContext& c)
   {
-    direct.stage() = computeDirectLight(c.scene, geometry.topology, geometry.shifts, *geometry.tracer, false,
+    direct.stage() = computeDirectLight(c.scene, geometry.topology, geometry.origins, *geometry.tracer, false,
       c.options.lightOversampling, c.progress);
   }
 

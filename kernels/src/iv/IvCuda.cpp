@@ -181,7 +181,7 @@ private:
     p.rowStarts = nodeRows.rowStarts.data();
     p.rowCounts = nodeRows.rowCounts.data();
     p.columns = nodeRows.columns.data();
-    p.receiverOffsets = mesh.shifts.data();
+    p.receivers = mesh.origins.data();
     p.binCenters = binCenters.data();
     p.binSolidAngles = binSolidAngles.data();
     p.binTexels = binTexels.data();

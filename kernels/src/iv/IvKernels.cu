@@ -230,7 +230,7 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
   LeafBins bins{ p.nodes, p.binsPerSide, keys };
   bins.leaf = leaf;
   bins.normal = p.nodes[leaf].normal;
-  bins.at = p.receiverOffsets ? p.nodes[leaf].position + p.receiverOffsets[leaf] : p.nodes[leaf].position;
+  bins.at = p.receivers ? p.nodes[leaf].position + p.receivers[leaf].shift : p.nodes[leaf].position;
   for (Index node = leaf; node != kInvalidIndex; node = p.parent[node])
   {
     bins.node = node;

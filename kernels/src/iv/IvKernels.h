@@ -55,7 +55,7 @@ struct PushParams
   const Offset* rowStarts = nullptr; ///< the node links' rows
   const Index* rowCounts = nullptr;
   const Index* columns = nullptr;
-  const Vec3f* receiverOffsets = nullptr; ///< per leaf: where it looks from, relative to its vertex
+  const RayOrigin* receivers = nullptr; ///< per leaf: where it looks from (its shift)
   const Vec3f* binCenters = nullptr;
   const float* binSolidAngles = nullptr;
   const Index* binTexels = nullptr; ///< the environment texel each bin's centre sees

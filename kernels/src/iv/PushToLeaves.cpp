@@ -98,7 +98,7 @@ void rasterizeNearDiscs(const ClusterTree& t, const std::vector<Index>& discs, c
 }
 
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
-  const Environment& environment, const std::vector<Vec3f>& receiverOffsets,
+  const Environment& environment, const std::vector<RayOrigin>& receivers,
   const ProgressCallback& progress, const std::uint8_t* rows)
 {
   const std::size_t leaves = tree.leafCount, nb = bins.count();
@@ -144,7 +144,7 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
           continue;
         }
         const Vec3f n = tree.normal[leaf];
-        const Vec3f p = receiverOffsets.empty() ? tree.position[leaf] : tree.position[leaf] + receiverOffsets[leaf];
+        const Vec3f p = receivers.empty() ? tree.position[leaf] : tree.position[leaf] + receivers[leaf].shift;
         for (Index node = Index(leaf); node != kInvalidIndex; node = tree.parent[node])
         {
           for (Offset e = m.rowOffsets[node]; e < m.rowOffsets[node + 1]; ++e)

@@ -9,7 +9,7 @@ namespace linkgi::links
 /// The stages, in the order of LinksMethod.cpp's table.
 enum Stage : std::size_t
 {
-  kGeometryStage,   ///< topology, ray-origin shifts, face normals, acceleration structure
+  kGeometryStage,   ///< topology, ray origins, face normals, acceleration structure
   kLinkStage,       ///< link rays and their compression into W and Wenv
   kLightLinkStage,  ///< shadow rays: E_d
   kBounceStage      ///< E_env, Jacobi bounces, smoothing, outgoing radiance

@@ -98,14 +98,14 @@ private:
       returnFreedMemory();
     }
     double msCompress = 0.0;
-    nextLinks = linkgi::buildLinks(c.scene, geometry.shifts, *geometry.tracer, geometry.faceNormals, linkOptions, within(0.0, 1.0), &msCompress);
+    nextLinks = linkgi::buildLinks(c.scene, geometry.origins, *geometry.tracer, geometry.faceNormals, linkOptions, within(0.0, 1.0), &msCompress);
     c.part("Compress", msCompress);
     linksStaged = true;
   }
 
   void lightLinks(const StageContext& c)
   {
-    nextDirect = computeDirectLight(c.scene, geometry.topology, geometry.shifts, *geometry.tracer, c.options.twoSided,
+    nextDirect = computeDirectLight(c.scene, geometry.topology, geometry.origins, *geometry.tracer, c.options.twoSided,
       c.options.lightOversampling, c.progress);
     directStaged = true;
   }

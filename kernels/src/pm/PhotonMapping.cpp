@@ -49,9 +49,10 @@ Vec3f unitOr(const Vec3f& v, const Vec3f& fallback)
 }
 }
 
-ir::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals, const SolverOptions& options)
+ir::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals,
+  const std::vector<RayOrigin>& origins, const SolverOptions& options)
 {
-  ir::PathSetup setup = ir::buildPathSetup(scene, faceNormals, options);
+  ir::PathSetup setup = ir::buildPathSetup(scene, faceNormals, origins, options);
   if (scene.hasSpecular())
   {
     setup.view.materials = reinterpret_cast<const std::uint8_t*>(scene.triangleMaterials.data());
@@ -78,13 +79,14 @@ RadianceSitesView PhotonMap::sitesView() const
   return { sites.view(), siteNormals.data(), siteRadiance.data(), maxDistance2 };
 }
 
-void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, const RayTracer& tracer,
+void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals,
+  const std::vector<RayOrigin>& origins, const RayTracer& tracer,
   const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress)
 {
   SolverOptions paths = options;
   paths.instantRadiosity.vplCount = options.photonMapping.photons;
   paths.instantRadiosity.russianRoulette = true;
-  const ir::PathSetup setup = pathSetup(scene, faceNormals, paths);
+  const ir::PathSetup setup = pathSetup(scene, faceNormals, origins, paths);
   const ir::VplSet hits = ir::traceVplsCpu(setup, tracer, 1, progress);
   for (auto* a : { &map.positions, &map.normals, &map.flux, &map.causticPositions, &map.causticNormals, &map.causticFlux })
   {
@@ -109,13 +111,13 @@ void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, con
 }
 
 std::vector<Vec3f> causticReference(const Scene& s, const std::vector<Vec3f>& faceNormals,
-  const RayTracer& tracer, std::uint32_t paths, std::uint32_t seed, const ProgressCallback& progress)
+  const std::vector<RayOrigin>& origins, const RayTracer& tracer, std::uint32_t paths, std::uint32_t seed, const ProgressCallback& progress)
 {
   SolverOptions o;
   o.bounces = 1; // to the first diffuse hit
   o.seed = seed;
   o.instantRadiosity.vplCount = paths;
-  const ir::PathSetup setup = pathSetup(s, faceNormals, o);
+  const ir::PathSetup setup = pathSetup(s, faceNormals, origins, o);
   const std::size_t nv = s.vertexCount();
   std::vector<Vec3f> out(nv, Vec3f(0.f));
   if (!s.hasSpecular() || setup.view.paths == 0)
@@ -413,13 +415,13 @@ Clusters clusterVertices(const Scene& s, std::uint32_t k, float alpha, int itera
   return out;
 }
 
-SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
+SampleIrradiance finalGather(const Scene& s, const std::vector<RayOrigin>& origins,
   const std::vector<Vec3f>& faceNormals, const RayTracer& tracer, const PhotonMap& map,
   const Clusters& clusters, const std::vector<Vec3f>& directions, std::uint32_t seed, float side,
   bool twoSided, const ProgressCallback& progress, const std::uint8_t* rows)
 {
   const std::size_t nc = clusters.count(), n = directions.size();
-  const ir::PathSetup setup = pathSetup(s, faceNormals, SolverOptions());
+  const ir::PathSetup setup = pathSetup(s, faceNormals, origins, SolverOptions());
   const ir::PathScene& view = setup.view;
   const RadianceSitesView sites = map.sitesView();
   const float diagonal = boundingDiagonal(s.positions);
@@ -447,7 +449,7 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<Vec3f>& shifts,
       ++gathered;
       const Vec3f normal = s.normals[v] * side;
       const Frame frame = vertexFrame(normal, true, seed, side > 0.f ? v : Index(v + s.vertexCount()));
-      const Vec3f origin = elementRayOrigin(s.positions[v], normal, shifts[v], view.eps);
+      const Vec3f origin = elementRayOrigin(s.positions[v], normal, origins[v]);
       for (std::size_t r = 0; r < n; ++r)
       {
         rays[r].origin = origin;
@@ -506,6 +508,7 @@ std::vector<Vec3f> solveCausticReference(const Scene& input, std::uint32_t paths
   validateScene(scene);
   const std::unique_ptr<RayTracer> tracer = createCpuRayTracer();
   tracer->build(scene.positions, scene.triangles);
-  return pm::causticReference(scene, frontFaceNormals(scene), *tracer, paths, seed);
+  const std::vector<RayOrigin> origins = rayOrigins(scene, Topology::build(scene.vertexCount(), scene.triangles));
+  return pm::causticReference(scene, frontFaceNormals(scene), origins, *tracer, paths, seed);
 }
 }

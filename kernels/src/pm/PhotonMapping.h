@@ -64,12 +64,14 @@ struct PhotonMap
 
 /// Instant radiosity's light-path set-up (sources, the scene's view) with the scene's
 /// mirrors and glass: what photons and the final gather trace through, on either backend.
-ir::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals, const SolverOptions& options);
+ir::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals,
+  const std::vector<RayOrigin>& origins, const SolverOptions& options);
 
 /// The photons of `options` (PhotonMappingOptions::photons, bounces, seed, sides): instant
 /// radiosity's light paths from every source, with Russian roulette by albedo, into `map`'s
 /// positions, normals and flux (its estimates are estimateRadiance's).
-void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals, const RayTracer& tracer,
+void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals,
+  const std::vector<RayOrigin>& origins, const RayTracer& tracer,
   const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress = {});
 
 /// Builds the map's estimates from photons already in positions/normals/flux, at every
@@ -114,7 +116,7 @@ struct SampleIrradiance
 /// photon map's radiance, a miss the environment, the back of a one-sided surface is black.
 /// With `rows` (one flag per vertex, this side's elements), only the clusters whose sample is
 /// such a row gather; the others get zero irradiance and distance.
-SampleIrradiance finalGather(const Scene& scene, const std::vector<Vec3f>& shifts,
+SampleIrradiance finalGather(const Scene& scene, const std::vector<RayOrigin>& origins,
   const std::vector<Vec3f>& faceNormals, const RayTracer& tracer, const PhotonMap& map,
   const Clusters& clusters, const std::vector<Vec3f>& directions, std::uint32_t seed, float side,
   bool twoSided, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
@@ -132,7 +134,7 @@ std::vector<Vec3f> causticIrradiance(const Scene& scene, const PhotonMap& map, s
 /// caustic irradiance per vertex (W/m^2) whose area integral is the caustic power. Unlike
 /// the photon map it needs no density estimate, so it converges to the exact projection.
 std::vector<Vec3f> causticReference(const Scene& scene, const std::vector<Vec3f>& faceNormals,
-  const RayTracer& tracer, std::uint32_t paths, std::uint32_t seed, const ProgressCallback& progress = {});
+  const std::vector<RayOrigin>& origins, const RayTracer& tracer, std::uint32_t paths, std::uint32_t seed, const ProgressCallback& progress = {});
 
 /// Every vertex's irradiance from its neighbours' samples, weighted as in irradiance
 /// caching: w = 1 / (|x - s| / R + sqrt(2 - 2 n.n_s)) over samples facing the same way.

@@ -9,7 +9,7 @@ namespace linkgi::pm
 /// The stages, in the order of PmMethod.cpp's table.
 enum Stage : std::size_t
 {
-  kGeometryStage,  ///< topology, ray-origin shifts, face normals, acceleration structure
+  kGeometryStage,  ///< topology, ray origins, face normals, acceleration structure
   kPhotonStage,    ///< light paths from every source: the photon map and its estimates
   kClusterStage,   ///< the vertices' clusters, their samples and interpolants
   kLightLinkStage, ///< shadow rays to the point, spot and directional lights: E_d

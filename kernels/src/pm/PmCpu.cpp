@@ -33,7 +33,7 @@ public:
           c.options.photonMapping.alpha, kMeansIterations, c.progress);
         return;
       case kLightLinkStage:
-        direct.stage() = computeDirectLight(c.scene, geometry.topology, geometry.shifts,
+        direct.stage() = computeDirectLight(c.scene, geometry.topology, geometry.origins,
           *geometry.tracer, c.options.twoSided, c.options.lightOversampling, c.progress);
         return;
       case kGatherStage:
@@ -91,7 +91,7 @@ private:
       return [&c, lo](const char*, double f) { return !c.progress || c.progress("Photons", lo + 0.5 * f); };
     };
     PhotonMap& next = map.stage();
-    linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, *geometry.tracer, c.options, next, half(0.0));
+    linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, geometry.origins, *geometry.tracer, c.options, next, half(0.0));
     estimateRadiance(next, c.options.photonMapping.estimatePhotons, siteStride(next.count()),
       kEstimateRadius * boundingDiagonal(c.scene.positions), half(0.5));
   }
@@ -116,7 +116,7 @@ private:
         break;
       }
       const std::uint8_t* sideRows = rows ? rows + (side > 0.f ? 0 : nv) : nullptr;
-      SampleIrradiance samples = finalGather(s, geometry.shifts, geometry.faceNormals,
+      SampleIrradiance samples = finalGather(s, geometry.origins, geometry.faceNormals,
         *geometry.tracer, photons, groups, directions, o.seed, side, o.twoSided, c.progress, sideRows);
       if (rows)
       {

@@ -76,7 +76,7 @@ private:
     SolverOptions o = c.options;
     o.instantRadiosity.vplCount = o.photonMapping.photons;
     o.instantRadiosity.russianRoulette = true;
-    const ir::PathSetup setup = ir::buildPathSetup(s, {}, o, &mesh.extent);
+    const ir::PathSetup setup = ir::buildPathSetup(s, {}, {}, o, &mesh.extent);
     pathView = pathScene.upload(s, setup, c.changes, mesh, true, stream);
     ir::PathScene view = pathView;
     const std::size_t found = ir::gpu::traceAllPaths(view, mesh.bvh.view(), setup.targetVpls, paths,
@@ -166,7 +166,6 @@ private:
     g.scene = pathView; // the gather runs whenever the photons were traced again for its inputs
     g.bvh = mesh.bvh.view();
     g.sites = { siteView, sites.normals.data(), sites.flux.data(), estimateMax2 };
-    g.shifts = mesh.shifts.data();
     g.samples = samples.data();
     g.clusters = std::uint32_t(clusterCount);
     g.vertexCount = nv;

@@ -301,7 +301,7 @@ __global__ void gatherKernel(GatherLaunch g, Vec3f* irradiance, float* harmonicD
   const Index v = g.samples[j];
   const Vec3f normal = g.scene.normals[v] * g.side;
   const Frame frame = vertexFrame(normal, true, g.seed, g.side > 0.f ? v : Index(v + g.vertexCount));
-  const Vec3f origin = elementRayOrigin(g.scene.positions[v], normal, g.shifts[v], g.scene.eps);
+  const Vec3f origin = elementRayOrigin(g.scene.positions[v], normal, g.scene.origins[v]);
   const auto trace = [&g](const Ray& ray) {
     Hit h;
     bvh::traverse<false>(g.bvh, ray, h);

@@ -71,7 +71,6 @@ struct GatherLaunch
   ir::PathScene scene; ///< device pointers: positions, normals, triangles, face normals, materials, sky
   BvhView bvh;
   RadianceSitesView sites;
-  const Vec3f* shifts = nullptr;
   const Index* samples = nullptr; ///< per cluster: its sample vertex
   std::uint32_t clusters = 0;
   Index vertexCount = 0;

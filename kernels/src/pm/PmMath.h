@@ -130,7 +130,7 @@ LINKGI_HOST_DEVICE inline GatherHit shadeGatherRay(const ir::PathScene& s, const
     const Vec3f next = material == std::uint8_t(MaterialType::Mirror)
       ? ir::reflect(d, facing)
       : ir::dielectricDirection(d, facing, back ? ior : 1.f / ior, hashToUnit(hash32(cluster) ^ r, turn));
-    ray.origin = p + (dot(next, fn) > 0.f ? fn : -fn) * s.eps;
+    ray.origin = p + (dot(next, fn) > 0.f ? fn : -fn) * triangleOffset(s.origins, t);
     ray.direction = next;
     ray.tnear = 0.f;
     ray.tfar = 3.0e38f;

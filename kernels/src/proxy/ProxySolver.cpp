@@ -43,7 +43,7 @@ struct ProxySolver::Impl
   ProxyMesh proxy;
   ProxyTransfer transfer;
   Topology topology;
-  std::vector<Vec3f> shifts;
+  std::vector<RayOrigin> origins;
   std::unique_ptr<RayTracer> tracer;
   std::uint64_t decimations = 0;
 
@@ -91,7 +91,7 @@ const Solution& ProxySolver::update(const Scene& input, const SolverOptions& opt
   std::atomic<bool> stop{ false }; // the decimation failed: the other thread's work is moot
   const auto directLight = [&] {
     const auto t = std::chrono::steady_clock::now();
-    direct = computeDirectLight(s, g.topology, g.shifts, *g.tracer, options.twoSided, options.lightOversampling,
+    direct = computeDirectLight(s, g.topology, g.origins, *g.tracer, options.twoSided, options.lightOversampling,
       [&stop](const char*, double) { return !stop; });
     return msSince(t);
   };
@@ -103,7 +103,7 @@ const Solution& ProxySolver::update(const Scene& input, const SolverOptions& opt
     // light are made on another meanwhile. The future waits for them on every way out.
     std::future<void> inputSide = std::async(std::launch::async, [&] {
       g.topology = Topology::build(s.vertexCount(), s.triangles);
-      g.shifts = originShifts(s, g.topology);
+      g.origins = rayOrigins(s, g.topology);
       g.tracer = createCpuRayTracer();
       g.tracer->build(s.positions, s.triangles);
       directMs = directLight();
@@ -170,7 +170,7 @@ const Solution& ProxySolver::update(const Scene& input, const SolverOptions& opt
     m.proxy = std::move(fresh.proxy);
     m.transfer = std::move(fresh.transfer);
     m.topology = std::move(fresh.topology);
-    m.shifts = std::move(fresh.shifts);
+    m.origins = std::move(fresh.origins);
     m.tracer = std::move(fresh.tracer);
     ++m.decimations;
     m.positions = std::move(s.positions);

@@ -170,7 +170,7 @@ std::vector<std::pair<Index, Index>> edgesToRefine(const Scene& s, const Solutio
   }
   const int sides = elements == 2 * n ? 2 : 1;
   const Topology topology = Topology::build(n, s.triangles);
-  const std::vector<Vec3f> shifts = originShifts(s, topology);
+  const std::vector<RayOrigin> origins = rayOrigins(s, topology);
   const std::vector<float> areas = vertexAreas(s);
   // The level below which differences do not count: 2% of the scene's mean light, so
   // that the noise of a dark corner does not refine it.
@@ -182,7 +182,6 @@ std::vector<std::pair<Index, Index>> edgesToRefine(const Scene& s, const Solutio
     area += a;
   }
   const float floorLevel = area > 0.0 ? float(0.02 * weighted / area) : 0.f;
-  const float eps = rayEpsilon(s);
   const float minLength = boundingDiagonal(s.positions) * (1.f / 4096.f);
   const float minLength2 = minLength * minLength;
 
@@ -222,7 +221,8 @@ std::vector<std::pair<Index, Index>> edgesToRefine(const Scene& s, const Solutio
           }
           const Vec3f mid = (s.positions[a] + s.positions[b]) * 0.5f;
           const float dm = luminance(directIrradiance(
-            s, mid, normal * sign, tracer, eps, (shifts[a] + shifts[b]) * 0.5f));
+            s, mid, normal * sign, tracer, std::min(origins[a].offset, origins[b].offset),
+            (origins[a].shift + origins[b].shift) * 0.5f));
           worst = std::max(worst, std::abs(dm - 0.5f * (da + db)) / level);
         }
         score[e] = worst;
