@@ -226,25 +226,36 @@ void vtkGlobalIlluminationFilter::vtkInternals::Update(
   this->RefinedUsed = false;
   if (proxy == 0)
   {
-    try
+    // The budget's verdict holds until the surface or the settings change: the memory
+    // available moves between updates, and a light move must not pick another proxy.
+    const linkgi::SolverOptions options = this->Options(self);
+    AutomaticProxy& automatic = this->Automatic;
+    if (automatic.Vertices == 0 || automatic.MeshVersion != this->MeshVersion || !(automatic.Options == options))
     {
-      this->Solver.update(scene, this->Options(self), this->Progress(self));
-      this->ProxyUsed = false;
-      return;
-    }
-    catch (const linkgi::OutOfMemoryBudget& tooLarge)
-    {
-      // Over the budget: a proxy of half what would fit (the proxy itself, the input's
-      // shadow-ray structures and the decimation need the rest), if that is still a mesh.
-      proxy = static_cast<std::size_t>(tooLarge.verticesThatFit() / 2);
-      if (!linkgi::proxyAvailable() || proxy < kSmallestAutomaticProxy)
+      try
       {
-        throw;
+        automatic = AutomaticProxy();
+        this->Solver.update(scene, options, this->Progress(self));
+        this->ProxyUsed = false;
+        return;
       }
-      this->Warnings.push_back("The surface is too large for the memory budget, so it is lit "
-                               "through a proxy of about " + std::to_string(proxy) +
-        " vertices (ProxyVertices chooses its size). " + tooLarge.what());
+      catch (const linkgi::OutOfMemoryBudget& tooLarge)
+      {
+        // Over the budget: a proxy of half what would fit (the proxy itself, the input's
+        // shadow-ray structures and the decimation need the rest), if that is still a mesh.
+        const std::size_t half = static_cast<std::size_t>(tooLarge.verticesThatFit() / 2);
+        if (!linkgi::proxyAvailable() || half < kSmallestAutomaticProxy)
+        {
+          throw;
+        }
+        automatic = { half, this->MeshVersion, options, tooLarge.detail() };
+      }
     }
+    proxy = automatic.Vertices;
+    this->Warnings.push_back("The surface is too large for the memory budget, so it is lit "
+                             "through a proxy of about " + std::to_string(proxy) +
+      " vertices, chosen when the surface or the settings last changed (ProxyVertices "
+      "chooses its size). " + automatic.Reason);
   }
   linkgi::SolverOptions options = this->Options(self);
   options.partition = nullptr; // the proxy's rows are not the surface's: every process solves it

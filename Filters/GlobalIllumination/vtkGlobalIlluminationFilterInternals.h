@@ -54,6 +54,15 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   std::vector<vtkSmartPointer<vtkLight>> Lights;
   vtkSmartPointer<vtkDataObject> LastOutput; // the last good output, handed out after errors
   std::vector<std::string> Warnings;         // the filter's own, for this update
+  // The proxy the memory budget chose for this mesh at these options (none: 0 vertices).
+  struct AutomaticProxy
+  {
+    std::size_t Vertices = 0;
+    std::uint64_t MeshVersion = 0;
+    linkgi::SolverOptions Options;
+    std::string Reason; // the budget's estimate and what would fit
+  };
+  AutomaticProxy Automatic;
   std::string RaysRounded; // why SetRaysPerVertex changed the value asked for, or empty
 
   // Input that is no vtkPolyData (composite, or another dataset) is merged into one

@@ -12,6 +12,9 @@
 #include "vtkTransformPolyDataFilter.h"
 #include "vtkXMLPolyDataReader.h"
 
+#include "linkgi/Memory.h"
+#include "linkgi/Proxy.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -236,4 +239,53 @@ TEST(TestGlobalIlluminationRealData, ARoomWithItsLampInsideKeepsItsNormals)
     EXPECT_EQ(turned, lamp == outside);
     EXPECT_GT(LitFraction(filter->GetOutput()), lamp == inside ? 0.99 : 0.3);
   }
+}
+
+TEST(TestGlobalIlluminationRealData, TheBudgetsProxyHoldsWhileOnlyTheLightsMove)
+{
+  if (!linkgi::proxyAvailable())
+  {
+    GTEST_SKIP() << "This build has no OpenMesh.";
+  }
+  // The automatic budget (MemoryBudget 0) is what the machine has available less a margin
+  // of 512 MiB: 560 MiB available leave 48 MiB, not enough for ~5.3k points at 256 rays.
+  struct Available
+  {
+    explicit Available(std::uint64_t mib) { linkgi::overrideAvailableHostBytes(mib << 20); }
+    ~Available() { linkgi::overrideAvailableHostBytes(0); }
+  };
+  auto filter = MakeSphereOnFloorFilter(70);
+  filter->SetRaysPerVertex(256);
+  const auto proxyOf = [&filter]() {
+    for (const std::string& w : Warnings(filter->GetOutput()))
+    {
+      const std::size_t at = w.find("proxy of about ");
+      if (at != std::string::npos)
+      {
+        return std::stoul(w.substr(at + 15));
+      }
+    }
+    return 0ul;
+  };
+  {
+    Available tight(560);
+    filter->Update();
+  }
+  const unsigned long first = proxyOf();
+  ASSERT_GT(first, 0ul);
+  EXPECT_FALSE(MessageCapture::Contains(Warnings(filter->GetOutput()), "previous result is kept"));
+
+  // More memory frees up, and a light moves: the same proxy.
+  Available roomier(570);
+  const double moved[3] = { 0.7, 0.1, 2.2 }, at[3] = { 0, 0, 0 };
+  filter->RemoveAllLights();
+  filter->AddLight(MakeLight(moved, at, 4.0));
+  filter->Update();
+  EXPECT_EQ(proxyOf(), first);
+
+  // A new surface is judged again, with what is available now.
+  filter->SetFeatureAngle(filter->GetFeatureAngle() + 1.0);
+  filter->Modified();
+  filter->Update();
+  EXPECT_GT(proxyOf(), first);
 }

@@ -5,6 +5,7 @@
 #endif
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -42,9 +43,20 @@ MemoryShape MemoryShape::of(const Scene& scene)
   return shape;
 }
 
+namespace
+{
+std::atomic<std::uint64_t> availableOverride{ 0 };
+}
+
 std::uint64_t availableHostBytes()
 {
-  return procKilobytes("/proc/meminfo", "MemAvailable");
+  const std::uint64_t forced = availableOverride.load();
+  return forced ? forced : procKilobytes("/proc/meminfo", "MemAvailable");
+}
+
+void overrideAvailableHostBytes(std::uint64_t bytes)
+{
+  availableOverride = bytes;
 }
 
 std::uint64_t hostMemoryBudget(std::uint64_t requested)

@@ -30,22 +30,30 @@ struct MemoryShape
 
 /// An update refused by the memory budget. verticesThatFit(): the most vertices that the
 /// same update would fit at the same options (0 when none), e.g. for a proxy of that size.
+/// what() is the estimate and what would fit (`detail`), then that the previous result is
+/// kept; a caller that lights the surface another way reports detail() alone.
 class OutOfMemoryBudget : public Error
 {
 public:
-  OutOfMemoryBudget(const std::string& message, std::uint64_t verticesThatFit)
-    : Error(message), fit(verticesThatFit)
+  OutOfMemoryBudget(const std::string& detail, std::uint64_t verticesThatFit)
+    : Error(detail + " The previous result is kept."), reason(detail), fit(verticesThatFit)
   {
   }
   std::uint64_t verticesThatFit() const { return fit; }
+  const std::string& detail() const { return reason; }
 
 private:
+  std::string reason;
   std::uint64_t fit;
 };
 
 /// The host memory the operating system can give this process now without swapping:
 /// /proc/meminfo's MemAvailable. 0 where it cannot be read (not Linux).
 std::uint64_t availableHostBytes();
+
+/// Makes availableHostBytes() return `bytes` from now on (0: read the system again), for
+/// tests of what updates do when the machine's free memory changes between them.
+void overrideAvailableHostBytes(std::uint64_t bytes);
 
 /// The budget an update runs under: `requested` bytes when it is not 0, otherwise what is
 /// available less a margin for the rest of the process (the renderer, ParaView): a tenth

@@ -82,7 +82,7 @@ void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverO
       " rays per vertex (decimate the input, or light it through a proxy of that size:"
       " ProxyVertices);" :
     " no mesh at " + rays + " rays per vertex;";
-  message += " or a larger MemoryBudget, if the machine has the memory. The previous result is kept.";
+  message += " or a larger MemoryBudget, if the machine has the memory.";
   throw OutOfMemoryBudget(message, v.verticesThatFit);
 }
 }
