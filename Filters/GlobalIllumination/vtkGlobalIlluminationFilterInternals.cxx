@@ -453,6 +453,21 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
   Builder::AddStatistics(output->GetFieldData(), latest ? latest->stats : linkgi::SolverStats(),
     elapsed.count(), this->Warnings);
+  // A render loop runs this at every frame: each warning goes to the log (and ParaView's
+  // output messages) when it first appears, not at every frame while it holds.
+  std::vector<std::string> now = this->Warnings;
+  if (latest)
+  {
+    now.insert(now.end(), latest->stats.warnings.begin(), latest->stats.warnings.end());
+  }
+  for (const std::string& warning : now)
+  {
+    if (std::find(this->Announced.begin(), this->Announced.end(), warning) == this->Announced.end())
+    {
+      vtkWarningWithObjectMacro(self, << warning);
+    }
+  }
+  this->Announced = std::move(now);
   Builder::AddFieldValue(output->GetFieldData(), "Pending", std::uint64_t(this->Async->busy() ? 1 : 0));
   Builder::AddFieldValue(output->GetFieldData(), "ShownRequest", this->ShownRequest);
   return true;

@@ -118,6 +118,7 @@ struct vtkGlobalIlluminationFilter::vtkInternals
     std::vector<vtkSmartPointer<vtkDataArray>> Arrays;
   } Shown;
   std::uint64_t LastRequest = 0; // the newest request's id
+  std::vector<std::string> Announced; // the warnings of the last asynchronous update, logged once
   bool SolveAsynchronously(vtkGlobalIlluminationFilter* self, vtkPolyData* input, vtkPolyData* output);
 
   /// The filter's warnings of this update, then the engine's.

@@ -18,8 +18,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 
 using namespace linkgi_test;
 
@@ -288,4 +290,34 @@ TEST(TestGlobalIlluminationRealData, TheBudgetsProxyHoldsWhileOnlyTheLightsMove)
   filter->Modified();
   filter->Update();
   EXPECT_GT(proxyOf(), first);
+}
+
+TEST(TestGlobalIlluminationRealData, AsynchronousUpdatesLogEachWarningOnce)
+{
+  // What ParaView's representation shows in its output messages: the asynchronous filter's
+  // warnings (its own and the engine's), each once while it holds, not at every frame.
+  const double below[3] = { 0.2, 0.1, -1.0 }, at[3] = { 0, 0, 0 };
+  vtkNew<vtkGlobalIlluminationFilter> filter;
+  filter->SetInputData(MakeFloor(1.0, 8));
+  filter->AddLight(MakeLight(below, at, 1.0));
+  filter->SetBackendToCPU();
+  filter->SetAsynchronous(true);
+  MessageCapture messages(filter);
+  filter->Update();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(600);
+  while (!filter->PollAsynchronousResult() && std::chrono::steady_clock::now() < deadline)
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  for (int frame = 0; frame < 5; ++frame)
+  {
+    filter->Modified();
+    filter->Update();
+  }
+  int logged = 0;
+  for (const std::string& w : messages.Warnings)
+  {
+    logged += w.find("Turn TwoSided on") != std::string::npos ? 1 : 0;
+  }
+  EXPECT_EQ(logged, 1);
 }
