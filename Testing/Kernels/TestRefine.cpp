@@ -2,6 +2,7 @@
 // stops at the vertex budget, and brings a mesh of two triangles per wall to the accuracy of
 // a fine one against the path-traced reference. The scenes are test::roomWithBlock: cell
 // 10 gives two triangles per face (48 vertices).
+#include "CudaFixtures.h"
 #include "SceneFixtures.h"
 
 #include "linkgi/Error.h"
@@ -185,4 +186,50 @@ TEST(Refine, BadSettingsAreNamed)
   r = {};
   r.maxVertices = 3;
   EXPECT_NE(errorOf([&] { refining.update(coarse, {}, r); }).find("budget"), std::string::npos);
+}
+
+TEST(Refine, ALightMoveKeepsTheRefinedSurfaceAndRelinksNothing)
+{
+  Scene room = test::roomWithBlock(10.f);
+  SolverOptions options;
+  options.backend = Backend::Cpu;
+  options.raysPerVertex = 64;
+  RefiningSolver refining;
+  const RefinementOptions refinement;
+  refining.update(room, options, refinement);
+  ASSERT_FALSE(refining.splitsPerRound().empty()) << "the coarse room asks for refinement";
+  const RefinedScene refined = refining.refined();
+  const auto stage = [&refining](const std::string& name) {
+    for (const StageStats& s : refining.stats().stages)
+    {
+      if (s.name == name)
+      {
+        return s;
+      }
+    }
+    return StageStats();
+  };
+  ASSERT_TRUE(stage("Links").ran);
+
+  room.lights[0].position = room.lights[0].position + Vec3f(0.5f, -0.3f, 0.2f);
+  room.albedo[0] = Vec3f(0.2f, 0.3f, 0.4f);
+  const Solution& moved = refining.update(room, options, refinement);
+  EXPECT_EQ(refining.refined().scene.positions, refined.scene.positions);
+  EXPECT_EQ(refining.refined().scene.albedo[0], room.albedo[0]);
+  EXPECT_FALSE(stage("Links").ran);
+  EXPECT_FALSE(stage("Refine").ran);
+
+  // The same light on the same refined surface, solved from scratch.
+  Scene fresh = refined.scene;
+  fresh.lights = room.lights;
+  fresh.albedo = refining.refined().scene.albedo;
+  Solver solver;
+  const Solution& expected = solver.update(fresh, options);
+  EXPECT_EQ(moved.direct, expected.direct);
+  EXPECT_LE(test::relativeError(moved.indirect, expected.indirect), 1e-5f);
+
+  // A moved vertex is a new surface: refined again.
+  room.positions[0] = room.positions[0] + Vec3f(0.f, 0.f, 0.01f);
+  refining.update(room, options, refinement);
+  EXPECT_TRUE(stage("Links").ran);
 }

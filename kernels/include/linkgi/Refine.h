@@ -76,6 +76,10 @@ public:
 
   /// Solves `scene` with refinement. Errors as Solver::update, plus bad refinement options;
   /// after an error or an abort, refined() and solution() are those of the previous update.
+  /// The surface is refined when the input's geometry, materials or the options changed
+  /// since the last update; a change of lights, albedo, emission or environment alone keeps
+  /// it (refined for the light it had then) and solves only its light, as fast as without
+  /// refinement.
   const Solution& update(const Scene& scene, const SolverOptions& options,
     const RefinementOptions& refinement, const ProgressCallback& progress = {});
   /// The refined mesh of the last update, and its light (elements = its vertices).

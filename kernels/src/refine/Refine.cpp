@@ -256,7 +256,45 @@ struct RefiningSolver::Impl
   Solution solution;
   SolverStats stats;
   std::vector<std::uint64_t> splits;
+  /// What the refined surface was made from: the input's geometry and materials, and the
+  /// options. While they stay, an update keeps the surface and solves only its light.
+  Scene madeFrom;
+  SolverOptions options;
+  RefinementOptions refinement;
+  bool valid = false;
+
+  bool sameSurface(const Scene& s, const SolverOptions& o, const RefinementOptions& r) const
+  {
+    return valid && o == options && r.tolerance == refinement.tolerance &&
+      r.maxVertices == refinement.maxVertices && r.rounds == refinement.rounds &&
+      s.positions == madeFrom.positions && s.normals == madeFrom.normals &&
+      std::equal(s.triangles.begin(), s.triangles.end(), madeFrom.triangles.begin(), madeFrom.triangles.end(),
+        [](const Triangle& a, const Triangle& b) { return std::equal(a.v, a.v + 3, b.v); }) &&
+      s.triangleMaterials == madeFrom.triangleMaterials && s.triangleIor == madeFrom.triangleIor;
+  }
 };
+
+namespace
+{
+/// The input's lights, environment, albedo and emission on its refined copy: midpoints take
+/// the mean of their two parents, as splitEdges gave them.
+void carryShading(const Scene& input, RefinedScene& refined)
+{
+  Scene& s = refined.scene;
+  s.lights = input.lights;
+  s.environment = input.environment;
+  s.albedo.assign(input.albedo.begin(), input.albedo.end());
+  s.emission.assign(input.emission.begin(), input.emission.end());
+  for (const std::array<Index, 2>& m : refined.midpointOf)
+  {
+    s.albedo.push_back((s.albedo[m[0]] + s.albedo[m[1]]) * 0.5f);
+    if (!s.emission.empty())
+    {
+      s.emission.push_back((s.emission[m[0]] + s.emission[m[1]]) * 0.5f);
+    }
+  }
+}
+}
 
 RefiningSolver::RefiningSolver() : impl(std::make_unique<Impl>()) {}
 RefiningSolver::~RefiningSolver() = default;
@@ -284,6 +322,23 @@ const Solution& RefiningSolver::update(const Scene& scene, const SolverOptions& 
   const auto start = std::chrono::steady_clock::now();
   validateRefinementOptions(refinement, scene.vertexCount());
   validateOptions(options);
+  if (impl->sameSurface(scene, options, refinement))
+  {
+    // Lights, albedo, emission or the environment changed: the surface refined for the
+    // last geometry stays, and the solver reuses what it keeps for it (a light move costs
+    // shadow rays and bounces, as without refinement).
+    RefinedScene next = impl->refined;
+    carryShading(scene, next);
+    impl->solver.update(next.scene, options, progress);
+    impl->refined = std::move(next);
+    impl->solution = impl->solver.solution();
+    const std::vector<std::string> warnings = std::move(impl->stats.warnings);
+    impl->stats = impl->solver.stats();
+    impl->stats.stages.push_back({ "Refine", "", "", false, 0.0, 0 });
+    impl->stats.warnings = warnings;
+    impl->stats.msTotal = engine::msSince(start);
+    return impl->solution;
+  }
   // Validation may drop degenerate triangles (keeping the order of the others): refine
   // what it keeps, and remember which input triangle each one is.
   Scene checked = scene;
@@ -364,6 +419,10 @@ const Solution& RefiningSolver::update(const Scene& scene, const SolverOptions& 
   }
   impl->stats.msTotal = engine::msSince(start);
   impl->splits = std::move(splits);
+  impl->madeFrom = scene;
+  impl->options = options;
+  impl->refinement = refinement;
+  impl->valid = true;
   return impl->solution;
 }
 }
