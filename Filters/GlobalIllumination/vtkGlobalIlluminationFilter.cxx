@@ -225,7 +225,7 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
     }
     const bool merged = surface != input;
     vtkPolyData* lit = merged ? internals.Lit.Get() : vtkPolyData::SafeDownCast(output);
-    if (solved->GetNumberOfPoints() == 0 || solved->GetNumberOfCells() == 0)
+    if (solved->GetNumberOfPoints() == 0) // points without cells are a point cloud: an error below
     {
       vtkWarningMacro("The input is empty; the output is empty too.");
       lit->ShallowCopy(surface);

@@ -253,7 +253,13 @@ vtkGlobalIlluminationSceneBuilder::Mesh vtkGlobalIlluminationSceneBuilder::Build
       msg << " (it has " << input->GetNumberOfVerts() << " vertex and "
           << input->GetNumberOfLines() << " line cells, which receive no light)";
     }
-    msg << "; extract a surface first, e.g. with vtkDataSetSurfaceFilter.";
+    const bool pointCloud = input && input->GetNumberOfLines() == 0 &&
+      (input->GetNumberOfVerts() > 0 || input->GetNumberOfPoints() > 0);
+    msg << (pointCloud
+        ? "; a point cloud has no surface to light: reconstruct one first (e.g. "
+          "vtkSurfaceReconstructionFilter and vtkContourFilter, or vtkDelaunay2D for a height "
+          "field), or draw the points without global illumination."
+        : "; extract a surface first, e.g. with vtkDataSetSurfaceFilter.");
     Fail(msg.str());
   }
   CheckFinite(input);

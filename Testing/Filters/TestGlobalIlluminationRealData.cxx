@@ -321,3 +321,29 @@ TEST(TestGlobalIlluminationRealData, AsynchronousUpdatesLogEachWarningOnce)
   }
   EXPECT_EQ(logged, 1);
 }
+
+TEST(TestGlobalIlluminationRealData, APointCloudIsAnErrorThatSaysHowToMakeASurface)
+{
+  // The bunny's points alone, as a scanner gives them (no cells, or one vertex cell each).
+  for (const bool withVertexCells : { false, true })
+  {
+    auto cloud = vtkSmartPointer<vtkPolyData>::New();
+    cloud->SetPoints(InwardBunny()->GetPoints());
+    if (withVertexCells)
+    {
+      vtkNew<vtkCellArray> verts;
+      for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+      {
+        verts->InsertNextCell(1, &i);
+      }
+      cloud->SetVerts(verts);
+    }
+    vtkNew<vtkGlobalIlluminationFilter> filter;
+    filter->SetInputData(cloud);
+    filter->SetBackendToCPU();
+    MessageCapture messages(filter);
+    filter->Update();
+    EXPECT_TRUE(messages.HasError("a point cloud has no surface to light")) << withVertexCells;
+    EXPECT_TRUE(messages.HasError("vtkSurfaceReconstructionFilter")) << withVertexCells;
+  }
+}
