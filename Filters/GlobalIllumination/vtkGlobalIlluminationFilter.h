@@ -48,7 +48,16 @@
  * FeatureAngle, splitting on, consistent ordering) when the input has none or
  * ComputeNormals is on. A point split at a sharp edge is solved once per side; its output
  * value is the mean of its copies (by count). With TwoSided off, a ray that hits the back
- * of a triangle is blocked and sees black.
+ * of a triangle is blocked and sees black. A closed surface whose normals point inward (as
+ * scanned models are often stored) is lit from outside unless a light or an emitting
+ * surface is inside it (a room), with a warning; so is nothing when every light is behind
+ * the surface, which a warning says (turn TwoSided on). Where given normals point against
+ * their triangles' winding, a warning says that VTK draws that side dark.
+ *
+ * Coordinates: the surface is solved relative to the centre of its bounds, taken in double
+ * precision, so data at geo-referenced coordinates (UTM, 1e5 to 1e7) is lit as it is at the
+ * origin. Rays leave a vertex 1% of its shortest edge off the surface (at most 1e-4 of the
+ * scene's diagonal), so a millimetre detail in a large scene is lit as it is alone.
  *
  * Updates are incremental: the filter keeps its solver between executions, so moving or
  * recolouring a light recomputes only direct light and bounces, and changing albedo,
@@ -58,7 +67,8 @@
  * Errors: invalid input (no polygons, NaN or infinite coordinates, missing arrays, negative
  * albedo, ...) is reported with vtkErrorMacro and the previous output is handed out again.
  * Degenerate triangles are dropped and albedo above 1 is clamped (unless ClampAlbedo is
- * off), with a warning. An empty input gives an empty output and a warning. With no lights,
+ * off), with a warning. An empty input gives an empty output and a warning; a point cloud
+ * (points without polygons) is an error that says how to make a surface of it. With no lights,
  * the result comes from the environment and emission only (all zero, with a warning, if
  * both are black). Setting AbortExecute (from a progress observer) stops the update and
  * keeps the previous output; VTK before 9.3 does not re-execute an aborted filter by
