@@ -50,9 +50,9 @@
  * value is the mean of its copies (by count). With TwoSided off, a ray that hits the back
  * of a triangle is blocked and sees black. A closed surface whose normals point inward (as
  * scanned models are often stored) is lit from outside unless a light or an emitting
- * surface is inside it (a room), with a warning; so is nothing when every light is behind
- * the surface, which a warning says (turn TwoSided on). Where given normals point against
- * their triangles' winding, a warning says that VTK draws that side dark.
+ * surface is inside it (a room), with a warning. When every light is behind the surface,
+ * a warning says so (turn TwoSided on). Where given normals point against their triangles'
+ * winding, a warning says that VTK draws that side dark.
  *
  * Coordinates: the surface is solved relative to the centre of its bounds, taken in double
  * precision, so data at geo-referenced coordinates (UTM, 1e5 to 1e7) is lit as it is at the
