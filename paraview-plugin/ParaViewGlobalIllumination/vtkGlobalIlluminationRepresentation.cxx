@@ -461,6 +461,7 @@ void vtkGlobalIlluminationRepresentation::GatherLights(vtkRenderer* renderer)
     copy->SetFocalPoint(focalPoint);
     copy->SetConeAngle(light->GetConeAngle());
     copy->SetExponent(light->GetExponent());
+    copy->SetAttenuationValues(light->GetAttenuationValues());
     copy->SetDiffuseColor(light->GetDiffuseColor());
     copy->SetIntensity(light->GetIntensity());
   }

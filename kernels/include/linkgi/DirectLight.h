@@ -26,6 +26,16 @@ LINKGI_HOST_DEVICE inline Vec3f directionToLight(const Light& light, const Vec3f
 constexpr float kMinLightDistance = 9.094947e-13f; // 2^-40
 constexpr float kMaxLightIrradiance = 1e30f;
 
+/// The denominator of a point or spot light's falloff at squared distance r2 (> 0):
+/// c + l r + q r^2 of its attenuation, r taken as at least kMinLightDistance. With the
+/// default (0, 0, 1) it is r^2 exactly.
+LINKGI_HOST_DEVICE inline float distanceFalloff(const Light& light, float r2)
+{
+  const float clamped = fmaxf(r2, kMinLightDistance * kMinLightDistance);
+  const Vec3f& a = light.attenuation;
+  return a.x + a.y * std::sqrt(clamped) + a.z * clamped;
+}
+
 /// Irradiance at p (unit normal n) from one light, without visibility; also returns the
 /// shadow ray direction `toLight` = directionToLight(light, p). Bounded: see above.
 LINKGI_HOST_DEVICE inline Vec3f unshadowedIrradiance(const Light& light, const Vec3f& p, const Vec3f& n, Vec3f& toLight)
@@ -56,7 +66,7 @@ LINKGI_HOST_DEVICE inline Vec3f unshadowedIrradiance(const Light& light, const V
     }
     spot = light.spotExponent > 0.f ? std::pow(fmaxf(cosAxis, 0.f), light.spotExponent) : 1.f;
   }
-  const float falloff = spot * cosSurface / fmaxf(r2, kMinLightDistance * kMinLightDistance);
+  const float falloff = spot * cosSurface / distanceFalloff(light, r2);
   const Vec3f e = light.intensity * falloff;
   return Vec3f(fminf(e.x, kMaxLightIrradiance), fminf(e.y, kMaxLightIrradiance),
     fminf(e.z, kMaxLightIrradiance));
