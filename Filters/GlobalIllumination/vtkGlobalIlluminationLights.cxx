@@ -27,7 +27,7 @@ void vtkGlobalIlluminationLights::MakeLamp(vtkLight* light)
 
 //------------------------------------------------------------------------------
 vtkGlobalIlluminationLights::Status vtkGlobalIlluminationLights::Convert(
-  vtkLight* light, double scale, Light& out)
+  vtkLight* light, double scale, Light& out, int falloff)
 {
   if (!light || !light->GetSwitch())
   {
@@ -47,6 +47,10 @@ vtkGlobalIlluminationLights::Status vtkGlobalIlluminationLights::Convert(
     result.ConeAngle = light->GetConeAngle();
     result.Exponent = light->GetExponent();
     light->GetAttenuationValues(result.Attenuation.data());
+    if (falloff == INVERSE_SQUARE)
+    {
+      result.Attenuation = { { 0.0, 0.0, 1.0 } };
+    }
     const auto& a = result.Attenuation;
     const bool valid = a[0] >= 0.0 && a[1] >= 0.0 && a[2] >= 0.0 && a[0] + a[1] + a[2] > 0.0 &&
       std::isfinite(a[0] + a[1] + a[2]);

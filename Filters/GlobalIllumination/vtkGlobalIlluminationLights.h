@@ -19,7 +19,9 @@
  *   off, so a point light looks as in VTK's Surface; (0, 0, 1) is a physical lamp's 1/r^2,
  *   which the generated lamp scenes (vtkGlobalIlluminationSceneSource) use and MakeLamp()
  *   sets. A light with a linear or quadratic term is a lamp (FallsOff()), which picks the
- *   mappers' automatic look (vtkGlobalIlluminationShading).
+ *   mappers' automatic look (vtkGlobalIlluminationShading). Where the lights cannot say
+ *   (ParaView's Light Inspector has no attenuation), the user chooses 1/r^2 for all of
+ *   them with Convert()'s INVERSE_SQUARE (vtkGlobalIlluminationShading::LightFalloff).
  * - A switched-off light (or nullptr) is skipped silently.
  * - A spot or directional light whose focal point equals its position has no direction:
  *   it is skipped, and the filter and the mapper both warn with Explain()'s sentence
@@ -84,11 +86,18 @@ public:
     NOT_PHYSICAL = 3  ///< negative or non-finite intensity, non-finite placement: skipped
   };
 
+  /// How point and spot lights fall off with distance.
+  enum Falloffs
+  {
+    AS_LIGHT = 0,      ///< as the light's AttenuationValues say (VTK's rule)
+    INVERSE_SQUARE = 1 ///< 1/r^2 for every point and spot light, whatever they say
+  };
+
   /**
-   * Converts `light` with its intensity multiplied by `scale`. Only with CONVERTED is
-   * `out` written.
+   * Converts `light` with its intensity multiplied by `scale`, its distance falloff chosen
+   * by `falloff` (Falloffs). Only with CONVERTED is `out` written.
    */
-  static Status Convert(vtkLight* light, double scale, Light& out);
+  static Status Convert(vtkLight* light, double scale, Light& out, int falloff = AS_LIGHT);
 
   /// Makes `light` a physical lamp: positional, attenuation (0, 0, 1), so that a surface at
   /// distance r facing it receives Intensity / r^2.

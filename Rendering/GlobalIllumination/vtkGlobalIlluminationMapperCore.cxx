@@ -184,7 +184,8 @@ void vtkGlobalIlluminationMapperCore::Prepare(vtkRenderer* renderer, vtkActor* a
   while (vtkLight* light = lights->GetNextLight(it))
   {
     ShadowMaps::Light converted;
-    const auto status = vtkGlobalIlluminationLights::Convert(light, scale, converted);
+    const auto status = vtkGlobalIlluminationLights::Convert(
+      light, scale, converted, this->Shading ? this->Shading->GetLightFalloff() : 0);
     const std::string why = vtkGlobalIlluminationLights::Explain(status, light);
     if (!why.empty())
     {

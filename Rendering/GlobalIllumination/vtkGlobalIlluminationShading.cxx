@@ -140,6 +140,8 @@ void vtkGlobalIlluminationShading::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Emission Array Name: " << name(this->EmissionArrayName) << "\n";
   os << indent << "Radiance Array Name: " << name(this->RadianceArrayName) << "\n";
   os << indent << "Light Intensity Scale: " << this->LightIntensityScale << "\n";
+  os << indent << "Light Falloff: " << (this->LightFalloff ? "Inverse Square" : "As Light")
+     << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "Tone Mapping: " << curves[this->ToneMapping] << "\n";
   os << indent << "Gamma: " << this->Gamma << "\n";

@@ -158,6 +158,18 @@ public:
 
   ///@{
   /**
+   * How point and spot lights fall off with distance (vtkGlobalIlluminationLights::Falloffs):
+   * AS_LIGHT, as each vtkLight's AttenuationValues say (VTK's default does not fall off), or
+   * INVERSE_SQUARE, 1/r^2 for all of them (physical lamps, where the lights cannot say it,
+   * as in ParaView). Give the filter lights that say the same (the ParaView representation
+   * does). The default value is AS_LIGHT.
+   */
+  vtkSetClampMacro(LightFalloff, int, 0, 1);
+  vtkGetMacro(LightFalloff, int);
+  ///@}
+
+  ///@{
+  /**
    * Multiplies the radiance before the tone curve. The default value is 1.
    */
   vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
@@ -284,6 +296,7 @@ protected:
   char* EmissionArrayName = nullptr;
   char* RadianceArrayName = nullptr;
   double LightIntensityScale = 1.0;
+  int LightFalloff = 0;
   double Exposure = 1.0;
   int ToneMapping = AUTOMATIC;
   double Gamma = 2.2;

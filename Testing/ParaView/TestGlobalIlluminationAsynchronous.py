@@ -67,7 +67,7 @@ box = GlobalIlluminationScene(Scene="cornell")
 display = Show(box, view)
 display.Representation = "Global Illumination"
 display.GlobalIlluminationRays = 256
-display.GlobalIlluminationToneMapping = "Exponential"
+display.GlobalIlluminationLightFalloff = "Inverse Square"
 view.CameraPosition = [0.278, 0.274, -0.8]
 view.CameraFocalPoint = [0.278, 0.274, 0.28]
 view.CameraViewUp = [0, 1, 0]
