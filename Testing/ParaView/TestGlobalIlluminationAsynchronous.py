@@ -147,7 +147,7 @@ gi.GlobalIlluminationDisplayMode = "Combined"
 
 # 3. Two light moves while the links are rebuilt: the first move's request is replaced.
 # The longer rebuild (2048 rays) here: it must outlast two renders, the one above one (with
-# 1024 it finished first once more in a clean-clone CI run at stop 32).
+# 1024 it could finish first on the CI machine).
 gi.GlobalIlluminationWait = "Never"
 gi.GlobalIlluminationRays = 2048
 Render(view)

@@ -17,12 +17,12 @@ LINKGI_HOST_DEVICE inline Vec3f directionToLight(const Light& light, const Vec3f
 }
 
 /// Bounds of a point or spot light's intensity / r^2 near its own position, where it grows
-/// without bound and overflowed single precision for a light within about 1e-19 of a vertex
-/// (issue 17). r is taken as at least kMinLightDistance (2^-40; validated scenes are rescaled
+/// without bound and would overflow single precision for a light within about 1e-19 of a
+/// vertex. r is taken as at least kMinLightDistance (2^-40; validated scenes are rescaled
 /// to a diagonal of at least 2^-16, so this is below the float resolution of their
 /// positions), and the irradiance of one light is at most kMaxLightIrradiance, the bound
 /// validation puts on emission (the bounces carry it without overflow). A light exactly at
-/// the vertex (r^2 of 0, also when it underflows) gives nothing, as it always did.
+/// the vertex (r^2 of 0, also when it underflows) gives nothing.
 constexpr float kMinLightDistance = 9.094947e-13f; // 2^-40
 constexpr float kMaxLightIrradiance = 1e30f;
 
