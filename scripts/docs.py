@@ -96,6 +96,13 @@ def comment_text(block):
     return re.sub(r"@(class|brief)\s+", "", text)
 
 
+def prose(text):
+    """A header comment as Markdown: its lists and `code` read as written; lines that
+    Markdown would take for headings or rules are escaped."""
+    lines = [("\\" + l) if re.match(r"\s*(#|={3,}|-{3,})", l) else l for l in text.splitlines()]
+    return "\n".join(lines).strip() + "\n"
+
+
 def fenced(text, language=""):
     return "```" + language + "\n" + text.rstrip() + "\n```\n"
 
@@ -107,7 +114,9 @@ def cxx_reference(path):
     head = re.match(r"\s*/\*\*(.*?)\*/", source, re.S)
     out = ["## " + name, "", "`" + path + "`", ""]
     if head:
-        out += [fenced(comment_text(head.group(1))), ""]
+        description = comment_text(head.group(1)).split("\n", 2)
+        out += ["**" + description[1].strip() + "**" if len(description) > 1 else "", "",
+                prose(description[2]) if len(description) > 2 else "", ""]
     body = source[head.end():] if head else source
     # Documented declarations: a /** */ or /// comment followed by code up to ';' or '{',
     # inside ///@{ ... ///@} groups as VTK writes its properties.
@@ -116,7 +125,7 @@ def cxx_reference(path):
         doc = re.search(r"/\*\*(.*?)\*/", text, re.S) or re.search(r"((?:\s*///[^\n]*\n)+)", text)
         code = text[doc.end():] if doc else text
         decls = "\n".join(l.rstrip() for l in code.strip().splitlines() if l.strip())
-        out += [fenced(decls, "cpp"), "", fenced(comment_text(doc.group(1))) if doc else "", ""]
+        out += [fenced(decls, "cpp"), "", prose(comment_text(doc.group(1))) if doc else "", ""]
     return "\n".join(out)
 
 
@@ -128,12 +137,12 @@ def python_reference():
            "each docstring is the header's documentation.", ""]
     for name in sorted(n for n in dir(linkgi) if n.startswith("vtk")):
         cls = getattr(linkgi, name)
-        out += ["## linkgi." + name, "", fenced(inspect.cleandoc(cls.__doc__ or "")), ""]
+        out += ["## linkgi." + name, "", fenced(inspect.cleandoc(cls.__doc__ or ""), "text"), ""]
         for method in sorted(cls.__dict__):
             member = cls.__dict__[method]
             if method.startswith("_") or not callable(member) or not member.__doc__:
                 continue
-            out += ["### " + name + "." + method, "", fenced(inspect.cleandoc(member.__doc__)), ""]
+            out += ["### " + name + "." + method, "", fenced(inspect.cleandoc(member.__doc__), "text"), ""]
     return "\n".join(out)
 
 
