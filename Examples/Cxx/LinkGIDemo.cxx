@@ -7,7 +7,7 @@
 // light of the scene's lights with shadow maps, plus the filter's per-vertex indirect light;
 // the scene's lamp picks the mapper's automatic look (a photographic curve exposed from the
 // filter's Radiance). The README's picture is this program's output
-// (Testing/Rendering/CheckDemoIsReadmePicture.py keeps them the same).
+// (Testing/Rendering/TestDemoIsReadmePicture.py keeps them the same).
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkFieldData.h"

@@ -4,7 +4,7 @@ the rule of the image tests (RenderingTestUtilities.h: mean difference within 1 
 most 0.2 % of the pixels off by more than 16). Fails when the README stops showing that file
 or the two pictures diverge; regenerate the README's with
     Testing/run_with_xvfb.sh build/bin/linkgi-demo Documentation/cornell-demo.png
-Usage: CheckDemoIsReadmePicture.py DEMO README OUTPUT_DIR
+Usage: TestDemoIsReadmePicture.py DEMO README OUTPUT_DIR
 """
 import os
 import re
