@@ -36,6 +36,16 @@ LINKGI_HOST_DEVICE inline float distanceFalloff(const Light& light, float r2)
   return a.x + a.y * std::sqrt(clamped) + a.z * clamped;
 }
 
+/// What a point or spot light gives at squared distance r2 against a lamp of the same
+/// intensity (1/r^2): r^2 / (c + l r + q r^2), exactly 1 for the default (0, 0, 1). Light paths
+/// shot from a light (instant radiosity, photon mapping) carry a lamp's flux and take this
+/// factor where they first land, so that they bounce the light that the direct light shows.
+LINKGI_HOST_DEVICE inline float falloffAgainstInverseSquare(const Light& light, float r2)
+{
+  const float clamped = fmaxf(r2, kMinLightDistance * kMinLightDistance);
+  return clamped / distanceFalloff(light, r2);
+}
+
 /// Irradiance at p (unit normal n) from one light, without visibility; also returns the
 /// shadow ray direction `toLight` = directionToLight(light, p). Bounded: see above.
 LINKGI_HOST_DEVICE inline Vec3f unshadowedIrradiance(const Light& light, const Vec3f& p, const Vec3f& n, Vec3f& toLight)
