@@ -16,6 +16,7 @@ packages=(
   xvfb xauth libgl1-mesa-dri
   dpkg-dev file
   clang libclang-rt-14-dev libfuzzer-14-dev
+  python3-sphinx python3-myst-parser python3-pydata-sphinx-theme
 )
 
 missing=()

@@ -33,7 +33,8 @@ int main(int argc, char* argv[])
 
   vtkNew<vtkLight> light; // 16 W/sr, 4 m up: irradiance 1 on the plane below it
   light->SetPositional(true);
-  light->SetConeAngle(90); // a point light, not a spot
+  light->SetConeAngle(90);             // a point light, not a spot
+  light->SetAttenuationValues(0, 0, 1); // a lamp: 1/r^2 (VTK's default does not fall off)
   light->SetPosition(0.5, 0.5, 4);
   light->SetIntensity(16);
 

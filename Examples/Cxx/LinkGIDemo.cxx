@@ -3,9 +3,11 @@
 //
 // Usage: linkgi-demo [output.png] [scene-name]
 //
-// vtkGlobalIlluminationMapper draws it: per pixel, the direct light of the scene's lights
-// with shadow maps, plus the filter's per-vertex indirect light (display mode "combined"),
-// tone mapped with an exposure taken from the filter's Radiance.
+// vtkGlobalIlluminationMapper draws it with its default settings: per pixel, the direct
+// light of the scene's lights with shadow maps, plus the filter's per-vertex indirect light;
+// the scene's lamp picks the mapper's automatic look (a photographic curve exposed from the
+// filter's Radiance). The README's picture is this program's output
+// (Testing/Rendering/TestDemoIsReadmePicture.py keeps them the same).
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkFieldData.h"
@@ -13,7 +15,6 @@
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkGlobalIlluminationMapper.h"
 #include "vtkGlobalIlluminationSceneSource.h"
-#include "vtkGlobalIlluminationShading.h"
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
@@ -92,8 +93,6 @@ int main(int argc, char* argv[])
   vtkNew<vtkGlobalIlluminationMapper> mapper;
   mapper->SetInputData(lit);
   mapper->ScalarVisibilityOff();
-  mapper->GetShading()->SetDisplayModeToCombined();
-  mapper->GetShading()->SetExposure(mapper->GetShading()->SuggestExposure(radiance));
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   renderer->AddActor(actor);

@@ -66,7 +66,8 @@ vtkSmartPointer<vtkLight> MakeLight(double x, double y, double z, double fx, dou
 {
   auto light = vtkSmartPointer<vtkLight>::New();
   light->SetLightTypeToSceneLight();
-  light->SetPositional(cone > 0.0); // cone 0: directional
+  light->SetPositional(cone > 0.0);     // cone 0: directional
+  light->SetAttenuationValues(0, 0, 1); // a lamp: 1/r^2
   light->SetPosition(x, y, z);
   light->SetFocalPoint(fx, fy, fz);
   light->SetConeAngle(cone > 0.0 ? cone : 30.0);

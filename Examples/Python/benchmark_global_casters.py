@@ -1,4 +1,4 @@
-"""Benchmark of the shadow casters' exchange under MPI (issue 16): what
+"""Benchmark of the shadow casters' exchange under MPI: what
 vtkGlobalIlluminationGlobalCasters.Gather costs per geometry change, per render without a
 change, and with decimated proxies past its limit.
 

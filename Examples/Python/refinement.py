@@ -28,6 +28,7 @@ triangles.SetInputConnection(scene.GetOutputPort())
 
 light = vtkLight()
 light.SetPositional(True)
+light.SetAttenuationValues(0, 0, 1)  # a lamp: 1/r^2 (VTK's default does not fall off)
 light.SetConeAngle(90)
 light.SetPosition(-1.2, -0.8, 2.2)
 light.SetIntensity(6)

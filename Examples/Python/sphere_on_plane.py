@@ -24,6 +24,7 @@ scene.AddInputConnection(plane.GetOutputPort())
 
 light = vtkLight()  # a point light of 16 W/sr, 4 m up: irradiance 1 on the plane below it
 light.SetPositional(True)
+light.SetAttenuationValues(0, 0, 1)  # a lamp: 1/r^2 (VTK's default does not fall off)
 light.SetConeAngle(90)
 light.SetPosition(0.5, 0.5, 4)
 light.SetIntensity(16)

@@ -34,9 +34,10 @@
  *
  * Units: linear RGB with no hidden factors. A point or spot vtkLight with Intensity 1 and a
  * white DiffuseColor has a radiant intensity of 1 W/sr per channel (times
- * LightIntensityScale), so a surface at distance r facing it receives 1/r^2; a directional
- * light of intensity 1 gives irradiance 1 on a surface facing it. vtkLight's attenuation
- * values are ignored (light falls off with 1/r^2). Lights are read by
+ * LightIntensityScale), so a surface at distance r facing it receives
+ * 1 / (c + l r + q r^2), (c, l, q) the light's AttenuationValues: 1 with VTK's default,
+ * 1/r^2 for a lamp's (0, 0, 1); a directional light of intensity 1 gives irradiance 1 on a
+ * surface facing it. Lights are read by
  * vtkGlobalIlluminationLights, as vtkGlobalIlluminationMapper reads them: switched-off
  * lights are ignored; positional lights with a cone angle below 90 degrees are spot lights
  * (with the light's exponent), other positional lights point lights; headlights and camera

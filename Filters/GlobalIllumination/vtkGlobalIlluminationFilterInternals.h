@@ -71,7 +71,7 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   vtkNew<vtkPolyData> Lit;
   vtkPolyData* Surface(vtkGlobalIlluminationFilter* self, vtkDataObject* input);
 
-  // Under MPI (issue 16): the global surface of every process's partition is lit as
+  // Under MPI: the global surface of every process's partition is lit as
   // `GlobalLit`, and each process keeps the light of its own points.
   vtkGlobalIlluminationPartitions Partitions;
   vtkNew<vtkPolyData> GlobalLit;

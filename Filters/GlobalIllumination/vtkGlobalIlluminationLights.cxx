@@ -13,8 +13,21 @@ double vtkGlobalIlluminationLights::Light::CosCone() const
 }
 
 //------------------------------------------------------------------------------
+bool vtkGlobalIlluminationLights::Light::FallsOff() const
+{
+  return this->Type != DIRECTIONAL && (this->Attenuation[1] > 0.0 || this->Attenuation[2] > 0.0);
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationLights::MakeLamp(vtkLight* light)
+{
+  light->SetPositional(true);
+  light->SetAttenuationValues(0.0, 0.0, 1.0);
+}
+
+//------------------------------------------------------------------------------
 vtkGlobalIlluminationLights::Status vtkGlobalIlluminationLights::Convert(
-  vtkLight* light, double scale, Light& out)
+  vtkLight* light, double scale, Light& out, int falloff)
 {
   if (!light || !light->GetSwitch())
   {
@@ -33,6 +46,18 @@ vtkGlobalIlluminationLights::Status vtkGlobalIlluminationLights::Convert(
     result.Type = light->GetConeAngle() < 90.0 ? Light::SPOT : Light::POINT;
     result.ConeAngle = light->GetConeAngle();
     result.Exponent = light->GetExponent();
+    light->GetAttenuationValues(result.Attenuation.data());
+    if (falloff == INVERSE_SQUARE)
+    {
+      result.Attenuation = { { 0.0, 0.0, 1.0 } };
+    }
+    const auto& a = result.Attenuation;
+    const bool valid = a[0] >= 0.0 && a[1] >= 0.0 && a[2] >= 0.0 && a[0] + a[1] + a[2] > 0.0 &&
+      std::isfinite(a[0] + a[1] + a[2]);
+    if (!valid)
+    {
+      return NOT_PHYSICAL;
+    }
   }
   else
   {
@@ -78,8 +103,10 @@ std::string vtkGlobalIlluminationLights::Explain(Status status, vtkLight* light)
     light->GetDiffuseColor(color);
     msg << "A light (vtkLight " << static_cast<const void*>(light) << ") has a negative or "
         << "non-finite colour x intensity (" << color[0] << ", " << color[1] << ", " << color[2]
-        << ") x " << light->GetIntensity() << ", or a non-finite position or focal point, "
-        << "so it is skipped; give it a colour and an intensity of 0 or more.";
+        << ") x " << light->GetIntensity() << ", a non-finite position or focal point, "
+        << "or attenuation values that are negative or all zero, so it is skipped; give it a "
+        << "colour and an intensity of 0 or more, and attenuation (1, 0, 0) for no distance "
+        << "falloff or (0, 0, 1) for 1/r^2.";
     return msg.str();
   }
   msg << "A " << (light->GetPositional() ? "spot" : "directional") << " light (vtkLight "

@@ -1,4 +1,4 @@
-// The filter under MPI (issue 16): every process holds a partition of the surface, and the
+// The filter under MPI: every process holds a partition of the surface, and the
 // light crosses partition boundaries (a shadow cast by one process's geometry onto
 // another's, light bounced between them). Gather() appends every process's surface, in
 // process order, into one global surface that each process lights; Scatter() hands each

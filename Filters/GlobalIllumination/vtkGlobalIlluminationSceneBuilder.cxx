@@ -472,6 +472,7 @@ vtkGlobalIlluminationLights::Status vtkGlobalIlluminationSceneBuilder::ConvertLi
   out.intensity = ToVec3f(l.Intensity.data());
   out.coneAngleDegrees = static_cast<float>(l.ConeAngle);
   out.spotExponent = static_cast<float>(l.Exponent);
+  out.attenuation = ToVec3f(l.Attenuation.data());
   return status;
 }
 

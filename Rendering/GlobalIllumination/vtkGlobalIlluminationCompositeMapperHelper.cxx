@@ -82,7 +82,8 @@ void vtkGlobalIlluminationCompositeMapperHelper::RenderPieceDraw(vtkRenderer* re
     // as fine a version as any here.
     this->Core->Prepare(ren, act,
       vtkGlobalIlluminationMapperCore::MakeCasters(
-        this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()));
+        this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()),
+      this->ShadedBlocks);
   }
   this->Superclass::RenderPieceDraw(ren, act);
   this->Core->FinishDraw();

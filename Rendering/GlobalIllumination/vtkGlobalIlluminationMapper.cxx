@@ -89,8 +89,9 @@ void vtkGlobalIlluminationMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* ac
     const vtkMTimeType cells = input
       ? std::max(input->GetPolys()->GetMTime(), input->GetStrips()->GetMTime())
       : this->VBOBuildTime.GetMTime();
-    this->Core->Prepare(
-      ren, act, vtkGlobalIlluminationMapperCore::MakeCasters(this->VBOs, this->Primitives, act, cells));
+    this->Core->Prepare(ren, act,
+      vtkGlobalIlluminationMapperCore::MakeCasters(this->VBOs, this->Primitives, act, cells),
+      { input });
   }
   this->Superclass::RenderPieceDraw(ren, act);
   this->Core->FinishDraw();

@@ -194,8 +194,8 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::AddGlobalCasters(
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationMapperCore::Prepare(
-  vtkRenderer* renderer, vtkActor* actor, const ShadowMaps::Casters& ownCasters)
+void vtkGlobalIlluminationMapperCore::Prepare(vtkRenderer* renderer, vtkActor* actor,
+  const ShadowMaps::Casters& ownCasters, const std::vector<vtkPolyData*>& drawn)
 {
   ShadowMaps::Casters casters = this->AddGlobalCasters(ownCasters, actor);
   this->Origin = Centre(casters.WorldBounds);
@@ -217,7 +217,8 @@ void vtkGlobalIlluminationMapperCore::Prepare(
   while (vtkLight* light = lights->GetNextLight(it))
   {
     ShadowMaps::Light converted;
-    const auto status = vtkGlobalIlluminationLights::Convert(light, scale, converted);
+    const auto status = vtkGlobalIlluminationLights::Convert(
+      light, scale, converted, this->Shading ? this->Shading->GetLightFalloff() : 0);
     const std::string why = vtkGlobalIlluminationLights::Explain(status, light);
     if (!why.empty())
     {
@@ -256,10 +257,36 @@ void vtkGlobalIlluminationMapperCore::Prepare(
     }
     this->SkippedLightsWarned = skipped;
   }
+  this->UpdateLook(drawn);
   auto* window = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
   const bool shadows = this->Shading && this->Shading->GetShadows();
   const int resolution = this->Shading ? this->Shading->GetShadowMapResolution() : 1024;
   this->ShadowMaps.Update(window, this->Lights, atEye, shadows, casters, resolution);
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationMapperCore::UpdateLook(const std::vector<vtkPolyData*>& drawn)
+{
+  const bool lamps = std::any_of(this->Lights.begin(), this->Lights.end(),
+    [](const ShadowMaps::Light& light) { return light.FallsOff(); });
+  vtkGlobalIlluminationShading* s = this->Shading;
+  std::vector<vtkDataArray*> radiance;
+  std::ostringstream key;
+  key << lamps << ' ' << (s ? s->GetMTime() : 0);
+  for (vtkPolyData* poly : drawn)
+  {
+    vtkDataArray* array = poly && s && s->GetRadianceArrayName()
+      ? poly->GetPointData()->GetArray(s->GetRadianceArrayName())
+      : nullptr;
+    radiance.push_back(array);
+    key << ' ' << array << ' ' << (array ? array->GetMTime() : 0);
+  }
+  // The percentile is a pass over every point: once per new solution, not per frame.
+  if (key.str() != this->LookKey)
+  {
+    this->CurrentLook = s ? s->GetLook(lamps, radiance) : vtkGlobalIlluminationShading::Look();
+    this->LookKey = key.str();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -282,7 +309,7 @@ std::string vtkGlobalIlluminationMapperCore::ShaderKey(vtkActor* actor) const
       << this->Present.Emission;
   if (this->Shading)
   {
-    key << ' ' << this->Shading->GetDisplayMode() << ' ' << this->Shading->GetToneMapping() << ' '
+    key << ' ' << this->Shading->GetDisplayMode() << ' ' << this->CurrentLook.ToneMapping << ' '
         << (this->Shading->GetShadowFilterRadius() > 0.0);
   }
   key << ' ' << (actor && actor->GetProperty()->GetSpecular() > 0.0);
@@ -304,8 +331,7 @@ void vtkGlobalIlluminationMapperCore::ReplaceShaderLight(
           << "#define GI_HAS_EMISSION " << this->Present.Emission << "\n"
           << "#define GI_GLOSSY " << (actor->GetProperty()->GetSpecular() > 0.0) << "\n"
           << "#define GI_MODE " << (this->Shading ? this->Shading->GetDisplayMode() : 0) << "\n"
-          << "#define GI_TONE_MAPPING " << (this->Shading ? this->Shading->GetToneMapping() : 1)
-          << "\n"
+          << "#define GI_TONE_MAPPING " << this->CurrentLook.ToneMapping << "\n"
           << "#define GI_SOFT_SHADOWS "
           << (this->Shading && this->Shading->GetShadowFilterRadius() > 0.0) << "\n";
   std::string vs = shaders[vtkShader::Vertex]->GetSource();
@@ -329,7 +355,7 @@ void vtkGlobalIlluminationMapperCore::SetShaderParameters(
   vtkShaderProgram* program, vtkRenderer* renderer)
 {
   vtkGlobalIlluminationShading* s = this->Shading;
-  program->SetUniformf("giExposure", static_cast<float>(s ? s->GetExposure() : 1.0));
+  program->SetUniformf("giExposure", static_cast<float>(this->CurrentLook.Exposure));
   program->SetUniformf("giInvGamma", static_cast<float>(1.0 / (s ? s->GetGamma() : 2.2)));
 
   vtkCamera* camera = renderer->GetActiveCamera();
@@ -364,7 +390,8 @@ void vtkGlobalIlluminationMapperCore::SetShaderParameters(
   program->SetUniform4fv("giCamera", 1, eye);
 
   const int n = static_cast<int>(this->Lights.size());
-  std::vector<float> positions(3 * n), directions(3 * n), intensities(3 * n), cones(2 * n);
+  std::vector<float> positions(3 * n), directions(3 * n), intensities(3 * n), cones(2 * n),
+    attenuations(3 * n);
   for (int i = 0; i < n; ++i)
   {
     const ShadowMaps::Light& l = this->Lights[i];
@@ -373,6 +400,7 @@ void vtkGlobalIlluminationMapperCore::SetShaderParameters(
       positions[3 * i + k] = static_cast<float>(l.Position[k]);
       directions[3 * i + k] = static_cast<float>(l.Direction[k]);
       intensities[3 * i + k] = static_cast<float>(l.Intensity[k]);
+      attenuations[3 * i + k] = static_cast<float>(l.Attenuation[k]);
     }
     cones[2 * i] = static_cast<float>(l.CosCone());
     cones[2 * i + 1] = static_cast<float>(l.Exponent);
@@ -383,6 +411,7 @@ void vtkGlobalIlluminationMapperCore::SetShaderParameters(
     program->SetUniform3fv("giLightDirection", n, directions.data());
     program->SetUniform3fv("giLightIntensity", n, intensities.data());
     program->SetUniform2fv("giLightCone", n, cones.data());
+    program->SetUniform3fv("giLightAttenuation", n, attenuations.data());
   }
   if (!this->TextureActive)
   {

@@ -19,6 +19,7 @@
 #ifndef vtkGlobalIlluminationMapperCore_h
 #define vtkGlobalIlluminationMapperCore_h
 
+#include "vtkGlobalIlluminationShading.h"    // for vtkGlobalIlluminationShading::Look
 #include "vtkGlobalIlluminationShadowMaps.h" // for vtkGlobalIlluminationShadowMaps
 #include "vtkShader.h"                       // for vtkShader::Type
 #include "vtkSmartPointer.h"                 // for vtkSmartPointer
@@ -151,9 +152,15 @@ public:
     vtkMTimeType version);
 
   /// Takes the renderer's lights and brings the shadow maps up to date, with the other
-  /// processes' triangles of the shading's GlobalCasters if it has any. Call before drawing.
+  /// processes' triangles of the shading's GlobalCasters if it has any, and the look
+  /// (vtkGlobalIlluminationShading::GetLook) of the lights and the `drawn` polydata's
+  /// radiance. Call before drawing.
   void Prepare(vtkRenderer* renderer, vtkActor* actor,
-    const vtkGlobalIlluminationShadowMaps::Casters& casters);
+    const vtkGlobalIlluminationShadowMaps::Casters& casters,
+    const std::vector<vtkPolyData*>& drawn);
+
+  /// The tone curve and exposure of the last Prepare().
+  const vtkGlobalIlluminationShading::Look& GetLook() const { return this->CurrentLook; }
 
   /// A key of everything the shader source depends on: a change rebuilds the shaders.
   std::string ShaderKey(vtkActor* actor) const;
@@ -178,6 +185,9 @@ private:
   /// The name of the back faces' indirect irradiance array.
   std::string BackName() const;
 
+  /// CurrentLook from the lights and the drawn polydata's radiance, when either changed.
+  void UpdateLook(const std::vector<vtkPolyData*>& drawn);
+
   /// The lights' types, comma separated, for the shader source.
   std::string LightTypes() const;
   int LightCount() const { return static_cast<int>(this->Lights.size()); }
@@ -195,6 +205,8 @@ private:
   bool TextureActive = false;
   int IgnoredLightsWarned = 0;
   std::vector<std::string> SkippedLightsWarned; // lights without a direction, last warned
+  vtkGlobalIlluminationShading::Look CurrentLook;
+  std::string LookKey; // what CurrentLook was computed from
 };
 
 #endif

@@ -17,6 +17,7 @@ vtkGlobalIlluminationShading::vtkGlobalIlluminationShading()
   this->SetAlbedoArrayName("Albedo");
   this->SetIndirectIrradianceArrayName("IndirectIrradiance");
   this->SetEmissionArrayName("Emission");
+  this->SetRadianceArrayName("Radiance");
 }
 
 //------------------------------------------------------------------------------
@@ -25,6 +26,7 @@ vtkGlobalIlluminationShading::~vtkGlobalIlluminationShading()
   this->SetAlbedoArrayName(nullptr);
   this->SetIndirectIrradianceArrayName(nullptr);
   this->SetEmissionArrayName(nullptr);
+  this->SetRadianceArrayName(nullptr);
   this->SetGlobalCasters(nullptr);
 }
 
@@ -46,32 +48,69 @@ const char* vtkGlobalIlluminationShading::GetDisplayModeAsString()
 }
 
 //------------------------------------------------------------------------------
+vtkGlobalIlluminationShading::Look vtkGlobalIlluminationShading::GetLook(
+  bool lamps, const std::vector<vtkDataArray*>& radiance) const
+{
+  Look look;
+  look.Exposure = this->Exposure;
+  if (this->ToneMapping != AUTOMATIC)
+  {
+    look.ToneMapping = this->ToneMapping;
+  }
+  else if (lamps)
+  {
+    // A lamp's 1/r^2 range needs compressing: a photograph, exposed for the scene.
+    look.ToneMapping = EXPONENTIAL;
+    look.Exposure *= this->SuggestExposure(radiance, EXPONENTIAL);
+  }
+  else
+  {
+    look.ToneMapping = HUE_PRESERVING; // calibrated to VTK's Surface
+  }
+  return look;
+}
+
+//------------------------------------------------------------------------------
 double vtkGlobalIlluminationShading::SuggestExposure(vtkDataArray* radiance) const
 {
-  const vtkIdType n =
-    radiance && radiance->GetNumberOfComponents() >= 3 ? radiance->GetNumberOfTuples() : 0;
+  const int curve = this->ToneMapping == AUTOMATIC ? EXPONENTIAL : this->ToneMapping;
+  return this->SuggestExposure(std::vector<vtkDataArray*>{ radiance }, curve);
+}
+
+//------------------------------------------------------------------------------
+double vtkGlobalIlluminationShading::SuggestExposure(
+  const std::vector<vtkDataArray*>& radiance, int toneMapping) const
+{
+  std::vector<double> luminance;
+  for (vtkDataArray* array : radiance)
+  {
+    if (!array || array->GetNumberOfComponents() < 3)
+    {
+      continue;
+    }
+    for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+    {
+      const double* c = array->GetTuple3(i);
+      luminance.push_back(0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]);
+    }
+  }
+  const std::size_t n = luminance.size();
   if (n == 0)
   {
     return 1.0;
   }
-  std::vector<double> luminance(static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const double* c = radiance->GetTuple3(i);
-    luminance[i] = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
-  }
   // The curves compress highlights, so the 95th percentile can go near white; the
   // hue-preserving display is linear up to white, so a lower one does (the brightest
   // fifth, around lamps, turns white as in a photograph).
-  const vtkIdType rank = this->ToneMapping == HUE_PRESERVING ? n * 80 / 100 : n * 95 / 100;
-  const auto percentile = luminance.begin() + rank;
+  const std::size_t rank = toneMapping == HUE_PRESERVING ? n * 80 / 100 : n * 95 / 100;
+  const auto percentile = luminance.begin() + static_cast<std::ptrdiff_t>(rank);
   std::nth_element(luminance.begin(), percentile, luminance.end());
-  if (!(*percentile > 0.0))
+  if (!(*percentile > 0.0) || !std::isfinite(*percentile))
   {
     return 1.0;
   }
   const double target = 0.85;
-  switch (this->ToneMapping)
+  switch (toneMapping)
   {
     case EXPONENTIAL: // 1 - exp(-x), then the gamma encoding
       return -std::log(1.0 - std::pow(target, this->Gamma)) / *percentile;
@@ -91,14 +130,18 @@ double vtkGlobalIlluminationShading::SuggestExposure(vtkDataArray* radiance) con
 void vtkGlobalIlluminationShading::PrintSelf(ostream& os, vtkIndent indent)
 {
   const auto name = [](const char* s) { return s ? s : "(none)"; };
-  static const char* const curves[] = { "Linear", "Exponential", "Reinhard", "Hue Preserving" };
+  static const char* const curves[] = { "Linear", "Exponential", "Reinhard", "Hue Preserving",
+    "Automatic" };
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Display Mode: " << this->GetDisplayModeAsString() << "\n";
   os << indent << "Albedo Array Name: " << name(this->AlbedoArrayName) << "\n";
   os << indent << "Indirect Irradiance Array Name: " << name(this->IndirectIrradianceArrayName)
      << "\n";
   os << indent << "Emission Array Name: " << name(this->EmissionArrayName) << "\n";
+  os << indent << "Radiance Array Name: " << name(this->RadianceArrayName) << "\n";
   os << indent << "Light Intensity Scale: " << this->LightIntensityScale << "\n";
+  os << indent << "Light Falloff: " << (this->LightFalloff ? "Inverse Square" : "As Light")
+     << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "Tone Mapping: " << curves[this->ToneMapping] << "\n";
   os << indent << "Gamma: " << this->Gamma << "\n";

@@ -28,6 +28,19 @@
  * (ToneCurve(Exposure * L))^(1/Gamma): linear light encoded for display (a white surface
  * facing irradiance 1 has L = 1 / pi: Exposure pi shows it white).
  *
+ * The look, chosen from the lights (the default AUTOMATIC tone mapping; GetLook() is the
+ * rule, the mappers and the ParaView representation all ask it):
+ * - Scenes lit on VTK's scale (directional lights, the light kit, headlights, point and
+ *   spot lights that do not fall off with distance, VTK's default): HUE_PRESERVING with
+ *   Exposure, the calibrated look above.
+ * - Scenes with a lamp, a point or spot light that falls off with distance
+ *   (vtkGlobalIlluminationLights::Light::FallsOff(), e.g. attenuation (0, 0, 1)): a lamp
+ *   near a surface lights it hundreds of times more than the far side of a room, a range
+ *   no linear display holds. They are shown as a photograph: EXPONENTIAL with Gamma, and
+ *   an automatic exposure that puts the 95th percentile of the luminance of the input's
+ *   RadianceArrayName at 85 % of display white (SuggestExposure()), times Exposure.
+ *   Without that array the exposure is Exposure alone.
+ *
  * Changing the array names, the display mode or the tone curve rebuilds shaders and
  * buffers at the next render; Exposure, Gamma and the shadow filtering are uniforms and
  * cost nothing to change.
@@ -37,6 +50,8 @@
 
 #include "LinkGIRenderingGlobalIlluminationModule.h" // for export macro
 #include "vtkObject.h"
+
+#include <vector> // for std::vector
 
 class vtkDataArray;
 class vtkGlobalIlluminationGlobalCasters;
@@ -65,8 +80,26 @@ public:
     /// Calibrated to VTK's Lambert shading; colours within display range are shown as they
     /// are; a colour beyond it keeps its luminance (up to white) and hue and loses only as
     /// much saturation as it must, so over-exposed areas turn white instead of changing hue.
-    HUE_PRESERVING = 3
+    HUE_PRESERVING = 3,
+    /// HUE_PRESERVING, or EXPONENTIAL with an automatic exposure where a light is a lamp
+    /// (see the class description and GetLook()).
+    AUTOMATIC = 4
   };
+
+  /// The tone curve (never AUTOMATIC) and exposure a mapper draws with.
+  struct Look
+  {
+    int ToneMapping = AUTOMATIC;
+    double Exposure = 1.0;
+  };
+
+  /**
+   * The look's one rule (see the class description): the curve and exposure for a scene
+   * that has a lamp (`lamps`) or not, `radiance` being the linear RGB radiance of what is
+   * drawn (the filter's Radiance arrays; empty or null entries are skipped). Curves other
+   * than AUTOMATIC are drawn as chosen, with Exposure.
+   */
+  Look GetLook(bool lamps, const std::vector<vtkDataArray*>& radiance) const;
 
   ///@{
   /**
@@ -125,6 +158,18 @@ public:
 
   ///@{
   /**
+   * How point and spot lights fall off with distance (vtkGlobalIlluminationLights::Falloffs):
+   * AS_LIGHT, as each vtkLight's AttenuationValues say (VTK's default does not fall off), or
+   * INVERSE_SQUARE, 1/r^2 for all of them (physical lamps, where the lights cannot say it,
+   * as in ParaView). Give the filter lights that say the same (the ParaView representation
+   * does). The default value is AS_LIGHT.
+   */
+  vtkSetClampMacro(LightFalloff, int, 0, 1);
+  vtkGetMacro(LightFalloff, int);
+  ///@}
+
+  ///@{
+  /**
    * Multiplies the radiance before the tone curve. The default value is 1.
    */
   vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
@@ -134,31 +179,44 @@ public:
   /**
    * An Exposure that shows a high percentile of the luminance of `radiance` (the filter's
    * Radiance array, or any linear RGB radiance) at 85 % of display white with the current
-   * tone mapping (and Gamma): the 80th with HUE_PRESERVING, which does not compress
-   * highlights, the 95th with the other curves. For scenes whose lights are not on VTK's
-   * scale (a Cornell box's lamp, physical units). Returns 1 for an empty or black array.
+   * tone mapping (and Gamma; AUTOMATIC counts as EXPONENTIAL, its lamp curve): the 80th
+   * with HUE_PRESERVING, which does not compress highlights, the 95th with the other
+   * curves. For scenes whose lights are not on VTK's scale (physical units). Returns 1 for
+   * an empty or black array.
    */
   double SuggestExposure(vtkDataArray* radiance) const;
+  double SuggestExposure(const std::vector<vtkDataArray*>& radiance, int toneMapping) const;
 
   ///@{
   /**
-   * HUE_PRESERVING, LINEAR, EXPONENTIAL or REINHARD. To tone map with vtkToneMappingPass
-   * instead, choose LINEAR with Gamma 2.2 (the encoding that pass expects). The default
-   * value is HUE_PRESERVING.
+   * Point array holding the radiance of what is drawn (float RGB, as written by
+   * vtkGlobalIlluminationFilter), read by the automatic exposure of lamp scenes. The
+   * default value is "Radiance".
    */
-  vtkSetClampMacro(ToneMapping, int, LINEAR, HUE_PRESERVING);
+  vtkSetStringMacro(RadianceArrayName);
+  vtkGetStringMacro(RadianceArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * AUTOMATIC, HUE_PRESERVING, LINEAR, EXPONENTIAL or REINHARD. To tone map with
+   * vtkToneMappingPass instead, choose LINEAR with Gamma 2.2 (the encoding that pass
+   * expects). The default value is AUTOMATIC: HUE_PRESERVING unless a light is a lamp.
+   */
+  vtkSetClampMacro(ToneMapping, int, LINEAR, AUTOMATIC);
   vtkGetMacro(ToneMapping, int);
   void SetToneMappingToLinear() { this->SetToneMapping(LINEAR); }
   void SetToneMappingToExponential() { this->SetToneMapping(EXPONENTIAL); }
   void SetToneMappingToReinhard() { this->SetToneMapping(REINHARD); }
   void SetToneMappingToHuePreserving() { this->SetToneMapping(HUE_PRESERVING); }
+  void SetToneMappingToAutomatic() { this->SetToneMapping(AUTOMATIC); }
   ///@}
 
   ///@{
   /**
    * Display gamma of the photographic curves (LINEAR, EXPONENTIAL, REINHARD): the output is
-   * the tone-mapped value to the power 1/Gamma; 1 writes linear values. HUE_PRESERVING
-   * does not use it. The default value is 2.2.
+   * the tone-mapped value to the power 1/Gamma; 1 writes linear values (AUTOMATIC's lamp
+   * curve too). HUE_PRESERVING does not use it. The default value is 2.2.
    */
   vtkSetClampMacro(Gamma, double, 0.1, 10.0);
   vtkGetMacro(Gamma, double);
@@ -236,9 +294,11 @@ protected:
   char* AlbedoArrayName = nullptr;
   char* IndirectIrradianceArrayName = nullptr;
   char* EmissionArrayName = nullptr;
+  char* RadianceArrayName = nullptr;
   double LightIntensityScale = 1.0;
+  int LightFalloff = 0;
   double Exposure = 1.0;
-  int ToneMapping = HUE_PRESERVING;
+  int ToneMapping = AUTOMATIC;
   double Gamma = 2.2;
   vtkTypeBool Shadows = 1;
   int ShadowMapResolution = 1024;

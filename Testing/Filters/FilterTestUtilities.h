@@ -183,6 +183,7 @@ inline vtkSmartPointer<vtkLight> ToVtkLight(const linkgi::Light& light)
     return l;
   }
   l->SetPositional(true);
+  l->SetAttenuationValues(0, 0, 1); // the engine light's 1/r^2
   l->SetPosition(p.x, p.y, p.z);
   l->SetFocalPoint(double(p.x) + d.x, double(p.y) + d.y, double(p.z) + d.z);
   l->SetConeAngle(light.type == linkgi::LightType::Spot ? light.coneAngleDegrees : 90.0);
@@ -190,12 +191,14 @@ inline vtkSmartPointer<vtkLight> ToVtkLight(const linkgi::Light& light)
   return l;
 }
 
-/// A positional light at `position` shining at `focal`; point light unless `cone` < 90.
+/// A positional light at `position` shining at `focal`; point light unless `cone` < 90. A
+/// lamp: it falls off with 1/r^2 (attenuation (0, 0, 1)).
 inline vtkSmartPointer<vtkLight> MakeLight(const double position[3], const double focal[3],
   double intensity, bool positional = true, double cone = 90.0)
 {
   auto l = vtkSmartPointer<vtkLight>::New();
   l->SetPositional(positional);
+  l->SetAttenuationValues(0, 0, 1);
   l->SetPosition(position[0], position[1], position[2]);
   l->SetFocalPoint(focal[0], focal[1], focal[2]);
   l->SetConeAngle(cone);

@@ -368,7 +368,7 @@ TEST(GlobalIlluminationFilterBadInput, RoundedRaysPerVertexIsInTheOutputsWarning
 
 TEST(GlobalIlluminationFilterBadInput, ASphereScaledBy1e30IsLitAsTheUnitSphere)
 {
-  // Issue 17's case: the sphere scaled by 1e30 lost 69 of its 96 triangles as "degenerate"
+  // The edge case: the sphere scaled by 1e30 lost 69 of its 96 triangles as "degenerate"
   // (float overflow in the area test). Under the sun (irradiance does not depend on the
   // distance) it must keep every triangle and get the unit sphere's light.
   vtkNew<vtkSphereSource> sphere;

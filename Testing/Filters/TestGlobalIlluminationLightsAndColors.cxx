@@ -9,6 +9,7 @@
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkGlobalIlluminationLights.h"
 #include "vtkMatrix4x4.h"
+#include "vtkPlaneSource.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
@@ -71,8 +72,74 @@ TEST(GlobalIlluminationLights, IntensityIsColourTimesIntensityTimesScale)
   light->SetSpecularColor(9, 9, 9);
   ExpectNear(Converted(light, 3.0).Intensity, 6.0, 3.0, 1.5);
   ExpectNear(Converted(light, 0.0).Intensity, 0.0, 0.0, 0.0);
-  light->SetAttenuationValues(1, 5, 7); // ignored: light falls off with 1/r^2
+  light->SetAttenuationValues(1, 5, 7); // the falloff, not the intensity
   ExpectNear(Converted(light, 1.0).Intensity, 2.0, 1.0, 0.5);
+}
+
+TEST(GlobalIlluminationLights, AttenuationIsReadAsVtkDefinesIt)
+{
+  auto bulb = vtkSmartPointer<vtkLight>::New(); // VTK's default: (1, 0, 0), no falloff
+  bulb->SetPositional(true);
+  bulb->SetPosition(Lamp[0], Lamp[1], Lamp[2]);
+  bulb->SetConeAngle(180);
+  Lights::Light l = Converted(bulb);
+  ExpectNear(l.Attenuation, 1, 0, 0);
+  EXPECT_FALSE(l.FallsOff());
+  Lights::MakeLamp(bulb);
+  l = Converted(bulb);
+  ExpectNear(l.Attenuation, 0, 0, 1);
+  EXPECT_TRUE(l.FallsOff());
+  bulb->SetAttenuationValues(0.5, 0.25, 0);
+  EXPECT_TRUE(Converted(bulb).FallsOff()); // a linear term falls off too
+  Lights::Light forced;
+  bulb->SetAttenuationValues(1, 0, 0);
+  ASSERT_EQ(Lights::Convert(bulb, 1.0, forced, Lights::INVERSE_SQUARE), Lights::CONVERTED);
+  ExpectNear(forced.Attenuation, 0, 0, 1); // the user's choice over the light's
+  const double from[3] = { 0, 0, 4 }, to[3] = { 0, 0, 0 };
+  auto sun = MakeLight(from, to, 1.0, false);
+  EXPECT_FALSE(Converted(sun).FallsOff());
+  ASSERT_EQ(Lights::Convert(sun, 1.0, forced, Lights::INVERSE_SQUARE), Lights::CONVERTED);
+  EXPECT_FALSE(forced.FallsOff()); // a directional light never does
+  Lights::Light out;
+  for (const std::array<double, 3>& bad : { std::array<double, 3>{ { 0, 0, 0 } },
+         std::array<double, 3>{ { 1, -1, 0 } } })
+  {
+    bulb->SetAttenuationValues(bad.data());
+    EXPECT_EQ(Lights::Convert(bulb, 1.0, out), Lights::NOT_PHYSICAL);
+    EXPECT_NE(Lights::Explain(Lights::NOT_PHYSICAL, bulb).find("attenuation"), std::string::npos);
+  }
+}
+
+TEST(GlobalIlluminationLights, TheFilterFallsOffAsTheAttenuationSays)
+{
+  // A plane 40 units wide (the engine rescales it) under a point light 40 units above its
+  // centre: the centre receives I / (c + l r + q r^2) for each attenuation.
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-20, -20, 0);
+  plane->SetPoint1(20, -20, 0);
+  plane->SetPoint2(-20, 20, 0);
+  plane->SetResolution(4, 4);
+  plane->Update();
+  const double above[3] = { 0, 0, 40 }, centre[3] = { 0, 0, 0 };
+  for (const std::array<double, 3>& a : { std::array<double, 3>{ { 0, 0, 1 } },
+         std::array<double, 3>{ { 1, 0, 0 } }, std::array<double, 3>{ { 0.5, 0.25, 0.001 } } })
+  {
+    auto light = MakeLight(above, centre, 2.0);
+    light->SetAttenuationValues(a.data());
+    vtkNew<vtkGlobalIlluminationFilter> gi;
+    gi->SetInputData(plane->GetOutput());
+    gi->AddLight(light);
+    gi->SetRaysPerVertex(16);
+    gi->SetNumberOfBounces(0);
+    gi->SetBackend(vtkGlobalIlluminationFilter::CPU);
+    gi->Update();
+    vtkPolyData* out = gi->GetOutput();
+    const vtkIdType middle = out->FindPoint(0, 0, 0);
+    const double expected = 2.0 / (a[0] + a[1] * 40.0 + a[2] * 1600.0);
+    EXPECT_NEAR(PointArray(out, "DirectIrradiance")->GetComponent(middle, 0), expected,
+      1e-5 * expected)
+      << a[0] << ", " << a[1] << ", " << a[2];
+  }
 }
 
 TEST(GlobalIlluminationLights, SwitchedOffLightsAreSkippedSilently)

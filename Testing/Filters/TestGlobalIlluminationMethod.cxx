@@ -109,6 +109,35 @@ TEST(TestGlobalIlluminationMethod, SwitchingMethodsGivesTheSameArraysAndSimilarL
   EXPECT_EQ(Method(filter->GetOutput()), "links");
 }
 
+TEST(TestGlobalIlluminationMethod, EveryMethodBouncesALightAsItFallsOff)
+{
+  // A point light with VTK's default attenuation (no falloff) and one with a linear term: the
+  // methods that shoot light from the lights carry what each lights, as the link method
+  // bounces the direct light.
+  for (const std::array<double, 3>& attenuation :
+    { std::array<double, 3>{ { 1, 0, 0 } }, std::array<double, 3>{ { 0.5, 1, 0 } } })
+  {
+    auto filter = SphereOnFloorFilter();
+    filter->GetLight(0)->SetAttenuationValues(attenuation.data());
+    filter->Update();
+    vtkNew<vtkPolyData> links;
+    links->DeepCopy(filter->GetOutput());
+    filter->SetMethodToInstantRadiosity();
+    filter->SetNumberOfVPLs(2048);
+    filter->Update();
+    EXPECT_NEAR(Mean(filter->GetOutput(), "IndirectIrradiance") / Mean(links, "IndirectIrradiance"),
+      1.0, 0.10)
+      << "instant radiosity, attenuation " << attenuation[0] << ", " << attenuation[1];
+    filter->SetMethodToPhotonMapping();
+    filter->SetNumberOfPhotons(65536);
+    filter->SetNumberOfClusters(512);
+    filter->Update();
+    EXPECT_NEAR(Mean(filter->GetOutput(), "IndirectIrradiance") / Mean(links, "IndirectIrradiance"),
+      1.0, 0.10)
+      << "photon mapping, attenuation " << attenuation[0] << ", " << attenuation[1];
+  }
+}
+
 TEST(TestGlobalIlluminationMethod, PhotonMappingLightsLikeTheLinksAndKeepsItsClustersOnALightMove)
 {
   auto filter = SphereOnFloorFilter();

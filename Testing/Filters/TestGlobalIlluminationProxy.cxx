@@ -1,4 +1,4 @@
-// vtkGlobalIlluminationFilter's MemoryBudget and ProxyVertices (issue 15): a budget too small
+// vtkGlobalIlluminationFilter's MemoryBudget and ProxyVertices: a budget too small
 // for the update is an error that keeps the previous output; a proxy lights every input point,
 // with the direct light of the full surface, and bad proxy sizes are errors.
 #include "FilterTestUtilities.h"

@@ -1,4 +1,4 @@
-// Issue 17's inputs at the edges, each given to a solver that holds a solution: the error
+// Inputs at the edges, each given to a solver that holds a solution: the error
 // names the problem AND the previous solution stays bitwise as it was (TestBadInput checks
 // the messages on fresh solvers; TestFaults the aborts; TestCudaFallback the GPU's faults).
 #include "SceneFixtures.h"

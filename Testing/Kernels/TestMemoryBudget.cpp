@@ -1,4 +1,4 @@
-// The memory budget (issue 15): an update estimated to need more host memory than the budget
+// The memory budget: an update estimated to need more host memory than the budget
 // is refused before anything is allocated, with an error that says what would fit, and the
 // previous result stays; the estimate bounds the measured peak within a stated factor.
 #include "SceneFixtures.h"

@@ -1,7 +1,7 @@
 // A point or spot light at (or almost at) a vertex: the irradiance intensity / r^2 grows
 // without bound, and in single precision it overflowed to infinity for a light within
 // about 1e-19 of a vertex (the likely cause of the two "deadly signal" reports of the long
-// SolverOptions fuzz run, issue 17). unshadowedIrradiance (CPU, CUDA and the reference)
+// SolverOptions fuzz run). unshadowedIrradiance (CPU, CUDA and the reference)
 // bounds r from below and the result from above, so the solution stays finite.
 #include "linkgi/DirectLight.h"
 #include "linkgi/Error.h"

@@ -1,4 +1,4 @@
-// Partitioned solves (SolverOptions::partition, issue 16): processes that each link (or, for
+// Partitioned solves (SolverOptions::partition): processes that each link (or, for
 // instant radiosity and photon mapping, gather) only their rows and complete every bounce through an exchange
 // give, together, the one-process result bit for bit. Two threads stand in for two MPI ranks.
 #include "SceneFixtures.h"

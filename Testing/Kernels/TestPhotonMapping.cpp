@@ -174,7 +174,7 @@ TEST(TestPhotonMapping, FurnaceConvergesToLeOverOneMinusRho)
 TEST(TestPhotonMapping, AgreesWithReference)
 {
   // The room with a block: total irradiance against per-vertex path tracing (2048 paths, the
-  // same 3 bounces); the bound is 8%.
+  // same 3 bounces); the bound is 8%.
   const Scene s = test::roomWithBlock(0.25f);
   const std::vector<Vec3f> reference = test::referenceTotal(s, 2048, 3);
   Solver solver;
@@ -291,7 +291,7 @@ TEST(TestPhotonMapping, OtherMethodsSayTheyLightGlassAsDiffuse)
 TEST(TestPhotonMapping, CausticsAgreeWithLightTracing)
 {
   // The glass ball and the mirror band: the brightest caustic vertex is the reference's or a
-  // neighbour, and the caustic power is within the 10%.
+  // neighbour, and the caustic power is within 10%.
   const Scene s = makeStandardScene("caustics");
   const std::vector<Vec3f> ref = solveCausticReference(s, 1u << 22, 1);
   Solver solver;

@@ -1,4 +1,4 @@
-// Proxies (issue 15): decimation with OpenMesh, the transfer of a proxy's light to the input,
+// Proxies: decimation with OpenMesh, the transfer of a proxy's light to the input,
 // and the ProxySolver's caching and direct light on the input.
 #include "SceneFixtures.h"
 

@@ -1,4 +1,4 @@
-// Adaptive refinement (issue 15): the split keeps the input's vertices, surface and edges,
+// Adaptive refinement: the split keeps the input's vertices, surface and edges,
 // stops at the vertex budget, and brings a mesh of two triangles per wall to the accuracy of
 // a fine one against the path-traced reference. The scenes are test::roomWithBlock: cell
 // 10 gives two triangles per face (48 vertices).

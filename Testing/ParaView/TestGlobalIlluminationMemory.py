@@ -1,4 +1,4 @@
-"""pvbatch: the filter proxy's MemoryBudget and ProxyVertices (issue 15) on a sphere over a plane.
+"""pvbatch: the filter proxy's MemoryBudget and ProxyVertices on a sphere over a plane.
 
 The defaults (automatic budget, no proxy); a proxy of 1000 vertices lights every point, with
 the direct light of the full surface (bit for bit) and bounced light that differs from the

@@ -53,9 +53,10 @@ display.Representation = "Global Illumination"
 display.GlobalIlluminationRays = 256
 display.GlobalIlluminationBounces = 3
 display.GlobalIlluminationSmoothing = 1
-# A lamp 10 cm under the ceiling lights the box over a wide range (1/r^2): the photographic
-# curve compresses it (the default display, calibrated to Surface, would clip the ceiling).
-display.GlobalIlluminationToneMapping = "Exponential"
+# A lamp 10 cm under the ceiling: Inverse Square makes the Light Inspector's point light fall
+# off as a lamp's, and the Automatic look then compresses its wide range (1/r^2) as a
+# photograph.
+display.GlobalIlluminationLightFalloff = "Inverse Square"
 view.CameraPosition = [0.278, 0.274, -0.8]
 view.CameraFocalPoint = [0.278, 0.274, 0.28]
 view.CameraViewUp = [0, 1, 0]

@@ -87,6 +87,8 @@ def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
     display.GlobalIlluminationRays = 64
     display.GlobalIlluminationBounces = 2
     display.GlobalIlluminationDisplayMode = "Direct"
+    display.GlobalIlluminationLightFalloff = "Inverse Square"  # the light is a lamp: 1/r^2
+    display.GlobalIlluminationToneMapping = "Hue Preserving"
     view.CameraPosition = [0.0, -3.0, 3.2]
     view.CameraFocalPoint = [0.0, 0.0, 0.2]
     view.CameraViewUp = [0.0, 0.0, 1.0]

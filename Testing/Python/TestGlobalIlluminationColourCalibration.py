@@ -2,8 +2,10 @@
 open scene with a black sky (no light reaches it indirectly, none is blocked) shows every
 colour of a colour map as the plain VTK mapper does, within CIEDE2000 2.0. The colours are
 ParaView's default map, Cool to Warm, at 9 points, and the primaries and secondaries; the
-lights are one directional light of intensity 1, and VTK's light kit (ParaView's default
-lights: key, fill, two back lights and a head light, of other intensities and tints).
+lights are one directional light of intensity 1, VTK's light kit (ParaView's default
+lights: key, fill, two back lights and a head light, of other intensities and tints), and a
+point light of intensity 1 seven units in front of the plane with VTK's default attenuation
+(no falloff).
 Over-exposed by half, the default display keeps every colour's hue (or turns it white).
 
 Usage: TestGlobalIlluminationColourCalibration.py [output directory for the images]
@@ -54,9 +56,19 @@ def colour_by(mapper, table):
     mapper.ScalarVisibilityOn()
 
 
-def add_lights(renderer, kind):
+def add_lights(renderer, kind, width):
     if kind == "light kit":
         vtkLightKit().AddLightsToRenderer(renderer)
+        return
+    if kind == "point light":  # VTK's default attenuation: no falloff, as VTK draws it
+        light = vtkLight()
+        light.SetLightTypeToSceneLight()
+        light.SetPositional(True)
+        light.SetConeAngle(180)
+        light.SetPosition(width / 2.0, 0.5, 7.0)  # 7 units in front of the plane's middle
+        light.SetFocalPoint(width / 2.0, 0.5, 0)
+        light.SetIntensity(1.0)
+        renderer.AddLight(light)
         return
     light = vtkLight()  # directional, towards the plane, intensity 1
     light.SetLightTypeToSceneLight()
@@ -76,7 +88,7 @@ def render(surface, table, lights, global_illumination, image_path, exposure=1.0
     window.SetMultiSamples(0)
     window.SetSize(n * PATCH, PATCH)
     window.AddRenderer(renderer)
-    add_lights(renderer, lights)
+    add_lights(renderer, lights, n)
     camera = renderer.GetActiveCamera()
     camera.ParallelProjectionOn()
     camera.SetFocalPoint(n / 2.0, 0.5, 0)
@@ -129,7 +141,7 @@ def main():
     colours = colour.cool_to_warm_and_primaries()
     surface, table = patches(colours)
     worst = 0.0
-    for lights in ("directional", "light kit"):
+    for lights in ("directional", "light kit", "point light"):
         paths = [os.path.join(output, "ColourCalibration-%s-%s.png" % (lights.replace(" ", ""), m))
                  if output else None for m in ("plain", "gi")]
         plain = render(surface, table, lights, False, paths[0])

@@ -72,6 +72,7 @@ def main(outdir):
     scene, floor_points, append = sphere_over_floor()
     light = vtkLight()  # a point light of 16 W/sr 4 m above the floor: E = 1 below it
     light.SetPositional(True)
+    light.SetAttenuationValues(0, 0, 1)  # a lamp: 1/r^2 (VTK's default does not fall off)
     light.SetConeAngle(90)
     light.SetPosition(0, 0, 4)
     light.SetFocalPoint(0, 0, 0)

@@ -48,10 +48,11 @@
 
 namespace linkgi_test
 {
-/// The Exposure that the default shading suggests for `radiance` (the filter's Radiance).
+/// The Exposure that HUE_PRESERVING shading suggests for `radiance` (the filter's Radiance).
 inline double AutoExposure(vtkDataArray* radiance)
 {
   vtkNew<vtkGlobalIlluminationShading> shading;
+  shading->SetToneMappingToHuePreserving();
   return shading->SuggestExposure(radiance);
 }
 
@@ -140,6 +141,7 @@ inline vtkSmartPointer<vtkLight> SceneLight(const double position[3], const doub
   auto light = vtkSmartPointer<vtkLight>::New();
   light->SetLightTypeToSceneLight();
   light->SetPositional(coneAngle > 0.0);
+  light->SetAttenuationValues(0, 0, 1); // a lamp: 1/r^2
   light->SetPosition(position[0], position[1], position[2]);
   light->SetFocalPoint(focal[0], focal[1], focal[2]);
   light->SetConeAngle(coneAngle > 0.0 ? coneAngle : 30.0);
@@ -241,11 +243,18 @@ inline void CornellCamera(vtkRenderer* renderer)
   renderer->ResetCameraClippingRange();
 }
 
-/// An actor drawing `data` with a new vtkGlobalIlluminationMapper; returns the mapper.
-inline vtkGlobalIlluminationMapper* AddMappedActor(vtkRenderer* renderer, vtkPolyData* data)
+/// An actor drawing `data` with a new vtkGlobalIlluminationMapper; returns the mapper. With
+/// `calibrated` (the default) it draws with HUE_PRESERVING whatever the lights, the look of
+/// the tests that set their own Exposure; without it, with the default AUTOMATIC look.
+inline vtkGlobalIlluminationMapper* AddMappedActor(
+  vtkRenderer* renderer, vtkPolyData* data, bool calibrated = true)
 {
   vtkNew<vtkGlobalIlluminationMapper> mapper;
   mapper->SetInputData(data);
+  if (calibrated)
+  {
+    mapper->GetShading()->SetToneMappingToHuePreserving();
+  }
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   renderer->AddActor(actor);

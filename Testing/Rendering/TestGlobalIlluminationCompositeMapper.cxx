@@ -52,10 +52,12 @@ vtkSmartPointer<vtkRenderer> Scene(vtkRenderer* lighting, vtkMapper* mapper, dou
   CornellCamera(renderer);
   if (auto* gi = vtkGlobalIlluminationMapper::SafeDownCast(mapper))
   {
+    gi->GetShading()->SetToneMappingToHuePreserving();
     gi->GetShading()->SetExposure(exposure);
   }
   if (auto* gi = vtkGlobalIlluminationCompositeMapper::SafeDownCast(mapper))
   {
+    gi->GetShading()->SetToneMappingToHuePreserving();
     gi->GetShading()->SetExposure(exposure);
   }
   return renderer;

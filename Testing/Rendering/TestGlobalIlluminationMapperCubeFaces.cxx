@@ -122,6 +122,7 @@ int TestGlobalIlluminationMapperCubeFaces(int argc, char* argv[])
   vtkNew<vtkLight> light;
   light->SetLightTypeToSceneLight();
   light->SetPositional(true);
+  light->SetAttenuationValues(0, 0, 1); // a lamp: 1/r^2
   light->SetConeAngle(180);
   light->SetPosition(0, 0, 0);
   light->SetFocalPoint(0, 0, -1);

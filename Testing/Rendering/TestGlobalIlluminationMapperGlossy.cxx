@@ -44,6 +44,7 @@ int TestGlobalIlluminationMapperGlossy(int, char*[])
   vtkNew<vtkLight> light;
   light->SetLightTypeToSceneLight();
   light->SetPositional(true);
+  light->SetAttenuationValues(0, 0, 1); // a lamp: 1/r^2
   light->SetConeAngle(180);
   light->SetPosition(-0.5, 0, 1);
   auto window = MakeWindow(200, 200);

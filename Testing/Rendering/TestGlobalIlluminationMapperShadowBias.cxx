@@ -73,6 +73,7 @@ vtkSmartPointer<vtkLight> MakeLight(int kind)
   else
   {
     light->SetPositional(true);
+    light->SetAttenuationValues(0, 0, 1); // a lamp: 1/r^2
     light->SetPosition(2.6, 0.3, 0.7);
     light->SetFocalPoint(0, 0, 0);
     light->SetConeAngle(kind == 1 ? 180.0 : 50.0);

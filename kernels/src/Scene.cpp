@@ -133,7 +133,7 @@ void checkLights(const std::vector<Light>& lights)
   {
     const Light& l = lights[i];
     const bool finite = isFinite(l.position) && isFinite(l.direction) && isFinite(l.intensity) &&
-      std::isfinite(l.coneAngleDegrees) && std::isfinite(l.spotExponent);
+      std::isfinite(l.coneAngleDegrees) && std::isfinite(l.spotExponent) && isFinite(l.attenuation);
     if (!finite)
     {
       fail("Light " + std::to_string(i) + " has a non-finite position, direction or intensity.");
@@ -141,6 +141,14 @@ void checkLights(const std::vector<Light>& lights)
     if (l.intensity.x < 0.f || l.intensity.y < 0.f || l.intensity.z < 0.f)
     {
       fail("Light " + std::to_string(i) + " has a negative intensity.");
+    }
+    const Vec3f& a = l.attenuation;
+    if (l.type != LightType::Directional &&
+      (a.x < 0.f || a.y < 0.f || a.z < 0.f || (a.x == 0.f && a.y == 0.f && a.z == 0.f)))
+    {
+      fail("Light " + std::to_string(i) + " has a negative attenuation, or one of zero "
+        "everywhere (no constant, linear or quadratic term); give it (0, 0, 1) for a "
+        "physical 1/r^2 falloff or (1, 0, 0) for none.");
     }
     if (l.type != LightType::Point && unitLength(l.direction) == Vec3f(0.f))
     {
@@ -176,6 +184,9 @@ void scaleLights(std::vector<Light>& lights, int exponent)
       l.position[k] = std::ldexp(l.position[k], -exponent);
       l.intensity[k] = std::ldexp(l.intensity[k], -2 * exponent);
     }
+    // intensity / (c + l r + q r^2) unchanged with r and the intensity rescaled as above.
+    l.attenuation.x = std::ldexp(l.attenuation.x, -2 * exponent);
+    l.attenuation.y = std::ldexp(l.attenuation.y, -exponent);
     if (!isFinite(l.position))
     {
       fail("Light " + std::to_string(i) + " is so far from a scene this small that its "

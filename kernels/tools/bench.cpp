@@ -45,9 +45,9 @@ struct Args
   int repeat = 3;
   std::string dump, compare;
   bool bare = true, gather = true;
-  std::size_t proxyVertices = 0; ///< also solve through a proxy of this many vertices (issue 15)
+  std::size_t proxyVertices = 0; ///< also solve through a proxy of this many vertices
   bool proxyOnly = false; ///< only the proxy (a mesh too large for the full solve's budget)
-  /// also solve with refinement up to this many vertices (issue 15), default tolerance/rounds
+  /// also solve with refinement up to this many vertices, default tolerance/rounds
   std::size_t refineVertices = 0;
 };
 
@@ -420,7 +420,7 @@ void printRecord(const std::string& name, const Scene& scene, const UpdateRuns& 
 }
 
 /// Peak memory per vertex (host: resident set; GPU: what the engine allocated) and the
-/// budget's estimate of it (issue 15).
+/// budget's estimate of it.
 std::string memoryJson(const Scene& scene, const UpdateRuns& runs)
 {
   const double v = double(std::max<std::size_t>(1, scene.vertexCount()));

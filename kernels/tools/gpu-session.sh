@@ -70,7 +70,7 @@ if has bench; then
   cat "$out/bench.jsonl"
 fi
 if has photons; then
-  # Photon mapping (issue 14): three rounds of the H200 benchmark at 262,144 and 1M photons
+  # Photon mapping: three rounds of the H200 benchmark at 262,144 and 1M photons
   # asked, then the machine's CPU on the 1M case, and the CPU/CUDA tests under racecheck.
   stamp photons
   for round in 1 2 3; do

@@ -14,6 +14,7 @@
 #include "vtkGlobalIlluminationDrawnAlbedo.h"
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkGlobalIlluminationGlobalCasters.h"
+#include "vtkGlobalIlluminationLights.h"
 #include "vtkGlobalIlluminationShading.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -461,6 +462,14 @@ void vtkGlobalIlluminationRepresentation::GatherLights(vtkRenderer* renderer)
     copy->SetFocalPoint(focalPoint);
     copy->SetConeAngle(light->GetConeAngle());
     copy->SetExponent(light->GetExponent());
+    if (this->LightFalloff == vtkGlobalIlluminationLights::INVERSE_SQUARE)
+    {
+      copy->SetAttenuationValues(0.0, 0.0, 1.0);
+    }
+    else
+    {
+      copy->SetAttenuationValues(light->GetAttenuationValues());
+    }
     copy->SetDiffuseColor(light->GetDiffuseColor());
     copy->SetIntensity(light->GetIntensity());
   }

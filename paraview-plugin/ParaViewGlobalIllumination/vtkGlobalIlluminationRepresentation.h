@@ -82,6 +82,17 @@ public:
 
   ///@{
   /**
+   * How the view's point and spot lights fall off (vtkGlobalIlluminationLights::Falloffs):
+   * 0 as the lights say (ParaView's lights: not at all, as in Surface), 1 with 1/r^2
+   * (lamps). Given to the filter's copies of the lights and to the mapper. The default
+   * value is 0.
+   */
+  void SetLightFalloff(int falloff);
+  int GetLightFalloff() { return this->LightFalloff; }
+  ///@}
+
+  ///@{
+  /**
    * Forwarded to the mapper's vtkGlobalIlluminationShading: display mode (0 combined,
    * 1 direct, 2 indirect), exposure, tone mapping (vtkGlobalIlluminationShading's
    * ToneMappingTypes) and shadows.
@@ -244,6 +255,7 @@ protected:
   void OnFilterEvent(vtkObject* caller, unsigned long event, void* data);
 
   bool UseKeyLight = true;
+  int LightFalloff = 0;
   int NumberOfUpdates = 0;
   int WaitForSolution = WAIT_AUTOMATIC;
   bool InteractiveClient = false;

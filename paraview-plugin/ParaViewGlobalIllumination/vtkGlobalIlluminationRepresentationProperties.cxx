@@ -42,6 +42,13 @@ void vtkGlobalIlluminationRepresentation::SetLightIntensityScale(double scale)
   Shading(this->Mapper)->SetLightIntensityScale(scale);
 }
 
+void vtkGlobalIlluminationRepresentation::SetLightFalloff(int falloff)
+{
+  // The filter's copies of the lights take it at the next render, as the key light's choice.
+  this->LightFalloff = falloff;
+  Shading(this->Mapper)->SetLightFalloff(falloff);
+}
+
 void vtkGlobalIlluminationRepresentation::SetDisplayMode(int mode)
 {
   Shading(this->Mapper)->SetDisplayMode(mode);

@@ -27,6 +27,9 @@ vtkPVGlobalIlluminationFilter::vtkPVGlobalIlluminationFilter()
   this->PropertyLight->SetFocalPoint(0.0, 0.0, 0.0);
   this->PropertyLight->SetColor(1.0, 1.0, 1.0);
   this->PropertyLight->SetIntensity(1.0);
+  // The filter's light is in physical units, as its output arrays: a point or spot light
+  // falls off with 1/r^2 (vtkGlobalIlluminationLights).
+  this->PropertyLight->SetAttenuationValues(0.0, 0.0, 1.0);
   this->ApplyLightType();
   this->AddLight(this->PropertyLight);
 }

@@ -1,4 +1,4 @@
-"""Benchmark of the Global Illumination representation under MPI (issue 16): time and
+"""Benchmark of the Global Illumination representation under MPI: time and
 per-rank peak memory for 1, 2 and 4 ranks, and what the ranks exchange.
 
 Driver (any Python 3; runs pvbatch under mpirun and, if there is no display, Xvfb):

@@ -1,10 +1,10 @@
-"""pvbatch benchmark of the Global Illumination representation: ms per orbit frame (issue 19).
+"""pvbatch benchmark of the Global Illumination representation: ms per orbit frame.
 
     pvbatch paraview-plugin/examples/benchmark_orbit.py --plugin <LinkGI.so> [--repeats 5]
         [--output result.json]
 
 (with PYTHONPATH holding ParaView's Python modules, as Testing/ParaView/CMakeLists.txt sets
-it). Datasets: Wavelet -40..40 contoured at RTData 160 (the issue's 54k-point surface) and
+it). Datasets: Wavelet -40..40 contoured at RTData 160 (a 54k-point surface) and
 Wavelet -64..64 at 160 (a larger one, >= 120k points). View 800x600, default view lights
 (the light kit), 10 orbit steps of 5 degrees (Azimuth) per run, each step one Render();
 a run's figure is its mean ms per frame, and the table gives the median, minimum and

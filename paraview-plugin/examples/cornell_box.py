@@ -49,10 +49,9 @@ display = Show(box, view)
 display.Representation = "Global Illumination"
 display.GlobalIlluminationBounces = 3
 display.GlobalIlluminationDisplayMode = "Combined"  # or "Direct", "Indirect"
-# The lamp, close to the ceiling, lights the box over a wide range: a photographic curve
-# compresses it. (The default, "Hue Preserving", shows what Surface shows under VTK-scale
-# lights such as the light kit.)
-display.GlobalIlluminationToneMapping = "Exponential"
+# ParaView's lights do not fall off with distance (as in Surface); this one is a lamp, 1/r^2.
+# The Automatic look then shows the box as an exposed photograph.
+display.GlobalIlluminationLightFalloff = "Inverse Square"
 
 view.CameraPosition = [0.278, 0.274, -0.75]
 view.CameraFocalPoint = [0.278, 0.274, 0.28]

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Makes paraview-plugin/paraview-gui.png: the ParaView GUI under Xvfb with the plugin loaded
+# Makes Documentation/paraview-gui.png: the ParaView GUI under Xvfb with the plugin loaded
 # and examples/cornell_box.py shown with the Global Illumination representation.
 # Needs xdotool (to size the window and its panels) and libqt5svg5 (the GUI's icons);
 # the tests need neither, so scripts/setup.sh does not install them.
 # Usage: paraview-plugin/examples/gui_screenshot.sh [output.png]   (after scripts/build.sh)
 set -euo pipefail
 top=$(cd "$(dirname "$0")/../.." && pwd)
-out=$(realpath -m "${1:-$top/paraview-plugin/paraview-gui.png}")
+out=$(realpath -m "${1:-$top/Documentation/paraview-gui.png}")
 plugin_dir="$top/build/paraview-plugin/lib/paraview-5.11/plugins/LinkGI"
 export PYTHONPATH="$top/build/python3-paraview/usr/lib/python3/dist-packages"
 export DISPLAY=:87 LINKGI_PLUGIN="$plugin_dir/LinkGI.so"

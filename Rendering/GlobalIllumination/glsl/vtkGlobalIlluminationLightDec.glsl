@@ -36,6 +36,7 @@ uniform vec3 giLightPosition[GI_LIGHT_COUNT];
 uniform vec3 giLightDirection[GI_LIGHT_COUNT]; // unit direction of travel (spot axis)
 uniform vec3 giLightIntensity[GI_LIGHT_COUNT]; // W/sr (point, spot), W/m^2 (directional)
 uniform vec2 giLightCone[GI_LIGHT_COUNT];      // cos(cone angle), spot exponent
+uniform vec3 giLightAttenuation[GI_LIGHT_COUNT]; // c, l, q: falloff 1 / (c + l r + q r^2)
 uniform int giShadowLayer[GI_LIGHT_COUNT]; // first layer in giShadowMaps
 uniform mat4 giShadowMatrix[GI_LIGHT_COUNT]; // world to clip (kinds 2 and 3)
 uniform vec4 giShadowDepth[GI_LIGHT_COUNT];  // depth scale, offset; texel = z * distance + w
@@ -136,7 +137,8 @@ vec3 giDirectIrradiance(vec3 p, vec3 n, vec3 g, vec3 eye, float shininess, out v
     vec3 toLight = directional ? -giLightDirection[i] : giLightPosition[i] - p;
     float dist = length(toLight);
     vec3 l = toLight / dist;
-    float falloff = directional ? 1.0 : 1.0 / (dist * dist);
+    vec3 a = giLightAttenuation[i];
+    float falloff = directional ? 1.0 : 1.0 / (a.x + dist * (a.y + a.z * dist));
     float cosAxis = dot(-l, giLightDirection[i]);
     vec2 cone = giLightCone[i];
     float spot = cosAxis < cone.x ? 0.0 : (cone.y > 0.0 ? pow(max(cosAxis, 1e-6), cone.y) : 1.0);

@@ -18,14 +18,34 @@ LINKGI_HOST_DEVICE inline Vec3f directionToLight(const Light& light, const Vec3f
 }
 
 /// Bounds of a point or spot light's intensity / r^2 near its own position, where it grows
-/// without bound and overflowed single precision for a light within about 1e-19 of a vertex
-/// (issue 17). r is taken as at least kMinLightDistance (2^-40; validated scenes are rescaled
+/// without bound and would overflow single precision for a light within about 1e-19 of a
+/// vertex. r is taken as at least kMinLightDistance (2^-40; validated scenes are rescaled
 /// to a diagonal of at least 2^-16, so this is below the float resolution of their
 /// positions), and the irradiance of one light is at most kMaxLightIrradiance, the bound
 /// validation puts on emission (the bounces carry it without overflow). A light exactly at
-/// the vertex (r^2 of 0, also when it underflows) gives nothing, as it always did.
+/// the vertex (r^2 of 0, also when it underflows) gives nothing.
 constexpr float kMinLightDistance = 9.094947e-13f; // 2^-40
 constexpr float kMaxLightIrradiance = 1e30f;
+
+/// The denominator of a point or spot light's falloff at squared distance r2 (> 0):
+/// c + l r + q r^2 of its attenuation, r taken as at least kMinLightDistance. With the
+/// default (0, 0, 1) it is r^2 exactly.
+LINKGI_HOST_DEVICE inline float distanceFalloff(const Light& light, float r2)
+{
+  const float clamped = fmaxf(r2, kMinLightDistance * kMinLightDistance);
+  const Vec3f& a = light.attenuation;
+  return a.x + a.y * std::sqrt(clamped) + a.z * clamped;
+}
+
+/// What a point or spot light gives at squared distance r2 against a lamp of the same
+/// intensity (1/r^2): r^2 / (c + l r + q r^2), exactly 1 for the default (0, 0, 1). Light paths
+/// shot from a light (instant radiosity, photon mapping) carry a lamp's flux and take this
+/// factor where they first land, so that they bounce the light that the direct light shows.
+LINKGI_HOST_DEVICE inline float falloffAgainstInverseSquare(const Light& light, float r2)
+{
+  const float clamped = fmaxf(r2, kMinLightDistance * kMinLightDistance);
+  return clamped / distanceFalloff(light, r2);
+}
 
 /// Irradiance at p (unit normal n) from one light, without visibility; also returns the
 /// shadow ray direction `toLight` = directionToLight(light, p). Bounded: see above.
@@ -57,7 +77,7 @@ LINKGI_HOST_DEVICE inline Vec3f unshadowedIrradiance(const Light& light, const V
     }
     spot = light.spotExponent > 0.f ? std::pow(fmaxf(cosAxis, 0.f), light.spotExponent) : 1.f;
   }
-  const float falloff = spot * cosSurface / fmaxf(r2, kMinLightDistance * kMinLightDistance);
+  const float falloff = spot * cosSurface / distanceFalloff(light, r2);
   const Vec3f e = light.intensity * falloff;
   return Vec3f(fminf(e.x, kMaxLightIrradiance), fminf(e.y, kMaxLightIrradiance),
     fminf(e.z, kMaxLightIrradiance));

@@ -1,4 +1,4 @@
-// Decimated proxies (issue 15): the indirect light solved on a coarser copy of the mesh and
+// Decimated proxies: the indirect light solved on a coarser copy of the mesh and
 // carried back to every input vertex, so a mesh too fine for the memory or the time is lit
 // at a resolution the user chooses. The proxy's vertices are input vertices (OpenMesh's
 // Decimater collapses halfedges onto existing vertices), so their normals, albedo and

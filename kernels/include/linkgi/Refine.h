@@ -1,4 +1,4 @@
-// Adaptive refinement (issue 15): the lighting's resolution follows the light, not the input's
+// Adaptive refinement: the lighting's resolution follows the light, not the input's
 // tessellation. Solve, split the edges across which the light changes too much or along which
 // a shadow boundary runs, solve again, for a few rounds. Any method and backend solves each
 // round (an ordinary Solver); see Documentation/Methods.md, "Refinement".

@@ -36,6 +36,10 @@ struct Light
   float coneAngleDegrees = 30.f;
   /// Spot only: cos(angle to axis)^exponent falloff inside the cone (0 = hard cone).
   float spotExponent = 0.f;
+  /// Point and spot: distance falloff (constant c, linear l, quadratic q, vtkLight's
+  /// AttenuationValues): a surface at distance r facing the light receives
+  /// intensity / (c + l r + q r^2). The default (0, 0, 1) is a physical lamp's 1/r^2.
+  Vec3f attenuation{ 0.f, 0.f, 1.f };
 };
 
 /// Texel of a width x height lat-long map seen along the unit direction d (layout below);

@@ -335,6 +335,11 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
   // Only specular bounces since the light (or an emitter, which is diffuse): a diffuse hit
   // then leaves a caustic photon.
   bool onlySpecular = src.kind == kLightSource;
+  // From a point or spot light: the path's length to its first diffuse hit, where it takes
+  // the light's falloff against 1/r^2 (falloffAgainstInverseSquare).
+  const bool fromPosition = src.kind == kLightSource && s.lights[src.index].type != LightType::Directional;
+  bool landed = !fromPosition;
+  float travelled = 0.f;
   bool metSpecular = false;
   std::uint32_t specular = 0;
   for (std::uint32_t bounce = 0; bounce < hits;)
@@ -344,6 +349,7 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
     {
       break;
     }
+    travelled += landed ? 0.f : h.t * length(ray.direction);
     const Vec3f fn = s.faceNormals[h.triangle];
     const bool back = dot(ray.direction, fn) > 0.f;
     const Triangle t = s.triangles[h.triangle];
@@ -388,6 +394,11 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
     }
     const Vec3f side = back ? -n : n, geometric = back ? -fn : fn;
     const Vec3f rho = s.albedo[t.v[0]] * b0 + s.albedo[t.v[1]] * h.u + s.albedo[t.v[2]] * h.v;
+    if (!landed)
+    {
+      power = power * falloffAgainstInverseSquare(s.lights[src.index], travelled * travelled);
+      landed = true;
+    }
     power = power * rho;
     const float offset = triangleOffset(s.origins, t);
     const Vec3f origin = p + geometric * offset;

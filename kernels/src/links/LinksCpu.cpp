@@ -196,9 +196,9 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
   }
   if (stale & (1u << kLinkStage))
   {
-    // buildLinks: the CSR at the links' bound (linkRows reserves it), counted twice as it
-    // was while every chunk's rows were copied into it after (before stop 31); since then
-    // the second copy is only a band's buffers (at most 512 chunks), so this is a margin: at
+    // buildLinks: the CSR at the links' bound (linkRows reserves it), counted twice, as if
+    // every chunk's rows were copied into it whole; the second copy is only a band's
+    // buffers (at most 512 chunks), so this is a margin: at
     // 1M vertices the estimate is 2.1x the measured peak. Tightening it changes what the
     // budget lets through and needs the budget's tests and figures re-measured. Then the
     // row counts and offsets; per worker a dense scratch row, one element's rays and hits,

@@ -1,4 +1,4 @@
-"""A ~4M-point isosurface through vtkGlobalIlluminationFilter with default settings (issue 15):
+"""A ~4M-point isosurface through vtkGlobalIlluminationFilter with default settings:
 the memory budget must light it through a proxy instead of the process being killed."""
 import sys, time
 import linkgi
