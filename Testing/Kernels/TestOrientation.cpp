@@ -212,6 +212,8 @@ TEST(TestOrientation, ALampInsideMakesARoomOfAnInwardSurface)
   EXPECT_TRUE(hasLightInside(room, surface));
   room.lights[0].position = { 10.f, 0.f, 3.5f }; // outside, just above the top
   EXPECT_FALSE(hasLightInside(room, surface));
+  room.lights[0].position = { 12.4f, 2.4f, 0.f }; // in the bounds' corner, outside the sphere
+  EXPECT_FALSE(hasLightInside(room, surface));
   room.lights[0].type = LightType::Directional; // from infinitely far: outside
   EXPECT_FALSE(hasLightInside(room, surface));
 

@@ -182,6 +182,8 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
     {
       inwardOf[i] = Index(report.inward.size());
       report.inward.emplace_back();
+      report.inward.back().lo = Vec3f(float(s.lo[0]), float(s.lo[1]), float(s.lo[2]));
+      report.inward.back().hi = Vec3f(float(s.hi[0]), float(s.hi[1]), float(s.hi[2]));
     }
   }
   if (!report.inward.empty())
@@ -246,7 +248,11 @@ double windingNumber(const Scene& scene, const InwardSurface& surface, const Vec
 
 bool hasLightInside(const Scene& scene, const InwardSurface& surface)
 {
-  const auto inside = [&](const Vec3f& p) { return std::abs(windingNumber(scene, surface, p)) >= 0.5; };
+  const auto inside = [&](const Vec3f& p) {
+    const bool inBounds = p.x >= surface.lo.x && p.y >= surface.lo.y && p.z >= surface.lo.z &&
+      p.x <= surface.hi.x && p.y <= surface.hi.y && p.z <= surface.hi.z;
+    return inBounds && std::abs(windingNumber(scene, surface, p)) >= 0.5;
+  };
   for (const Light& light : scene.lights)
   {
     if (light.type != LightType::Directional && maxComponent(light.intensity) > 0.f && inside(light.position))

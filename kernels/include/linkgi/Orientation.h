@@ -14,6 +14,7 @@ struct InwardSurface
 {
   std::vector<Index> vertices;
   std::vector<Index> triangles;
+  Vec3f lo, hi; ///< its bounds: a light outside them is outside it, with no sum to take
 };
 
 /// The connected surfaces of a scene and those among them that are closed and face inward.
@@ -42,6 +43,8 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
 /// Whether a light of the scene is inside `surface`: a point or spot light, or an emitting
 /// vertex of another surface, where the surface's winding number is at least 1/2. A room
 /// lit from within faces inward by design; an object wound inside out has its lights outside.
+/// A light outside the surface's bounds costs nothing; one inside them a pass over its
+/// triangles.
 bool hasLightInside(const Scene& scene, const InwardSurface& surface);
 
 /// Negates the normals of `surface`'s vertices (the engine's front is where they point).
