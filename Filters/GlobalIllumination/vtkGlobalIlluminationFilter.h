@@ -49,16 +49,9 @@
  * FeatureAngle, splitting on, consistent ordering) when the input has none or
  * ComputeNormals is on. A point split at a sharp edge is solved once per side; its output
  * value is the mean of its copies (by count). With TwoSided off, a ray that hits the back
- * of a triangle is blocked and sees black. A closed surface whose normals point inward (as
- * scanned models are often stored) is lit from outside unless a light or an emitting
- * surface is inside it (a room), with a warning. When every light is behind the surface,
- * a warning says so (turn TwoSided on). Where given normals point against their triangles'
- * winding, a warning says that VTK draws that side dark.
- *
- * Coordinates: the surface is solved relative to the centre of its bounds, taken in double
- * precision, so data at geo-referenced coordinates (UTM, 1e5 to 1e7) is lit as it is at the
- * origin. Rays leave a vertex 1% of its shortest edge off the surface (at most 1e-4 of the
- * scene's diagonal), so a millimetre detail in a large scene is lit as it is alone.
+ * of a triangle is blocked and sees black. Real data (the user guide's section of that
+ * name): a closed surface wound inward is lit from outside unless a light is inside it, and
+ * coordinates are taken relative to the surface's centre, in double precision.
  *
  * Updates are incremental: the filter keeps its solver between executions, so moving or
  * recolouring a light recomputes only direct light and bounces, and changing albedo,

@@ -106,8 +106,10 @@ Difference Compare(vtkPolyData* a, vtkPolyData* b, const char* name)
   double largest = 0.0, maxDifference = 0.0, squares = 0.0;
   for (vtkIdType i = 0; i < x->GetNumberOfValues(); ++i)
   {
-    const double d = x->GetVariantValue(i).ToDouble() - y->GetVariantValue(i).ToDouble();
-    largest = std::max(largest, std::abs(x->GetVariantValue(i).ToDouble()));
+    const int nc = x->GetNumberOfComponents();
+    const double a = x->GetComponent(i / nc, int(i % nc)), b = y->GetComponent(i / nc, int(i % nc));
+    const double d = a - b;
+    largest = std::max(largest, std::abs(a));
     maxDifference = std::max(maxDifference, std::abs(d));
     squares += d * d;
   }
