@@ -17,6 +17,7 @@ packages=(
   dpkg-dev file
   clang libclang-rt-14-dev libfuzzer-14-dev
   python3-sphinx python3-myst-parser python3-pydata-sphinx-theme
+  chromium blender
 )
 
 missing=()
@@ -46,4 +47,16 @@ if [ ! -d "$prefix/usr/lib/python3/dist-packages/paraview" ]; then
   apt-get download python3-paraview >/dev/null 2>&1 || { "${sudo_cmd[@]}" apt-get update -qq && apt-get download python3-paraview; }
   dpkg -x python3-paraview_*.deb "$prefix" && rm -f python3-paraview_*.deb
   echo "setup: unpacked python3-paraview into $prefix"
+fi
+
+# linkgi.export_html inlines vtk.js's offline viewer from the trame-vtk wheel (PyPI), which
+# the build unpacks (cmake/LinkGIInstall.cmake); pinned by version and checksum.
+wheel="$top/build/downloads/trame_vtk-2.11.17-py3-none-any.whl"
+sha=8fe2adbe3b6888ad41cb4311421fbd850cece75a801bf8b5f7af5bdc6473bee4
+if ! echo "$sha  $wheel" | sha256sum --check --status 2>/dev/null; then
+  mkdir -p "$top/build/downloads"
+  python3 -m pip download --quiet --no-deps --only-binary=:all: trame-vtk==2.11.17 \
+    -d "$top/build/downloads"
+  echo "$sha  $wheel" | sha256sum --check --quiet || { echo "setup: $wheel: wrong checksum" >&2; exit 1; }
+  echo "setup: downloaded $(basename "$wheel")"
 fi

@@ -6,6 +6,7 @@
 #include "vtkDataSet.h"
 #include "vtkFloatArray.h"
 #include "vtkGlobalIlluminationColors.h"
+#include "vtkGlobalIlluminationDrawnColors.h"
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkMapper.h"
 #include "vtkObjectFactory.h"
@@ -30,8 +31,7 @@ vtkDataSetAttributes* AttributesOf(vtkDataSet* data, bool cells)
 /// linear reflectance.
 vtkSmartPointer<vtkFloatArray> MappedColors(vtkMapper* mapper, vtkDataArray* scalars, double diffuse)
 {
-  auto rgba = vtk::TakeSmartPointer(mapper->GetLookupTable()->MapScalars(
-    scalars, mapper->GetColorMode(), mapper->GetArrayComponent(), VTK_RGBA));
+  auto rgba = vtkGlobalIlluminationDrawnColors::Map(mapper, scalars);
   auto colors = vtkSmartPointer<vtkFloatArray>::New();
   colors->SetName(vtkGlobalIlluminationDrawnAlbedo::GetMappedAlbedoName());
   colors->SetNumberOfComponents(3);
@@ -55,10 +55,9 @@ vtkSmartPointer<vtkDataObject> WithMappedColors(vtkDataObject* data, vtkMapper* 
   const auto colored = [&](vtkDataSet* leaf) {
     auto copy = vtk::TakeSmartPointer(leaf->NewInstance());
     copy->ShallowCopy(leaf);
-    vtkDataSetAttributes* attributes = AttributesOf(copy, cells);
-    if (vtkDataArray* scalars = attributes->GetArray(mapper->GetArrayName()))
+    if (vtkDataArray* scalars = vtkGlobalIlluminationDrawnColors::ColoringArray(copy, mapper, cells))
     {
-      attributes->AddArray(MappedColors(mapper, scalars, diffuse));
+      AttributesOf(copy, cells)->AddArray(MappedColors(mapper, scalars, diffuse));
     }
     return copy;
   };
@@ -143,15 +142,13 @@ vtkDataObject* vtkGlobalIlluminationDrawnAlbedo::Apply(vtkDataObject* data, vtkM
     filter->SetAlbedoArrayName(albedo);
     return data;
   }
-  const char* colorArray = mapper->GetArrayName();
-  const bool mapScalars = mapper->GetScalarVisibility() && colorArray && *colorArray &&
-    mapper->GetLookupTable() && mapper->GetScalarMode() != VTK_SCALAR_MODE_USE_FIELD_DATA;
-  if (!mapScalars)
+  bool cells = false;
+  if (!vtkGlobalIlluminationDrawnColors::MapsScalars(mapper, cells))
   {
     filter->SetAlbedoArrayName(nullptr);
     return data;
   }
-  const bool cells = mapper->GetScalarMode() == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA;
+  const char* colorArray = mapper->GetArrayName();
   vtkInternals& internals = *this->Internals;
   std::ostringstream key;
   vtkScalarsToColors* table = mapper->GetLookupTable();

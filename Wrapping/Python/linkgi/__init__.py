@@ -19,3 +19,11 @@ from vtkmodules import vtkRenderingCore as _rendering  # noqa: F401
 
 from .LinkGIFiltersGlobalIllumination import *  # noqa: F401,F403
 from .LinkGIRenderingGlobalIllumination import *  # noqa: F401,F403
+
+
+def __getattr__(name):
+    # The exporters need numpy: imported on first use, not with the package.
+    if name in ("export_html", "export_glb", "bake"):
+        from . import export
+        return getattr(export, name)
+    raise AttributeError(f"module 'linkgi' has no attribute '{name}'")
