@@ -125,6 +125,10 @@ def _state(scene, origin):
     return {"hashes": arrays.hashes, "scene": window}
 
 
+_POLICY = ('<meta http-equiv="Content-Security-Policy" content="default-src \'none\'; '
+           "script-src 'unsafe-inline' 'unsafe-eval' blob:; style-src 'unsafe-inline'; "
+           'img-src data: blob:; font-src data:; worker-src blob:; connect-src data: blob:">')
+
 _PAGE_SCRIPT = """<style>
   #linkgi-view { position: absolute; inset: 0; }
   .linkgi-panel { position: absolute; z-index: 10; font: 13px sans-serif; color: #222;
@@ -148,9 +152,11 @@ _PAGE_SCRIPT = """<style>
   var parts = %(parts)d;
   var initial = "%(mode)s";
   function actors() {
+    // The viewer's window has a renderer of its own besides the scene's.
     var w = window.global && window.global.renderWindow;
-    var r = w && w.getRenderers()[0];
-    return r ? r.getActors() : [];
+    var list = [];
+    (w ? w.getRenderers() : []).forEach(function (r) { list = list.concat(r.getActors()); });
+    return list;
   }
   function show(mode) {
     if (["combined", "direct", "indirect"].indexOf(mode) < 0) mode = initial;
@@ -209,6 +215,8 @@ def write(scene, filename, title="LinkGI"):
     script = _PAGE_SCRIPT % {"scene": encoded, "parts": len(scene.parts), "mode": scene.mode,
                              "legend": _legend_html(scene.legend)}
     page = page.replace("</body>", script + "</body>", 1)
+    # Nothing leaves the page: the viewer's favicon links (and anything else) stay local.
+    page = page.replace('<meta charset="utf-8" />', '<meta charset="utf-8" />\n' + _POLICY, 1)
     page = page.replace("<title>VTK.js | Example - OfflineLocalView</title>",
                         f"<title>{title}</title>", 1)
     with open(filename, "w", encoding="utf-8") as f:
