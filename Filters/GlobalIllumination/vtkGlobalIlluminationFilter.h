@@ -19,7 +19,9 @@
  * hold the values of the back sides. Field data `LinkGI.*` holds the engine's counters
  * (lifetime numbers of BVH builds and refits, link builds, light link builds and bounce
  * runs; sizes of the link structure), the stage times of the last update in milliseconds
- * (`LinkGI.MsFilter` is the whole RequestData) and `LinkGI.Warnings`.
+ * (`LinkGI.MsFilter` is the whole RequestData), `LinkGI.Warnings`, and `LinkGI.Lamps` (1
+ * where a light is a lamp, which picks the lamp look of vtkGlobalIlluminationShading where
+ * the result is displayed without its lights).
  *
  * Input: a vtkPolyData; any other vtkDataSet, lit as its surface (vtkDataSetSurfaceFilter),
  * which is then the output; or a composite dataset (vtkMultiBlockDataSet,

@@ -389,6 +389,24 @@ void vtkGlobalIlluminationFilter::vtkInternals::AttachResults(vtkGlobalIlluminat
     output->GetPointData()->AddArray(array);
   }
   Builder::AddStatistics(output->GetFieldData(), s, msFilter, this->Warnings);
+  this->AddLamps(output);
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::vtkInternals::AddLamps(vtkPolyData* output) const
+{
+  // Whether a light is a lamp, which picks the lamp look wherever the result is displayed
+  // without the lights (vtkGlobalIlluminationDisplayColors, the exporters).
+  bool lamps = false;
+  for (const auto& light : this->Lights)
+  {
+    vtkGlobalIlluminationLights::Light converted;
+    lamps = lamps ||
+      (vtkGlobalIlluminationLights::Convert(light, 1.0, converted) ==
+          vtkGlobalIlluminationLights::CONVERTED &&
+        converted.FallsOff());
+  }
+  Builder::AddFieldValue(output->GetFieldData(), "Lamps", static_cast<std::uint64_t>(lamps));
 }
 
 //------------------------------------------------------------------------------
@@ -453,6 +471,7 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
   Builder::AddStatistics(output->GetFieldData(), latest ? latest->stats : linkgi::SolverStats(),
     elapsed.count(), this->Warnings);
+  this->AddLamps(output);
   // A render loop runs this at every frame: each warning goes to the log (and ParaView's
   // output messages) when it first appears, not at every frame while it holds.
   std::vector<std::string> now = this->Warnings;

@@ -99,6 +99,8 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   /// The point arrays of `solution` (DirectIrradiance, ... and their Back twins).
   std::vector<vtkSmartPointer<vtkDataArray>> PointArrays(
     vtkGlobalIlluminationFilter* self, const linkgi::Solution& solution);
+  /// The field value LinkGI.Lamps: 1 where a light is a lamp (falls off with distance).
+  void AddLamps(vtkPolyData* output) const;
   void AttachResults(vtkGlobalIlluminationFilter* self, vtkPolyData* output, double msFilter,
     const linkgi::Solution& solution, const linkgi::SolverStats& stats);
 

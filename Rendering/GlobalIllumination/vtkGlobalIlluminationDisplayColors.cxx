@@ -5,6 +5,7 @@
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataObject.h"
+#include "vtkFieldData.h"
 #include "vtkGlobalIlluminationColors.h"
 #include "vtkGlobalIlluminationDrawnColors.h"
 #include "vtkGlobalIlluminationLights.h"
@@ -248,6 +249,18 @@ int vtkGlobalIlluminationDisplayColors::RequestData(
     }
   }
   std::vector<vtkPolyData*> leaves = vtkCompositeDataSet::GetDataSets<vtkPolyData>(input);
+  if (!this->Lights)
+  {
+    // Without the lights, what vtkGlobalIlluminationFilter recorded of them.
+    std::vector<vtkDataObject*> holders(leaves.begin(), leaves.end());
+    holders.push_back(input); // a composite output has it on the composite
+    for (vtkDataObject* holder : holders)
+    {
+      vtkFieldData* fd = holder->GetFieldData();
+      auto recorded = vtkDataArray::SafeDownCast(fd ? fd->GetAbstractArray("LinkGI.Lamps") : nullptr);
+      lamps = lamps || (recorded && recorded->GetNumberOfTuples() > 0 && recorded->GetTuple1(0) > 0);
+    }
+  }
   std::vector<vtkDataArray*> radiance;
   for (vtkPolyData* leaf : leaves)
   {

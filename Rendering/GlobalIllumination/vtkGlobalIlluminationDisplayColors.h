@@ -92,8 +92,9 @@ public:
   ///@{
   /**
    * The lights the scene is drawn with (a renderer's GetLights()): the AUTOMATIC tone
-   * mapping picks the lamp look where one of them is a lamp. Null: no lamps. The default
-   * value is null.
+   * mapping picks the lamp look where one of them is a lamp. Null: the lights the input was
+   * lit with, as vtkGlobalIlluminationFilter records them (the field value LinkGI.Lamps;
+   * none without it). The default value is null.
    */
   virtual void SetLights(vtkLightCollection* lights);
   vtkGetObjectMacro(Lights, vtkLightCollection);
