@@ -10,37 +10,11 @@
 
 include(CMakePackageConfigHelpers)
 
-# The package's Python modules: in the build tree beside the wrapped modules (so the build
-# works with PYTHONPATH=<build>/${LINKGI_PYTHON_SITE_PACKAGES}), and installed with them.
-set(linkgi_python_files __init__.py export.py _gltf.py _vtkjs.py)
-foreach(_linkgi_file IN LISTS linkgi_python_files)
-  configure_file("Wrapping/Python/linkgi/${_linkgi_file}"
-    "${CMAKE_BINARY_DIR}/${LINKGI_PYTHON_SITE_PACKAGES}/linkgi/${_linkgi_file}" COPYONLY)
-  install(FILES "Wrapping/Python/linkgi/${_linkgi_file}"
-    DESTINATION "${LINKGI_PYTHON_SITE_PACKAGES}/linkgi"
-    COMPONENT   python)
-endforeach()
-
-# linkgi.export_html's page is vtk.js's offline viewer, taken from the trame-vtk wheel
-# (BSD licence, shipped beside it) that scripts/setup.sh downloads from PyPI.
-set(LINKGI_TRAME_VTK_WHEEL "${PROJECT_SOURCE_DIR}/build/downloads/trame_vtk-2.11.17-py3-none-any.whl"
-  CACHE FILEPATH "The trame-vtk wheel whose vtk.js viewer linkgi.export_html inlines")
-if(EXISTS "${LINKGI_TRAME_VTK_WHEEL}")
-  set(_linkgi_viewer_dir "${CMAKE_BINARY_DIR}/trame-vtk")
-  file(ARCHIVE_EXTRACT INPUT "${LINKGI_TRAME_VTK_WHEEL}" DESTINATION "${_linkgi_viewer_dir}"
-    PATTERNS "trame_vtk/tools/static_viewer.html" "*/licenses/LICENSE")
-  file(GLOB _linkgi_viewer_license "${_linkgi_viewer_dir}/*/licenses/LICENSE")
-  set(_linkgi_site "${CMAKE_BINARY_DIR}/${LINKGI_PYTHON_SITE_PACKAGES}/linkgi")
-  configure_file("${_linkgi_viewer_dir}/trame_vtk/tools/static_viewer.html"
-    "${_linkgi_site}/vtkjs_viewer.html" COPYONLY)
-  configure_file("${_linkgi_viewer_license}" "${_linkgi_site}/vtkjs_viewer.LICENSE" COPYONLY)
-  install(FILES "${_linkgi_site}/vtkjs_viewer.html" "${_linkgi_site}/vtkjs_viewer.LICENSE"
-    DESTINATION "${LINKGI_PYTHON_SITE_PACKAGES}/linkgi"
-    COMPONENT   python)
-else()
-  message(WARNING "LinkGI: ${LINKGI_TRAME_VTK_WHEEL} not found (scripts/setup.sh downloads "
-    "it): linkgi.export_html will need trame-vtk installed")
-endif()
+# The package's Python files beside the wrapped modules (so the build works with
+# PYTHONPATH=<build>/${LINKGI_PYTHON_SITE_PACKAGES}), and installed with them.
+include(cmake/LinkGIPythonPackage.cmake)
+linkgi_python_package("${CMAKE_BINARY_DIR}/${LINKGI_PYTHON_SITE_PACKAGES}/linkgi"
+  "${LINKGI_PYTHON_SITE_PACKAGES}/linkgi" python)
 
 # find_package(LinkGI): the VTK version and the VTK modules that the LinkGI modules' public
 # interfaces use, read from the modules themselves.

@@ -1,7 +1,11 @@
 """Scenes and image comparisons shared by the tests of the displayed colours and the
 exporters (TestDisplayColors, TestExportHtml, TestExportGlb)."""
 import functools
+import json
 import os
+import shutil
+import subprocess
+import tempfile
 
 import numpy as np
 
@@ -196,6 +200,40 @@ def mean_difference(first, second, background):
     total = sum(_difference(tuple(int(v) for v in p), tuple(int(v) for v in q))
                 for p, q in zip(a, b))
     return total / max(len(a), 1), int(covered.sum())
+
+
+def open_in_chromium(page, fragment, screenshot):
+    """Screenshot of `page`#`fragment` in headless Chromium (a fresh profile, the window's
+    size), and the URLs of the requests the page made."""
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    assert chromium, "Chromium is missing (scripts/setup.sh installs it)"
+    with tempfile.TemporaryDirectory() as profile:
+        net_log = os.path.join(profile, "net.json")
+        command = [
+            chromium, "--headless=new", "--no-sandbox", "--disable-gpu", "--use-gl=swiftshader",
+            "--enable-unsafe-swiftshader", f"--window-size={SIZE[0]},{SIZE[1]}",
+            "--force-device-scale-factor=1", "--hide-scrollbars", f"--user-data-dir={profile}",
+            "--no-first-run", "--disable-background-networking", "--disable-component-update",
+            "--disable-sync", "--virtual-time-budget=15000", f"--log-net-log={net_log}",
+            f"--screenshot={screenshot}", f"file://{os.path.abspath(page)}#{fragment}"]
+        subprocess.run(command, check=True, timeout=120, stdout=subprocess.DEVNULL,
+                       stderr=subprocess.DEVNULL)
+        with open(net_log) as f:
+            log = json.load(f)
+    start = log["constants"]["logEventTypes"]["URL_REQUEST_START_JOB"]
+    # Chromium's own requests (updates, accounts) have no origin; the page's have its own.
+    requests = [e.get("params", {}) for e in log["events"] if e["type"] == start]
+    return [r["url"] for r in requests if "url" in r and r.get("initiator") != "not an origin"
+            and not r["url"].startswith(("file:", "data:", "blob:"))]
+
+
+def panels_mask(shape, legend):
+    """The pixels outside the page's panels (the toggle top left, the legend bottom right)."""
+    keep = np.ones(shape[:2], dtype=bool)
+    keep[:48, :260] = False
+    if legend:
+        keep[-80:, -250:] = False
+    return keep
 
 
 def output_dir(argv):

@@ -167,11 +167,13 @@ def _legend(mapper):
 
 def _bake_actor(actor, renderer, scene):
     mapper = actor.GetMapper()
+    data = mapper.GetInputDataObject(0, 0)
+    if data is None or data.GetNumberOfPoints() == 0:
+        return  # draws nothing (ParaView keeps empty actors of other representations)
     if not hasattr(mapper, "GetShading"):
         scene.left_out.append(f"an actor drawn by {mapper.GetClassName()}, not by a global "
                               "illumination mapper")
         return
-    data = mapper.GetInputDataObject(0, 0)
     colors = vtkGlobalIlluminationDisplayColors()
     colors.SetInputData(data)
     colors.SetMapper(mapper)
