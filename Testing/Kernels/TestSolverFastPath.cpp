@@ -1,6 +1,7 @@
-// Light and material updates on unchanged geometry borrow the cached, validated arrays
-// instead of copying and re-validating them: the checks and repairs of the changed arrays
-// must still happen, and an error must leave the cache whole.
+// Updates borrow the cached, validated arrays that did not change instead of copying and
+// re-validating them (a light or material update every array of the mesh, a deformation all
+// but the positions): the checks and repairs of the changed arrays must still happen, and
+// an error must leave the cache whole.
 #include "SceneFixtures.h"
 
 #include "linkgi/Error.h"
@@ -60,4 +61,60 @@ TEST(SolverFastPath, BadLightOrAlbedoIsAnErrorThatKeepsTheCache)
   EXPECT_EQ(solver.stats().bvhBuilds, 1u);
   Solver fresh;
   expectSame(moved, fresh.update(s, quickOptions()));
+}
+
+TEST(SolverFastPath, DeformationThatFlattensATriangleRemovesIt)
+{
+  Scene s = test::roomWithBlock();
+  Solver solver;
+  solver.update(s, quickOptions());
+  // Move one vertex onto another of its triangle: the lent triangles cannot be repaired in
+  // place, so the update validates a copy of them, which drops that triangle and its kind.
+  Scene flat = s;
+  const Triangle t = flat.triangles[5];
+  flat.positions[t.v[1]] = flat.positions[t.v[0]];
+  const Solution& moved = solver.update(flat, quickOptions());
+  ASSERT_FALSE(solver.stats().warnings.empty());
+  EXPECT_NE(solver.stats().warnings[0].find("degenerate triangles"), std::string::npos);
+  EXPECT_TRUE(solver.stats().builtBvh); // a topology change
+  Solver fresh;
+  expectSame(moved, fresh.update(flat, quickOptions()));
+  // And back: the cache held the shortened triangle list, the input the full one.
+  const Solution& back = solver.update(s, quickOptions());
+  EXPECT_TRUE(solver.stats().builtBvh);
+  Solver again;
+  expectSame(back, again.update(s, quickOptions()));
+}
+
+TEST(SolverFastPath, BadPositionIsAnErrorThatKeepsTheCache)
+{
+  Scene s = test::roomWithBlock();
+  Solver solver;
+  const Solution before = solver.update(s, quickOptions());
+  Scene bad = s;
+  for (Vec3f& p : bad.positions)
+  {
+    p.y *= 1.05f;
+  }
+  bad.positions[11].z = std::numeric_limits<float>::infinity();
+  EXPECT_NE(test::errorOf([&] { solver.update(bad, quickOptions()); }).find("Vertex 11"), std::string::npos);
+  expectSame(solver.solution(), before);
+  // The lent normals and triangles went back: a light change relinks nothing.
+  s.lights[0].position = { -0.5f, 2.4f, 0.3f };
+  const Solution& moved = solver.update(s, quickOptions());
+  EXPECT_FALSE(solver.stats().ran("Links"));
+  Solver fresh;
+  expectSame(moved, fresh.update(s, quickOptions()));
+}
+
+TEST(SolverFastPath, MaterialChangeWithTheSameAlbedoIsAChange)
+{
+  Scene s = test::roomWithBlock();
+  Solver solver;
+  solver.update(s, quickOptions());
+  s.triangleMaterials.assign(s.triangleCount(), MaterialType::Diffuse);
+  s.triangleMaterials[3] = MaterialType::Mirror;
+  solver.update(s, quickOptions());
+  EXPECT_TRUE(solver.stats().ran("Bounces"));
+  EXPECT_FALSE(solver.stats().ran("Links"));
 }

@@ -15,6 +15,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
+#include <optional>
 
 namespace linkgi
 {
@@ -49,13 +50,31 @@ bool sameBitsOnAllCores(const std::vector<T>& a, const std::vector<T>& b)
   return !differ.load();
 }
 
+/// `to` = `from`, copied on all cores into the memory of `buffer` (an array of an update
+/// before): every deformation copies the moved positions, and a fresh array page-faults
+/// on every page of them first.
+template <typename T>
+void copyInto(std::vector<T>& to, const std::vector<T>& from, std::vector<T>& buffer)
+{
+  constexpr std::size_t kChunk = 256 << 10;
+  to = std::move(buffer);
+  buffer.clear();
+  to.resize(from.size());
+  const std::size_t bytes = from.size() * sizeof(T);
+  auto* x = reinterpret_cast<unsigned char*>(to.data());
+  const auto* y = reinterpret_cast<const unsigned char*>(from.data());
+  parallelRanges((bytes + kChunk - 1) / kChunk, 1, [&](std::size_t begin, std::size_t end) {
+    const std::size_t first = begin * kChunk, last = std::min(bytes, end * kChunk);
+    std::memcpy(x + first, y + first, last - first);
+  });
+}
+
 /// Lends the cached scene's unchanged arrays to the scene of an update (no copy), and takes
 /// them back unless the update commits, so an error or abort leaves the cache whole.
 class ArrayLoan
 {
 public:
-  ArrayLoan(Scene& cache, Scene& work, bool geometry, bool albedo, bool emission)
-    : cache(cache), work(work), geometry(geometry), albedo(albedo), emission(emission)
+  ArrayLoan(Scene& cache, Scene& work, const KnownValid& lent) : cache(cache), work(work), lent(lent)
   {
     move(cache, work);
   }
@@ -73,18 +92,24 @@ public:
 private:
   void move(Scene& from, Scene& to) const
   {
-    if (geometry)
+    if (lent.positions)
     {
       to.positions = std::move(from.positions);
-      to.normals = std::move(from.normals);
-      to.triangles = std::move(from.triangles);
       to.lengthExponent = from.lengthExponent; // the scale the lent positions are in
     }
-    if (albedo)
+    if (lent.normals)
+    {
+      to.normals = std::move(from.normals);
+    }
+    if (lent.triangles)
+    {
+      to.triangles = std::move(from.triangles);
+    }
+    if (lent.albedo)
     {
       to.albedo = std::move(from.albedo);
     }
-    if (emission)
+    if (lent.emission)
     {
       to.emission = std::move(from.emission);
     }
@@ -92,9 +117,54 @@ private:
 
   Scene& cache;
   Scene& work;
-  bool geometry, albedo, emission;
+  const KnownValid lent;
   bool committed = false;
 };
+
+/// The input's arrays that equal the cached scene's, each compared once on all cores: those
+/// are lent, not copied, and not validated again.
+KnownValid unchangedArrays(const Scene& input, const Scene& cached)
+{
+  KnownValid same;
+  same.positions = sameBitsOnAllCores(input.positions, cached.positions);
+  // Triangles were checked against the cached vertex count.
+  same.triangles = input.vertexCount() == cached.vertexCount() && sameBitsOnAllCores(input.triangles, cached.triangles);
+  same.normals = sameBitsOnAllCores(input.normals, cached.normals);
+  same.albedo = sameBitsOnAllCores(input.albedo, cached.albedo);
+  same.emission = sameBitsOnAllCores(input.emission, cached.emission);
+  return same;
+}
+
+/// Copies into `s` what `lent` does not lend of `input`; moved positions and normals into
+/// the buffers of `spare`.
+void copyChanged(const Scene& input, const KnownValid& lent, Scene& s, Scene& spare)
+{
+  if (!lent.positions)
+  {
+    copyInto(s.positions, input.positions, spare.positions);
+    s.lengthExponent = input.lengthExponent;
+  }
+  if (!lent.normals)
+  {
+    copyInto(s.normals, input.normals, spare.normals);
+  }
+  if (!lent.triangles)
+  {
+    s.triangles = input.triangles;
+  }
+  if (!lent.albedo)
+  {
+    s.albedo = input.albedo;
+  }
+  if (!lent.emission)
+  {
+    s.emission = input.emission;
+  }
+  s.triangleMaterials = input.triangleMaterials;
+  s.triangleIor = input.triangleIor;
+  s.lights = input.lights;
+  s.environment = input.environment;
+}
 
 /// One backend's implementation of the current method, and whether its caches follow the
 /// last committed update.
@@ -141,6 +211,7 @@ struct Solver::Impl
   Solution solution;
   SolverStats stats;
   Solution spare; // the solution before last: its buffers are reused by the next update
+  Scene spareArrays; // positions and normals before last: a deformation copies into them
 
   BackendSlot cpu, cuda;
   int cudaDevicesFound = 0; // GPUs the CUDA backend was made for
@@ -300,39 +371,33 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
   }
 
   // Unchanged arrays are neither copied nor validated again: the cached ones passed
-  // validation unchanged, so equal input arrays would too. A light or material change on
-  // a large mesh then costs no more host time than comparing the arrays.
-  const bool lendGeometry = validated && sameBitsOnAllCores(input.positions, scene.positions) &&
-    sameBitsOnAllCores(input.normals, scene.normals) && sameBitsOnAllCores(input.triangles, scene.triangles);
-  const bool lendAlbedo = lendGeometry && sameBitsOnAllCores(input.albedo, scene.albedo);
-  const bool lendEmission = lendGeometry && sameBitsOnAllCores(input.emission, scene.emission);
+  // validation unchanged, so equal input arrays would too. A light or material change on a
+  // large mesh then costs no more host time than comparing the arrays; a deformation adds
+  // the copy and the checks of what moved (4-8 ms on one core for conference's whole scene,
+  // which the GPU's deformation step waited for).
+  KnownValid lent = validated ? unchangedArrays(input, scene) : KnownValid{};
   Scene s;
-  ArrayLoan loan(scene, s, lendGeometry, lendAlbedo, lendEmission);
-  if (lendGeometry)
+  std::optional<ArrayLoan> loan;
+  loan.emplace(scene, s, lent);
+  copyChanged(input, lent, s, spareArrays);
+  if (!validateChanges(s, opt.albedoPolicy, lent, st.warnings))
   {
-    if (!lendAlbedo)
-    {
-      s.albedo = input.albedo;
-    }
-    if (!lendEmission)
-    {
-      s.emission = input.emission;
-    }
-    s.lights = input.lights;
-    s.environment = input.environment;
-    s.triangleMaterials = input.triangleMaterials;
-    s.triangleIor = input.triangleIor;
-    st.warnings = validateShading(s, opt.albedoPolicy, lendAlbedo, lendEmission);
-  }
-  else
-  {
-    s = input;
-    st.warnings = validateScene(s, opt.albedoPolicy);
+    // The moved positions made a lent triangle degenerate: validate a copy of them, which
+    // loses it.
+    loan.reset();
+    s = Scene();
+    lent.triangles = false;
+    loan.emplace(scene, s, lent);
+    copyChanged(input, lent, s, spareArrays);
+    validateChanges(s, opt.albedoPolicy, lent, st.warnings);
   }
 
-  const engine::Changes none = 0;
-  const engine::Changes knownSame = (lendGeometry ? engine::kGeometry : none) |
-    (lendAlbedo ? engine::kAlbedo : none) | (lendEmission ? engine::kEmission : none);
+  const bool sameMaterials =
+    sameBits(input.triangleMaterials, scene.triangleMaterials) && sameBits(input.triangleIor, scene.triangleIor);
+  const auto knownIf = [](bool same, engine::Changes bit) { return same ? bit : engine::Changes(0); };
+  const engine::Changes knownSame = knownIf(lent.triangles, engine::kTopology) |
+    knownIf(lent.positions, engine::kPositions) | knownIf(lent.normals, engine::kNormals) |
+    knownIf(lent.albedo && sameMaterials, engine::kAlbedo) | knownIf(lent.emission, engine::kEmission);
   const engine::Changes changes =
     valid ? engine::changesBetween(s, opt, scene, options, knownSame) : engine::kEverything;
   st.msPrepare = msSince(start);
@@ -378,7 +443,15 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
   }
 
   // Commit: nothing below can fail.
-  loan.commit();
+  loan->commit();
+  if (!lent.positions)
+  {
+    spareArrays.positions = std::move(scene.positions);
+  }
+  if (!lent.normals)
+  {
+    spareArrays.normals = std::move(scene.normals);
+  }
   scene = std::move(s);
   options = opt;
   spare = std::move(solution);

@@ -1,6 +1,7 @@
 // One dispatch point for data-parallel loops on the CPU.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <functional>
 
@@ -13,6 +14,29 @@ using ProgressCallback = std::function<bool(const char* stage, double fraction)>
 /// Runs body(begin, end) over [0, n) on all cores, in ranges of at least `grain` items.
 void parallelRanges(std::size_t n, std::size_t grain,
   const std::function<void(std::size_t begin, std::size_t end)>& body);
+
+/// The smallest i in [0, n) with bad(i), or n where there is none, on all cores: a range
+/// stops at the first index it finds, or once a smaller one is known. For the checks of a
+/// large mesh's arrays, which find nothing as a rule and report the first offender.
+template <typename Predicate>
+std::size_t firstIndexWhere(std::size_t n, std::size_t grain, const Predicate& bad)
+{
+  std::atomic<std::size_t> first{ n };
+  parallelRanges(n, grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end && i < first.load(std::memory_order_relaxed); ++i)
+    {
+      if (bad(i))
+      {
+        std::size_t known = first.load(std::memory_order_relaxed);
+        while (i < known && !first.compare_exchange_weak(known, i, std::memory_order_relaxed))
+        {
+        }
+        return;
+      }
+    }
+  });
+  return first.load();
+}
 
 /// How many sequential slices parallelFor cuts [0, n) into: enough for a smooth progress bar
 /// and a prompt abort (up to 32), few enough that the synchronisation between them costs

@@ -137,11 +137,27 @@ enum class AlbedoPolicy
 /// environment and no emission is valid: its solution is all zero (warned).
 std::vector<std::string> validateScene(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp);
 
-/// The albedo, emission, material, light and environment half of validateScene, for a scene whose
-/// positions, normals and triangles passed validateScene unchanged before (the solver's
-/// light and material updates): the same errors, repairs and warnings for those arrays.
-/// `albedoValidated` / `emissionValidated`: that array too passed unchanged before, and is
-/// not scanned again (on a large mesh the scans cost more than a light update's GPU work).
+/// Which arrays of a scene are known to have passed validateScene unchanged, in a scene of
+/// the same vertex count (the arrays the solver lends from its last update).
+struct KnownValid
+{
+  bool positions = false; ///< with the lengthExponent they were rescaled by
+  bool normals = false;
+  bool triangles = false;
+  bool albedo = false;
+  bool emission = false;
+};
+
+/// validateScene for a scene whose `known` arrays passed it unchanged before: the same
+/// errors, repairs and warnings (into `warnings`), from scans of the other arrays only, so a
+/// deformation scans the positions and a light move no array of the mesh. Known arrays are
+/// never changed: where moved positions make a triangle of known triangles degenerate, it
+/// returns false, and the scene is to be validated again with triangles not known.
+bool validateChanges(Scene& scene, AlbedoPolicy policy, const KnownValid& known, std::vector<std::string>& warnings);
+
+/// validateChanges for a scene whose positions, normals and triangles passed validateScene
+/// unchanged before (light and material updates); `albedoValidated` / `emissionValidated`:
+/// that array too.
 std::vector<std::string> validateShading(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp,
   bool albedoValidated = false, bool emissionValidated = false);
 
@@ -156,8 +172,12 @@ bool sameBits(const std::vector<T>& a, const std::vector<T>& b)
 /// True if every array, light and the environment of `a` and `b` are bitwise equal.
 bool sameScene(const Scene& a, const Scene& b);
 
-/// The axis-aligned box of `positions` (lo = hi = 0 for none).
+/// The axis-aligned box of `positions` (lo = hi = 0 for none), on all cores.
 void positionBounds(const std::vector<Vec3f>& positions, Vec3f& lo, Vec3f& hi);
+
+/// The diagonal of the box [lo, hi], in double (no overflow for coordinates near the float
+/// limit).
+float boxDiagonal(const Vec3f& lo, const Vec3f& hi);
 
 /// Axis-aligned bounding box diagonal length (used to scale ray offsets), computed in double
 /// (no overflow for coordinates near the float limit).

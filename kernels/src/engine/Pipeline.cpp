@@ -236,20 +236,24 @@ Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& be
   const SolverOptions& b, Changes knownSame)
 {
   Changes c = 0;
+  const auto unknown = [knownSame](Changes bit) { return !(knownSame & bit); };
   const auto differs = [&](Changes bit, bool different) {
-    if (!(knownSame & bit) && different)
+    if (unknown(bit) && different)
     {
       c |= bit;
     }
   };
-  differs(kTopology, now.vertexCount() != before.vertexCount() || !sameBits(now.triangles, before.triangles));
-  differs(kPositions, !sameBits(now.positions, before.positions));
-  differs(kNormals, !sameBits(now.normals, before.normals));
+  // unknown(bit) && ...: a known array is not compared (nor read: it may be lent away).
+  differs(kTopology, unknown(kTopology) &&
+    (now.vertexCount() != before.vertexCount() || !sameBits(now.triangles, before.triangles)));
+  differs(kPositions, unknown(kPositions) && !sameBits(now.positions, before.positions));
+  differs(kNormals, unknown(kNormals) && !sameBits(now.normals, before.normals));
   differs(kLights, !sameBits(now.lights, before.lights));
   // Materials are part of kAlbedo: what a surface does with the light that reaches it.
-  differs(kAlbedo, !sameBits(now.albedo, before.albedo) ||
-    !sameBits(now.triangleMaterials, before.triangleMaterials) || !sameBits(now.triangleIor, before.triangleIor));
-  differs(kEmission, !sameBits(now.emission, before.emission));
+  differs(kAlbedo, unknown(kAlbedo) &&
+    (!sameBits(now.albedo, before.albedo) || !sameBits(now.triangleMaterials, before.triangleMaterials) ||
+      !sameBits(now.triangleIor, before.triangleIor)));
+  differs(kEmission, unknown(kEmission) && !sameBits(now.emission, before.emission));
   const Environment &en = now.environment, &eb = before.environment;
   differs(kEnvironmentLayout, en.hasTexture() != eb.hasTexture() || en.width != eb.width || en.height != eb.height);
   const bool sameColor = std::memcmp(&en.color, &eb.color, sizeof(Vec3f)) == 0;
