@@ -6,7 +6,7 @@ namespace linkgi
 {
 float rayEpsilon(const Scene& scene)
 {
-  return 1e-4f * boundingDiagonal(scene.positions);
+  return rayEpsilon(boundingDiagonal(scene.positions));
 }
 
 std::vector<RayOrigin> rayOrigins(const Scene& scene, const Topology& topology)

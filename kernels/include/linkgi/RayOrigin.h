@@ -107,6 +107,11 @@ LINKGI_HOST_DEVICE inline Vec3f edgeLightOrigin(const Vec3f& pa, const Vec3f& pb
 
 /// The largest ray offset: 1e-4 of the scene's bounding diagonal.
 float rayEpsilon(const Scene& scene);
+/// rayEpsilon of a scene whose bounding diagonal is known.
+inline float rayEpsilon(float diagonal)
+{
+  return 1e-4f * diagonal;
+}
 
 /// Every vertex's ray origin from its one-ring (rayOrigin with rayEpsilon as the bound).
 std::vector<RayOrigin> rayOrigins(const Scene& scene, const Topology& topology);

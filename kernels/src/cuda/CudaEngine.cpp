@@ -301,12 +301,15 @@ void Engine::updateGeometry(const engine::StageContext& c)
   const Scene& s = c.scene;
   const SolverOptions& options = c.options;
   SolverStats& stats = c.stats;
+  const Index nv = Index(s.vertexCount()), nt = Index(s.triangleCount());
+  // What goes up: only the arrays that changed (a deformation moves positions, as a rule
+  // not normals); what is derived from them on the GPU: after any of them changed.
   struct
   {
-    bool topology, positions, geometry;
+    bool topology, positions, normals, geometry;
   } const mask{ (c.changes & engine::kTopology) != 0, (c.changes & (engine::kTopology | engine::kPositions)) != 0,
+    (c.changes & (engine::kTopology | engine::kNormals)) != 0 || devices[0]->normals.size() != s.normals.size(),
     (c.changes & engine::kGeometry) != 0 };
-  const Index nv = Index(s.vertexCount()), nt = Index(s.triangleCount());
   if (mask.positions)
   {
     eps = rayEpsilon(s); // the ray origins' bound: once per geometry, not per light change
@@ -326,7 +329,7 @@ void Engine::updateGeometry(const engine::StageContext& c)
   {
     d0.staging.upload(d0.positions, s.positions, d0.stream);
   }
-  if (mask.geometry)
+  if (mask.normals)
   {
     d0.staging.upload(d0.normals, s.normals, d0.stream);
   }
@@ -342,7 +345,7 @@ void Engine::updateGeometry(const engine::StageContext& c)
     {
       copyFrom(d0, d, &EngineDevice::positions);
     }
-    if (mask.geometry)
+    if (mask.normals)
     {
       copyFrom(d0, d, &EngineDevice::normals);
     }

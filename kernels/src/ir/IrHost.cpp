@@ -1,6 +1,7 @@
 #include "ir/IrHost.h"
 
 #include "linkgi/Error.h"
+#include "linkgi/Parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,16 +15,6 @@ namespace
 float mean(const Vec3f& c)
 {
   return (c.x + c.y + c.z) * (1.f / 3.f);
-}
-
-void bounds(const std::vector<Vec3f>& p, Vec3f& lo, Vec3f& hi)
-{
-  lo = hi = p.empty() ? Vec3f(0.f) : p[0];
-  for (const Vec3f& q : p)
-  {
-    lo = { std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z) };
-    hi = { std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z) };
-  }
 }
 }
 
@@ -49,9 +40,9 @@ std::uint32_t secondPassPaths(std::uint32_t paths, std::size_t found, std::uint3
 SceneExtent sceneExtent(const Scene& s)
 {
   SceneExtent e;
-  bounds(s.positions, e.lo, e.hi);
-  e.diagonal = boundingDiagonal(s.positions);
-  e.eps = rayEpsilon(s);
+  positionBounds(s.positions, e.lo, e.hi); // one pass: a deformation's geometry stage waits for it
+  e.diagonal = boxDiagonal(e.lo, e.hi);
+  e.eps = rayEpsilon(e.diagonal);
   return e;
 }
 
@@ -83,9 +74,11 @@ PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals,
       add(kLightSource, i, extent * mean(l.intensity), 0.f);
     }
   }
-  // A pass over the vertices first: a scene's all-black emission array (the usual case)
-  // costs no pass over the triangles.
-  if (std::any_of(s.emission.begin(), s.emission.end(), [](const Vec3f& e) { return maxComponent(e) > 0.f; }))
+  // A pass over the vertices first, on all cores (every light move and deformation makes
+  // it): a scene's all-black emission array (the usual case) costs no pass over the triangles.
+  const std::vector<Vec3f>& emission = s.emission;
+  if (firstIndexWhere(emission.size(), 16384, [&](std::size_t i) { return maxComponent(emission[i]) > 0.f; }) <
+    emission.size())
   {
     for (Index t = 0; t < s.triangles.size(); ++t)
     {
@@ -189,7 +182,7 @@ Proxy buildProxy(const Scene& s, std::uint32_t resolution)
 {
   Proxy proxy;
   SceneExtent extent;
-  bounds(s.positions, extent.lo, extent.hi);
+  positionBounds(s.positions, extent.lo, extent.hi);
   const ProxyGrid grid = proxyGrid(extent, resolution);
   std::unordered_map<std::uint64_t, Index> clusterOf;
   std::vector<Index> vertexCluster(s.vertexCount());
