@@ -63,6 +63,11 @@ GALLERY = [
      "and caustic irradiance on a log scale.",
      ["{python}", "{top}/Documentation/caustics-images.py", "{out}"],
      "Documentation/caustics-images.py"),
+    ("export-page", "Shared as a web page", "VTK Python", "link structure",
+     "The five-minute scene drawn by the mapper (shadows per pixel) and its page from "
+     "linkgi.export_html in headless Chromium (the baked per-vertex colours, any browser).",
+     ["{python}", "{top}/Documentation/export-images.py", "{out}"],
+     "Documentation/export-images.py"),
     ("implicit-visibility-errors", "Implicit visibility against the reference",
      "VTK Python", "implicit visibility",
      "The error of implicit visibility's indirect light against the path-traced reference.",
@@ -80,6 +85,7 @@ CXX_HEADERS = [
     "Rendering/GlobalIllumination/vtkGlobalIlluminationShading.h",
     "Rendering/GlobalIllumination/vtkGlobalIlluminationAsyncWatcher.h",
     "Rendering/GlobalIllumination/vtkGlobalIlluminationDrawnAlbedo.h",
+    "Rendering/GlobalIllumination/vtkGlobalIlluminationDisplayColors.h",
     "Rendering/GlobalIllumination/vtkGlobalIlluminationGlobalCasters.h",
 ]
 
@@ -135,6 +141,12 @@ def python_reference():
     out = ["# Python: `import linkgi`", "",
            "The classes VTK's wrapping makes of the C++ ones, in Debian's `/usr/bin/python3`; "
            "each docstring is the header's documentation.", ""]
+    from linkgi import export
+    out += ["## Sharing: `linkgi.bake`, `linkgi.export_html`, `linkgi.export_glb`", "",
+            fenced(inspect.cleandoc(export.__doc__), "text"), ""]
+    for function in (export.bake, export.export_html, export.export_glb):
+        out += ["### linkgi." + function.__name__ + str(inspect.signature(function)), "",
+                fenced(inspect.cleandoc(function.__doc__), "text"), ""]
     for name in sorted(n for n in dir(linkgi) if n.startswith("vtk")):
         cls = getattr(linkgi, name)
         out += ["## linkgi." + name, "", fenced(inspect.cleandoc(cls.__doc__ or ""), "text"), ""]

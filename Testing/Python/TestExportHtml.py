@@ -6,7 +6,8 @@ the window's size. For each light term (the page's toggle, selected by the URL's
 colours unlit at the saved camera: mean CIEDE2000 <= 2 over the covered pixels (the
 toggle's and the legend's panels left out). Under the lamp the terms differ from one
 another, so the toggle switches them. Chromium's network log shows no request made by the
-page (a control page with a remote image shows that such a request would be seen).
+page (a control page with a remote image shows that such a request would be seen). A scene
+beyond what a browser holds in one string is refused with an error that says what to do.
 
 Usage: TestExportHtml.py [output directory for the pages and images]
 """
@@ -58,4 +59,17 @@ for name, window in (("lamp", testing.lamp_scene()), ("colour-map", testing.colo
     if name == "colour-map":
         with open(page, encoding="utf-8") as f:
             assert 'id="linkgi-legend"' in f.read(), "the colour map has no legend"
+# Past what a browser can parse, a clear error and no file.
+from linkgi import _vtkjs  # noqa: E402
+limit = _vtkjs.BROWSER_STRING_LIMIT
+_vtkjs.BROWSER_STRING_LIMIT = 1000
+too_large = os.path.join(out, "too-large.html")
+try:
+    linkgi.export_html(testing.lamp_scene(), too_large)
+    raise AssertionError("a scene beyond the browser's string limit was written")
+except ValueError as error:
+    assert "decimate" in str(error) and "export_glb" in str(error), error
+    assert not os.path.exists(too_large)
+finally:
+    _vtkjs.BROWSER_STRING_LIMIT = limit
 print("ok")

@@ -20,6 +20,10 @@ from .export import MODES
 # time), or the trame-vtk package where it is installed.
 VIEWER_NAME = "vtkjs_viewer.html"
 
+# The page parses the scene's JSON as one string; Chromium's V8 holds at most 2^29 - 24
+# characters in a string (Firefox more): about 14 million triangles.
+BROWSER_STRING_LIMIT = (1 << 29) - 24
+
 
 def viewer_path():
     here = os.path.join(os.path.dirname(__file__), VIEWER_NAME)
@@ -205,10 +209,16 @@ def _legend_html(legend):
 def write(scene, filename, title="LinkGI"):
     lo, hi = scene.bounds()
     origin = 0.5 * (lo + hi)  # float32 points relative to the centre keep their precision
-    state = _state(scene, origin)
+    text = json.dumps(_state(scene, origin))
+    if len(text) > BROWSER_STRING_LIMIT:
+        raise ValueError(
+            f"linkgi.export_html: the scene's {scene.triangles} triangles need "
+            f"{len(text)} characters of JSON, more than a browser holds in one string "
+            f"({BROWSER_STRING_LIMIT}): decimate the surface (vtkQuadricDecimation) or "
+            "write glTF (linkgi.export_glb)")
     archive = io.BytesIO()
     with zipfile.ZipFile(archive, "w", zipfile.ZIP_DEFLATED) as z:
-        z.writestr("index.json", json.dumps(state))
+        z.writestr("index.json", text)
     encoded = base64.b64encode(archive.getvalue()).decode("ascii")
     with open(viewer_path(), encoding="utf-8") as f:
         page = f.read()
