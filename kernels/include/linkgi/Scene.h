@@ -161,8 +161,9 @@ bool validateChanges(Scene& scene, AlbedoPolicy policy, const KnownValid& known,
 std::vector<std::string> validateShading(Scene& scene, AlbedoPolicy policy = AlbedoPolicy::Clamp,
   bool albedoValidated = false, bool emissionValidated = false);
 
-/// Bitwise equality of two arrays. One thread: on the 16-core GPU machine splitting the
-/// comparison over the thread pool measured twice as slow as one memcmp of conference's 8 MB.
+/// Bitwise equality of two arrays, on one thread (the solver compares a large mesh's arrays
+/// on all cores: on an H200 machine's 16-core host 0.16-0.17 ms for four of conference's
+/// arrays against 0.34-0.41 ms on one).
 template <typename T>
 bool sameBits(const std::vector<T>& a, const std::vector<T>& b)
 {
