@@ -17,7 +17,7 @@ packages=(
   dpkg-dev file
   clang libclang-rt-14-dev libfuzzer-14-dev
   python3-sphinx python3-myst-parser python3-pydata-sphinx-theme
-  chromium blender
+  chromium blender python3-venv
 )
 
 missing=()
@@ -59,4 +59,13 @@ if ! echo "$sha  $wheel" | sha256sum --check --status 2>/dev/null; then
     -d "$top/build/downloads"
   echo "$sha  $wheel" | sha256sum --check --quiet || { echo "setup: $wheel: wrong checksum" >&2; exit 1; }
   echo "setup: downloaded $(basename "$wheel")"
+fi
+
+# python -m linkgi.web (the live app) runs on trame from PyPI: a virtual environment of
+# Debian's Python, which sees its VTK (--system-site-packages).
+venv="$top/build/venv-web"
+if ! "$venv/bin/python" -c "import trame, trame_vtk, trame_vuetify" 2>/dev/null; then
+  /usr/bin/python3 -m venv --system-site-packages "$venv"
+  "$venv/bin/pip" install --quiet trame==4.0.0 trame-vtk==2.11.17 trame-vuetify==3.3.0
+  echo "setup: made $venv with trame"
 fi
