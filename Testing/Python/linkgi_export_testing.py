@@ -41,16 +41,18 @@ def _sphere_on_plane(resolution=60):
     return scene
 
 
-def _window(renderer):
-    renderer.SetBackground(0.1, 0.1, 0.1)
+def _window(renderer, position=(0, -5, 3), focal_point=(0, 0, 0.3), view_up=(0, 0, 1),
+            view_angle=30.0, size=SIZE):
+    """An off-screen window of `renderer` at that camera, rendered once."""
     camera = renderer.GetActiveCamera()
-    camera.SetPosition(0, -5, 3)
-    camera.SetFocalPoint(0, 0, 0.3)
-    camera.SetViewUp(0, 0, 1)
+    camera.SetPosition(position)
+    camera.SetFocalPoint(focal_point)
+    camera.SetViewUp(view_up)
+    camera.SetViewAngle(view_angle)
     renderer.ResetCameraClippingRange()
     window = vtkRenderWindow()
     window.SetOffScreenRendering(True)
-    window.SetSize(*SIZE)
+    window.SetSize(*size)
     window.AddRenderer(renderer)
     window.Render()
     return window
@@ -60,6 +62,7 @@ def lamp_scene():
     """A sphere on a plane under a lamp (a point light that falls off with 1/r^2): the
     automatic exposure and the exponential curve of lamp scenes."""
     renderer = vtkRenderer()
+    renderer.SetBackground(0.1, 0.1, 0.1)
     lamp = vtkLight()
     lamp.SetPositional(True)
     lamp.SetConeAngle(180)
@@ -83,6 +86,7 @@ def colour_map_scene():
     """The same shapes coloured by height through a lookup table, under a directional
     light: the hue-preserving display calibrated to VTK's Surface, with a colour map."""
     renderer = vtkRenderer()
+    renderer.SetBackground(0.1, 0.1, 0.1)
     sun = vtkLight()
     sun.SetPosition(2, -3, 5)
     sun.SetFocalPoint(0, 0, 0)
@@ -135,18 +139,9 @@ def baked_window(scene, mode, size=SIZE):
         actor.GetProperty().LightingOff()
         actor.GetProperty().SetBackfaceCulling(part.culled)
         renderer.AddActor(actor)
-    camera = renderer.GetActiveCamera()
-    camera.SetPosition(scene.camera["position"])
-    camera.SetFocalPoint(scene.camera["focal_point"])
-    camera.SetViewUp(scene.camera["view_up"])
-    camera.SetViewAngle(scene.camera["view_angle"])
-    renderer.ResetCameraClippingRange()
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(True)
-    window.SetSize(*size)
-    window.AddRenderer(renderer)
-    window.Render()
-    return window
+    camera = scene.camera
+    return _window(renderer, camera["position"], camera["focal_point"], camera["view_up"],
+                   camera["view_angle"], size)
 
 
 def grab(window):
