@@ -10,6 +10,12 @@
 
 Needs Debian's /usr/bin/python3 (the one with VTK 9.1). Installed (`cmake --install`, or the
 linkgi .deb) it needs nothing else; from a build tree, PYTHONPATH=<build>/lib/python3.11/dist-packages.
+For ParaView's Python (pvpython, pvbatch) the plugin's LinkGI/python folder holds the same
+package built against ParaView's VTK.
+
+Sharing (numpy needed): linkgi.export_html and linkgi.export_glb write what the global
+illumination mappers display as a web page or glTF; python -m linkgi.web FILE lights a model
+live in the browser (trame).
 """
 # The wrapped classes derive from and take VTK classes of these modules: load them first.
 from vtkmodules import vtkCommonCore as _core  # noqa: F401
