@@ -3,7 +3,8 @@ system Python's path, as Python finds it under the default prefix (no PYTHONPATH
 
 Checks that the package, its wrapped modules and the LinkGI libraries they load (found by
 relative RPATHs) all come from the prefix, then runs the installed example
-sphere_on_plane.py and checks the light it computed.
+sphere_on_plane.py, checks the light it computed and exports it as a web page and glTF (the
+exporters find the vtk.js viewer where it was installed).
 
 Usage: /usr/bin/python3 CheckInstalledPython.py <prefix> <python directory, relative to it>
        <examples directory> <output .vtp>
@@ -38,3 +39,17 @@ try:
 except SystemExit as exit_:  # the example ends with sys.exit(<whether it wrote the file>)
     check(exit_.code in (0, None), "the example sphere_on_plane.py ran")
 check_sphere_on_plane(output)
+
+# The exporters find their installed vtk.js viewer: the lit example as a web page and glTF.
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader  # noqa: E402
+
+reader = vtkXMLPolyDataReader()
+reader.SetFileName(output)
+reader.Update()
+page = linkgi.export_html(reader.GetOutput(), output + ".html")
+with open(page["file"], encoding="utf-8") as f:
+    text = f.read()
+check("OfflineLocalView" in text and page["triangles"] > 0,
+      "linkgi.export_html inlined the installed viewer (%d bytes)" % page["bytes"])
+check(linkgi.export_glb(reader.GetOutput(), output + ".glb")["bytes"] > 0,
+      "linkgi.export_glb wrote the lit example")
