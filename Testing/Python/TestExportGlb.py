@@ -1,7 +1,7 @@
 """linkgi.export_glb writes glTF 2.0 that Blender shows with the displayed colours.
 
-The file is read back as glTF: one node per block (a two-sided solution's back faces a node
-of their own, wound the other way, both with back faces culled), unlit materials
+The file is read back as glTF: one node per block, named as the block (a two-sided
+solution's back faces a node of their own, wound the other way, both with back faces culled), unlit materials
 (KHR_materials_unlit), normals of unit length, and COLOR_0 the baked display colours
 decoded to linear light. Debian's Blender imports it (blender_import_check.py) and its
 vertex colours, read back as display values, equal the baked ones within one 8-bit step
@@ -130,4 +130,22 @@ assert all((a.colors["combined"] == b.colors["combined"]).all()
 path = os.path.join(out, "two-sided.glb")
 linkgi.export_glb(gi.GetOutput(), path)
 check_file(two_sided, path)
+# Several blocks are several nodes, named as the blocks.
+from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet, vtkMultiBlockDataSet  # noqa: E402
+from vtkmodules.vtkFiltersSources import vtkSphereSource  # noqa: E402
+
+blocks = vtkMultiBlockDataSet()
+for index, (name, source) in enumerate((("floor", vtkPlaneSource()), ("ball", vtkSphereSource()))):
+    source.Update()
+    blocks.SetBlock(index, source.GetOutput())
+    blocks.GetMetaData(index).Set(vtkCompositeDataSet.NAME(), name)
+gi = linkgi.vtkGlobalIlluminationFilter()
+gi.SetInputData(blocks)
+gi.AddLight(lamp)
+gi.Update()
+path = os.path.join(out, "blocks.glb")
+linkgi.export_glb(gi.GetOutputDataObject(0), path)
+document = check_file(linkgi.bake(gi.GetOutputDataObject(0)), path)
+names = [n["name"] for n in document["nodes"] if "mesh" in n]
+assert names == ["floor", "ball"], names
 print("ok")
