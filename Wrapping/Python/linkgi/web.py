@@ -19,7 +19,9 @@ import time
 import numpy as np
 
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factories)
-from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkTriangleFilter
 from vtkmodules.vtkFiltersGeometry import vtkDataSetSurfaceFilter
 from vtkmodules.vtkFiltersSources import vtkSphereSource
@@ -88,10 +90,21 @@ class LiveScene:
         self.lamp.SetPosition(*position)
         self.ball.SetCenter(*position)
 
+    def _relative(self, poly):
+        """`poly` with its points relative to the centre: vtk.js draws float32, which would
+        round away the detail of data far from the origin (UTM coordinates)."""
+        shifted = vtkPolyData()
+        shifted.ShallowCopy(poly)
+        points = vtkPoints()
+        points.SetData(numpy_to_vtk(vtk_to_numpy(poly.GetPoints().GetData()) - self.centre,
+                                    deep=True))
+        shifted.SetPoints(points)
+        return shifted
+
     def ball_mesh(self):
         from trame_vtk.modules.vtk.serializers import mesh
         self.ball.Update()
-        return mesh(self.ball.GetOutput())
+        return mesh(self._relative(self.ball.GetOutput()))
 
     def set_method(self, method, bounces):
         self.gi.SetMethod(METHODS.index(method))
@@ -118,7 +131,7 @@ class LiveScene:
         triangles.PassVertsOff()
         triangles.PassLinesOff()
         triangles.Update()
-        return mesh(triangles.GetOutput())
+        return mesh(self._relative(triangles.GetOutput()))
 
 
 def main(argv=None):
