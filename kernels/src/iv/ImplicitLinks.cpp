@@ -18,6 +18,10 @@ double cornerSolidAngle(double x, double y)
 
 using Pair = std::pair<Index, Index>;
 
+/// Links one task creates before it keeps only each receiver's shortest per bin (and then
+/// again whenever they have grown by this much beyond what the last reduction kept).
+constexpr std::size_t kLinksBeforeReduction = std::size_t(1) << 18;
+
 /// Rows from (row, column) pairs: a counting sort, columns in the pairs' order.
 SparseMatrix rowsOf(const std::vector<std::vector<Pair>>& parts, std::size_t rows)
 {
@@ -106,6 +110,55 @@ void keepShortestPerBin(const ClusterTree& t, const CubeBins& bins, SparseMatrix
   }
   m.rowOffsets[rows] = next;
   m.columns.resize(next);
+}
+
+/// keepShortestPerBin on the links one task has created so far: grouped by receiver (in
+/// their order otherwise), each receiver's bins keep their shortest link and links without
+/// a direction stay. The final pass over all tasks' links then keeps what it would have kept
+/// from all of them (a bin's shortest of the shortest is its shortest; ties go to the lower
+/// source either way), so the result is the same, but the created links are never all held
+/// at once: they are an order of magnitude more than the links kept.
+void reducePart(const ClusterTree& t, const CubeBins& bins, std::vector<Pair>& part,
+  std::vector<float>& bestDistance, std::vector<Index>& bestSource, std::vector<int>& touched)
+{
+  std::stable_sort(part.begin(), part.end(), [](const Pair& a, const Pair& b) { return a.first < b.first; });
+  std::size_t out = 0;
+  for (std::size_t first = 0; first < part.size();)
+  {
+    const Index node = part[first].first;
+    std::size_t last = first;
+    for (; last < part.size() && part[last].first == node; ++last)
+    {
+      const Index src = part[last].second;
+      const Vec3f d = t.position[src] - t.position[node];
+      const float d2 = dot(d, d);
+      if (!(d2 > 0.f))
+      {
+        part[out++] = part[last];
+        continue;
+      }
+      const int b = cubeBin(d, bins.n);
+      if (bestSource[b] == kInvalidIndex)
+      {
+        touched.push_back(b);
+      }
+      else if (d2 > bestDistance[b] || (d2 == bestDistance[b] && src > bestSource[b]))
+      {
+        continue;
+      }
+      bestDistance[b] = d2;
+      bestSource[b] = src;
+    }
+    for (int b : touched)
+    {
+      part[out++] = Pair(node, bestSource[b]);
+      bestSource[b] = kInvalidIndex;
+    }
+    touched.clear();
+    first = last;
+  }
+  part.resize(out);
+  part.shrink_to_fit();
 }
 }
 
@@ -219,10 +272,21 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
   parallelFor("ImplicitLinks", slices, 1, [&](std::size_t begin, std::size_t end) {
     std::vector<Pair> stack;
     auto push = [&](Index a, Index b) { stack.emplace_back(a, b); };
+    std::vector<float> bestDistance(bins.count());
+    std::vector<Index> bestSource(bins.count(), kInvalidIndex);
+    std::vector<int> touched;
     for (std::size_t s = begin; s < end; ++s)
     {
       std::vector<Pair>& part = parts[1 + s];
-      auto emit = [&](Index r, Index src) { part.emplace_back(r, src); };
+      std::size_t reduced = 0; // the part's size after its last reduction
+      auto emit = [&](Index r, Index src) {
+        part.emplace_back(r, src);
+        if (part.size() >= 2 * reduced + kLinksBeforeReduction)
+        {
+          reducePart(tree, bins, part, bestDistance, bestSource, touched);
+          reduced = part.size();
+        }
+      };
       std::uint64_t count = 0; // a local count: neighbouring slices' counters share a cache line
       for (std::size_t i = s * frontier.size() / slices; i < (s + 1) * frontier.size() / slices; ++i)
       {
@@ -236,6 +300,7 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
         }
       }
       visited[s] = count;
+      reducePart(tree, bins, part, bestDistance, bestSource, touched);
     }
   }, [&progress](const char*, double f) { return progressSays(progress, 0.8 * f); });
   for (std::uint64_t v : visited)

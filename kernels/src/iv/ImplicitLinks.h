@@ -85,7 +85,7 @@ struct NodeLinks
 {
   SparseMatrix byReceiver; ///< weights unused (empty)
   std::uint64_t pairsVisited = 0;
-  std::uint64_t created = 0; ///< links before each node's bins kept only their shortest
+  std::uint64_t created = 0; ///< links gathered for the final pass in which each node's bins keep their shortest (each task has already kept its own shortest)
 };
 
 /// The pair recursion's record of every node (positions, bounds, first child).
