@@ -81,7 +81,8 @@ void vtkGlobalIlluminationSceneBuilder::AddStatistics(vtkFieldData* fd,
     { "BvhRefits", s.bvhRefits }, { "Elements", s.elements }, { "Rays", s.rays },
     { "LightRays", s.lightRays }, { "LinksRaw", s.linksRaw },
     { "LinksCompressed", s.linksCompressed }, { "LinkBytes", s.linkBytes },
-    { "Vpls", s.vpls }, { "Photons", s.photons }, { "Clusters", s.clusters } };
+    { "Vpls", s.vpls }, { "Photons", s.photons }, { "Clusters", s.clusters },
+    { "HostBytesEstimated", s.hostBytesEstimated }, { "MemoryBudget", s.memoryBudget } };
   for (const auto& c : counters)
   {
     AddFieldValue(fd, c.first, c.second);

@@ -106,10 +106,11 @@ TEST(TestGlobalIlluminationProxy, OverTheBudgetAProxyThatFitsLightsTheSurface)
   {
     GTEST_SKIP() << "This build has no OpenMesh.";
   }
-  // ~5.3k points at 256 rays need ~65 MB; 40 MiB fits ~3.3k, so a proxy of about half.
+  // ~5.3k points at 256 rays are estimated at ~39 MiB; 24 MiB fits ~3k, so a proxy of
+  // about half.
   auto filter = SphereOnFloorFilter(70);
   filter->SetRaysPerVertex(256);
-  filter->SetMemoryBudget(40.0);
+  filter->SetMemoryBudget(24.0);
   MessageCapture messages(filter);
   filter->Update();
   EXPECT_TRUE(messages.Errors.empty()) << messages.Errors[0];
@@ -119,4 +120,35 @@ TEST(TestGlobalIlluminationProxy, OverTheBudgetAProxyThatFitsLightsTheSurface)
   ASSERT_NE(indirect, nullptr);
   EXPECT_EQ(indirect->GetNumberOfTuples(), out->GetNumberOfPoints());
   EXPECT_GT(indirect->GetRange(0)[1], 0.0);
+}
+
+TEST(TestGlobalIlluminationProxy, EveryMethodOverTheBudgetGoesThroughAProxy)
+{
+  if (!linkgi::proxyAvailable())
+  {
+    GTEST_SKIP() << "This build has no OpenMesh.";
+  }
+  // Each method's own estimate, then a budget of 75% of it: the same automatic proxy as the
+  // link method's, whose estimate fits that budget.
+  for (const int method : { vtkGlobalIlluminationFilter::INSTANT_RADIOSITY,
+         vtkGlobalIlluminationFilter::IMPLICIT_VISIBILITY })
+  {
+    auto probe = SphereOnFloorFilter(70);
+    probe->SetMethod(method);
+    probe->Update();
+    const double estimate = Stat(probe->GetOutput(), "HostBytesEstimated");
+    ASSERT_GT(estimate, 0.0) << "method " << method;
+
+    auto filter = SphereOnFloorFilter(70);
+    filter->SetMethod(method);
+    filter->SetMemoryBudget(0.75 * estimate / (1024.0 * 1024.0));
+    MessageCapture messages(filter);
+    filter->Update();
+    EXPECT_TRUE(messages.Errors.empty()) << "method " << method << ": " << messages.Errors[0];
+    EXPECT_TRUE(messages.HasWarning("lit through a proxy of about")) << "method " << method;
+    EXPECT_LE(Stat(filter->GetOutput(), "HostBytesEstimated"), 0.75 * estimate);
+    vtkDataArray* indirect = PointArray(filter->GetOutput(), "IndirectIrradiance");
+    ASSERT_NE(indirect, nullptr);
+    EXPECT_GT(indirect->GetRange(0)[1], 0.0) << "method " << method;
+  }
 }

@@ -8,6 +8,16 @@
 
 namespace linkgi::engine
 {
+namespace
+{
+/// The BVH and its build per triangle, as measured (Embree 3 on the standard scenes and
+/// Testing/Data/Models, Documentation/Methods.md "Memory").
+constexpr std::uint64_t kBvhBytesPerTriangle = 120;
+/// What a first update touches whatever the mesh: the worker threads' stacks and arenas and
+/// Embree's first blocks (the peak of a 1.6k-vertex scene less its arrays).
+constexpr std::uint64_t kFirstUpdateBytes = std::uint64_t(2) << 20;
+}
+
 void CpuGeometry::update(const StageContext& c)
 {
   const Scene& s = c.scene;
@@ -35,6 +45,21 @@ void CpuGeometry::update(const StageContext& c)
     c.stats.refitBvh = true;
     ++c.stats.bvhRefits;
   }
+}
+
+std::uint64_t cpuGeometryBytes(const MemoryShape& shape)
+{
+  // Topology: ~3 neighbour, edge and vertex-edge entries per triangle and their sort;
+  // per vertex the one-ring offsets and the origin shift; per triangle a face normal and
+  // the BVH with its build.
+  const std::uint64_t topology = 3 * (sizeof(Index) + sizeof(std::pair<Index, Index>) + sizeof(Index)) + 2 * 3 * sizeof(Index);
+  return shape.triangles * (topology + sizeof(Vec3f) + kBvhBytesPerTriangle) +
+    shape.vertices * (2 * sizeof(Index) + sizeof(RayOrigin)) + kFirstUpdateBytes;
+}
+
+std::uint64_t cpuSolutionBytes(const MemoryShape& shape, const SolverOptions& o)
+{
+  return shape.vertices * (o.twoSided ? 2 : 1) * sizeof(Vec3f) * 10;
 }
 
 void CpuGeometry::describe(SolverStats& st) const

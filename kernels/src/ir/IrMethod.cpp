@@ -4,11 +4,43 @@
 // IrCpu.cpp and IrCuda.cpp.
 #include "ir/IrBackends.h"
 
+#include "engine/CpuGeometry.h"
+#include "ir/IrMath.h"
+
 namespace linkgi::ir
 {
 namespace
 {
 using namespace engine;
+
+/// Host bytes of an update: the geometry, the VPL stage's path slots (one Vpl per bounce
+/// and path of the first pass; a dark scene's second pass, up to 64 times as many paths,
+/// is not counted), the proxy's grid and BVH when visibility uses it, and the per-element
+/// vectors. On the GPU the host holds the per-element vectors only.
+MemoryEstimate estimateIrMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)
+{
+  MemoryEstimate m;
+  m.hostBytes = cpuSolutionBytes(shape, o);
+  if (cuda)
+  {
+    m.hostBytes += shape.vertices * (o.twoSided ? 2 : 1) * sizeof(Vec3f) * 6;
+    return m;
+  }
+  if (stale & (1u << kGeometryStage))
+  {
+    m.hostBytes += cpuGeometryBytes(shape);
+  }
+  if (o.instantRadiosity.proxyVisibility && (stale & (1u << kProxyStage)))
+  {
+    const std::uint64_t r = o.instantRadiosity.proxyResolution;
+    m.hostBytes += r * r * r * (sizeof(Vec3f) + sizeof(Index)) + 2 * r * r * r * 200;
+  }
+  if (stale & (1u << kVplStage))
+  {
+    m.hostBytes += std::uint64_t(pathCount(o)) * (o.bounces + 1) * (sizeof(Vpl) + sizeof(int)) * 2;
+  }
+  return m;
+}
 
 class InstantRadiosityMethod final : public MethodSpec
 {
@@ -38,6 +70,11 @@ public:
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
+    bool cuda) const override
+  {
+    return estimateIrMemory(shape, o, stale, cuda);
+  }
 };
 }
 

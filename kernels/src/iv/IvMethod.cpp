@@ -3,11 +3,46 @@
 // IvCpu.cpp, the CUDA backend in IvCuda.cpp. Documentation/Methods.md, "Implicit visibility".
 #include "iv/IvBackends.h"
 
+#include "engine/CpuGeometry.h"
+
+#include <cmath>
+
 namespace linkgi::iv
 {
 namespace
 {
 using namespace engine;
+
+/// Node links that the link stage holds at its peak (each task's links after keeping
+/// each receiver's shortest per bin, and their CSR), per vertex^1.5 and bin per side.
+/// Measured on the standard rooms and Testing/Data/Models: the count depends on how much
+/// of the scene each part sees, not on sizes alone; tearoom, the most open, sets it
+/// (Documentation/Methods.md, "Memory").
+constexpr double kKeptLinks = 0.42;
+
+/// Host bytes of an update: the geometry and the cluster tree (two nodes per vertex); at
+/// the link stage the node links (a pair while kept by a task, a CSR column after; see
+/// kKeptLinks), each leaf's hemisphere of bins at most (transport or environment, column
+/// and weight) and the nodes' bounds; per element the vectors of the bounces. Not a bound:
+/// the node links depend on the scene.
+MemoryEstimate estimateIvMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)
+{
+  const std::uint64_t v = shape.vertices, n = o.implicitVisibility.binsPerSide;
+  constexpr std::uint64_t nodeBytes = 3 * sizeof(Index) + 2 * sizeof(Vec3f) + 4 * sizeof(float);
+  MemoryEstimate m;
+  m.hostBytes = cpuSolutionBytes(shape, o) + 2 * v * nodeBytes;
+  if (!cuda && (stale & (1u << kElementStage)))
+  {
+    m.hostBytes += cpuGeometryBytes(shape);
+  }
+  if (stale & (1u << kLinkStage))
+  {
+    const double kept = kKeptLinks * double(n) * std::pow(double(v), 1.5);
+    m.hostBytes += std::uint64_t(kept * (sizeof(std::pair<Index, Index>) + sizeof(Index))) +
+      v * (3 * n * n + 6 * n) * (sizeof(Index) + sizeof(float)) + 2 * v * 2 * nodeBytes;
+  }
+  return m;
+}
 
 class ImplicitVisibilityMethod final : public MethodSpec
 {
@@ -29,6 +64,11 @@ public:
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
+    bool cuda) const override
+  {
+    return estimateIvMemory(shape, o, stale, cuda);
+  }
 };
 }
 

@@ -182,32 +182,26 @@ LinksPerElement linksPerElement(const MemoryShape& shape, const SolverOptions& o
 
 MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale)
 {
-  const std::uint64_t v = shape.vertices, t = shape.triangles, e = v * (o.twoSided ? 2 : 1);
+  const std::uint64_t e = shape.vertices * (o.twoSided ? 2 : 1);
   const std::uint64_t n = o.raysPerVertex;
   constexpr std::uint64_t vec3 = sizeof(Vec3f), csrEntry = sizeof(Index) + sizeof(float);
   std::uint64_t bytes = 0;
   if (stale & (1u << kGeometryStage))
   {
-    // Topology (neighbours, edges and vertex edges: ~3 entries of each per triangle, and
-    // their build's sort), origin shifts, face normals, and the BVH with its build (Embree's
-    // or ours: under 200 B per triangle).
-    bytes += t * (3 * (sizeof(Index) + sizeof(std::pair<Index, Index>) + sizeof(Index)) + 2 * 3 * sizeof(Index)) +
-      v * (2 * sizeof(Index) + vec3) + t * vec3 + t * 200;
+    bytes += cpuGeometryBytes(shape);
   }
   if (stale & (1u << kLinkStage))
   {
-    // buildLinks: the CSR at the links' bound (linkRows reserves it), counted twice, as if
-    // every chunk's rows were copied into it whole; the second copy is only a band's
-    // buffers (at most 512 chunks), so this is a margin: at
-    // 1M vertices the estimate is 2.1x the measured peak. Tightening it changes what the
-    // budget lets through and needs the budget's tests and figures re-measured. Then the
-    // row counts and offsets; per worker a dense scratch row, one element's rays and hits,
-    // and the rows of a chunk.
+    // buildLinks: the CSR at the links' bound (linkRows reserves it; only the links
+    // written become resident, so this bounds them); a band's chunk buffers (a 32nd of the
+    // rows, at most 512 chunks of 64) at the bound with their vectors' growth; the row
+    // counts and offsets; per worker a dense scratch row, one element's rays and hits.
     const LinksPerElement links = linksPerElement(shape, o);
-    const std::uint64_t perElement =
-      (links.transport + links.environment) * csrEntry * 2 + 2 * (sizeof(Index) + sizeof(Offset));
-    const std::uint64_t perWorker = (e + shape.texels) * sizeof(float) + n * (sizeof(Hit) + sizeof(Ray)) +
-      64 * (links.transport + links.environment) * csrEntry * 2;
+    const std::uint64_t perRow = (links.transport + links.environment) * csrEntry;
+    const std::uint64_t perElement = perRow + 2 * (sizeof(Index) + sizeof(Offset));
+    const std::uint64_t bandRows = std::min<std::uint64_t>(e / 32 + 64, 512 * 64);
+    const std::uint64_t perWorker = (e + shape.texels) * sizeof(float) + n * (sizeof(Hit) + sizeof(Ray));
+    bytes += bandRows * perRow * 2;
     bytes += e * perElement + std::uint64_t(workerCount()) * perWorker;
   }
   if (stale & (1u << kLightLinkStage))

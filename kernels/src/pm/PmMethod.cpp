@@ -3,11 +3,45 @@
 // Documentation/Methods.md, "Photon mapping".
 #include "pm/PmBackends.h"
 
+#include "engine/CpuGeometry.h"
+#include "ir/IrHost.h"
+#include "pm/PhotonMapping.h"
+
 namespace linkgi::pm
 {
 namespace
 {
 using namespace engine;
+
+/// Host bytes of an update: the geometry; the photon stage's path slots (one Vpl per bounce
+/// and path of the first pass; a second pass for a scene whose paths mostly escape, up to 64
+/// times as many paths, is not counted) and the map (per photon: position, normal, flux, the
+/// kd-tree's order, the estimates at every siteStride-th); per vertex the clusters'
+/// assignment and interpolants; and the per-element vectors. On the GPU the host holds the
+/// per-element vectors and the map it reads back.
+MemoryEstimate estimatePmMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)
+{
+  const std::uint64_t photons = o.photonMapping.photons;
+  MemoryEstimate m;
+  m.hostBytes = cpuSolutionBytes(shape, o);
+  if (!cuda && (stale & (1u << kGeometryStage)))
+  {
+    m.hostBytes += cpuGeometryBytes(shape);
+  }
+  if (stale & (1u << kPhotonStage))
+  {
+    SolverOptions paths = o;
+    paths.instantRadiosity.vplCount = o.photonMapping.photons;
+    const std::uint64_t sites = std::min<std::uint64_t>(kMaxSites, photons / siteStride(photons) + 1);
+    m.hostBytes += (cuda ? 0 : std::uint64_t(ir::pathCount(paths)) * (o.bounces + 1) * (sizeof(ir::Vpl) + sizeof(int))) +
+      photons * (3 * sizeof(Vec3f) + sizeof(Index)) + sites * (3 * sizeof(Vec3f) + sizeof(Index));
+  }
+  if (stale & (1u << kClusterStage))
+  {
+    m.hostBytes += shape.vertices * (1 + Clusters::kInterpolants) * sizeof(Index) * 2;
+  }
+  return m;
+}
 
 class PhotonMappingMethod final : public MethodSpec
 {
@@ -36,6 +70,11 @@ public:
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
+    bool cuda) const override
+  {
+    return estimatePmMemory(shape, o, stale, cuda);
+  }
 };
 }
 
