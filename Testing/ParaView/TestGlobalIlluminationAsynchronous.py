@@ -146,10 +146,10 @@ t.check(not (after == before).all(), "the new solution changed the picture")
 gi.GlobalIlluminationDisplayMode = "Combined"
 
 # 3. Two light moves while the links are rebuilt: the first move's request is replaced.
-# The longer rebuild (2048 rays) here: it must outlast two renders, the one above one (with
-# 1024 it could finish first on the CI machine).
+# The longer rebuild (4096 rays) here: it must outlast two renders, the one above one (with
+# 1024, and once in a loaded CI run with 2048, it finished first).
 gi.GlobalIlluminationWait = "Never"
-gi.GlobalIlluminationRays = 2048
+gi.GlobalIlluminationRays = 4096
 Render(view)
 rebuild = statistics(gi)
 light.Position = [-1.0, 2.5, 1.0]
