@@ -5,8 +5,9 @@ it in Debian's Chromium (fresh profile) and drives it through the DevTools proto
 websocket, with aiohttp, which trame brings): the page draws the lit model; moving the
 lamp (as its slider does, through trame's state) makes the server relight and the browser
 receive the new colours (the state's version), within a second of the light update's own
-time; the drawn picture changes where the light moved; and the server's baked colours
-follow the light (the side the lamp moved to gets brighter).
+time; the drawn picture changes where the light moved; a click on the model moves the lamp
+above the clicked point; and the server's baked colours follow the light (the side the lamp
+moved to gets brighter).
 
 Run by the Python of a virtual environment with trame (scripts/test.sh makes it):
   TestWebApp.py [output directory] [model]
@@ -135,7 +136,16 @@ async def drive(url, out, moved):
                     light_ms = await page.evaluate("window.trame.state.get('light_ms')")
                     await asyncio.sleep(1.0)  # the new frame
                     after = testing.read_png(await page.screenshot(os.path.join(out, "web-after.png")))
-                    return x, arrived, light_ms, before, after
+                    # A click on the model (the view's middle) moves the lamp above it.
+                    version = await page.evaluate("window.trame.state.get('version')")
+                    for kind in ("mousePressed", "mouseReleased"):
+                        await page.call("Input.dispatchMouseEvent", type=kind, x=610, y=320,
+                                        button="left", clickCount=1)
+                    await page.wait_for(f"window.trame.state.get('version') > {version}")
+                    clicked = await page.evaluate("[window.trame.state.get('light_x'), "
+                                                  "window.trame.state.get('light_y'), "
+                                                  "window.trame.state.get('light_z')]")
+                    return x, arrived, light_ms, before, after, clicked
         finally:
             browser.terminate()
             browser.wait(timeout=30)
@@ -162,7 +172,7 @@ def main():
                 break
         else:
             raise AssertionError("the app did not start")
-        x, arrived, light_ms, before, after = asyncio.run(
+        x, arrived, light_ms, before, after, clicked = asyncio.run(
             drive(f"http://127.0.0.1:{port}/", out, moved))
     finally:
         server.terminate()
@@ -178,6 +188,10 @@ def main():
     assert model > 5000, "the view does not show the model"
     assert changed > 0.1 * model, "the view did not change when the lamp moved"
     assert arrived <= light_ms / 1000.0 + 1.0, f"new colours took {arrived:.2f} s"
+    # The click put the lamp outside the model, a third of its size from the clicked point.
+    lo, hi = np.array(bounds[0::2]), np.array(bounds[1::2])
+    print(f"a click on the model put the lamp at {np.round(clicked, 3).tolist()}")
+    assert clicked[0] != moved and not ((lo < clicked) & (clicked < hi)).all(), clicked
 
     # The server's colours follow the light: the side the lamp went to brightens.
     sides = []

@@ -5,8 +5,8 @@ are lit as their surface), lights it on the server with vtkGlobalIlluminationFil
 lamp (a point light falling off as 1/r^2) and draws the displayed colours
 (vtkGlobalIlluminationDisplayColors) with vtk.js in the browser. Sliders move the lamp (a
 light move re-traces only the shadow rays and the bounces, and the browser receives the new
-colours alone), pick the method, the bounces and the light term shown. The lamp is the
-small yellow ball.
+colours alone), pick the method, the bounces and the light term shown; a click on the
+model puts the lamp above the clicked point. The lamp is the small yellow ball.
 
 Needs trame, trame-vtk and trame-vuetify (pip install trame trame-vtk trame-vuetify) in a
 Python that has VTK and LinkGI, e.g. a virtual environment of Debian's /usr/bin/python3 made
@@ -179,6 +179,20 @@ def main(argv=None):
         scene.relight()
         publish()
 
+    def place_lamp_above(event):
+        """A click on the model puts the lamp above the clicked point (outward from the
+        model's centre, a third of its size away)."""
+        picked = (event or {}).get("worldPosition") if isinstance(event, dict) else None
+        if not picked:
+            return
+        point = np.array(picked[:3]) + scene.centre  # the browser's points are relative
+        outward = point - scene.centre
+        length = np.linalg.norm(outward)
+        outward = outward / length if length > 0 else np.array([0.0, 0.0, 1.0])
+        lamp = point + outward * scene.size / 3.0
+        state.update({"light_x": float(lamp[0]), "light_y": float(lamp[1]),
+                      "light_z": float(lamp[2])})
+
     @state.change("method", "bounces")
     def change_method(method, bounces, **_):
         scene.set_method(method, bounces)
@@ -206,7 +220,8 @@ def main(argv=None):
                               step=(high[k] - low[k]) / 200, label=f"Lamp {axis}")
         with layout.content:
             with v.VContainer(fluid=True, classes="pa-0 fill-height"):
-                with vtk_widgets.VtkView(ref="view") as view:
+                with vtk_widgets.VtkView(ref="view", picking_modes=("['click']",),
+                                         click=(place_lamp_above, "[$event]")) as view:
                     # Unlit, the colours as they are: exactly the baked values.
                     with vtk_widgets.VtkGeometryRepresentation(
                             mapper=("{ colorMode: 2, scalarVisibility: true }",),
