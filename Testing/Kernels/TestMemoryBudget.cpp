@@ -8,6 +8,7 @@
 #include "linkgi/Error.h"
 #include "linkgi/Links.h"
 #include "linkgi/Memory.h"
+#include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>
@@ -294,24 +295,24 @@ TEST(TestMemoryBudget, DISABLED_FirstUpdateOfOneMethod)
   const std::uint64_t before = residentBytes();
   Solver solver;
   solver.update(s, o);
-  std::printf("peak %llu estimate %llu\n", (unsigned long long)(peakResidentBytes() - before),
-    (unsigned long long)solver.stats().hostBytesEstimated);
+  std::printf("peak %llu estimate %llu vertices %zu\n", (unsigned long long)(peakResidentBytes() - before),
+    (unsigned long long)solver.stats().hostBytesEstimated, s.vertexCount());
 }
 
 TEST(TestMemoryBudget, EveryMethodEstimatesItsMeasuredPeak)
 {
   // Each method's estimate against the peak of its first update in a fresh process, on a
-  // room of 6k vertices. The factors are what Documentation/Methods.md ("Memory") states:
-  // instant radiosity and photon mapping within 1.3 either way; the link method's
-  // estimate counts its links at their bound, and implicit visibility's created links
-  // depend on the scene (the estimate is set by the most open of the measured rooms), so
-  // both may overstate by more but never understate by more than 1.3.
+  // room of 9.2k vertices, within 1.3 either way (Documentation/Methods.md, "Memory"); on the
+  // 2-core VM: links 1.24, instant radiosity 1.06, implicit visibility 1.17, photon mapping
+  // 1.10. The link method's estimate counts its links at their bound, which the links of
+  // other machines' BVHs and thread counts stay further under (its figures there: up to 1.7x
+  // those of the VM), so its factor may be larger; never smaller than 1/1.3.
   if (!resetPeakResident() || residentBytes() == 0)
   {
     GTEST_SKIP() << "The peak resident set cannot be reset or read here (/proc/self).";
   }
-  const std::pair<Method, double> methods[] = { { Method::Links, 4.0 }, { Method::InstantRadiosity, 1.3 },
-    { Method::ImplicitVisibility, 2.5 }, { Method::PhotonMapping, 1.3 } };
+  const std::pair<Method, double> methods[] = { { Method::Links, 2.0 }, { Method::InstantRadiosity, 1.3 },
+    { Method::ImplicitVisibility, 1.3 }, { Method::PhotonMapping, 1.3 } };
   for (const auto& [method, mostOver] : methods)
   {
     const PeakAndEstimate m = measureInChild(method);
@@ -350,4 +351,34 @@ TEST(TestMemoryBudget, EveryMethodIsRefusedOverTheBudget)
       EXPECT_LT(e.verticesThatFit(), s.vertexCount());
     }
   }
+}
+
+TEST(TestMemoryBudget, ASecondPassOfLightPathsOverTheBudgetIsRefused)
+{
+  // The torso stands in no room: most photons leave it, and a second pass of up to 64 times
+  // the paths looks for the rest. The estimate counts the first pass only, so the second is
+  // checked against what the budget leaves before its paths are allocated.
+  const Scene s = makeStandardScene("torso");
+  SolverOptions o;
+  o.backend = Backend::Cpu;
+  o.method = Method::PhotonMapping;
+  o.photonMapping.photons = 16384;
+  o.photonMapping.clusters = 256;
+  o.photonMapping.gatherRays = 16;
+  o.memoryBudget = fullEstimate(s, o) + (std::uint64_t(64) << 10);
+  Solver solver;
+  try
+  {
+    solver.update(s, o);
+    FAIL() << "not refused";
+  }
+  catch (const OutOfMemoryBudget& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("light paths mostly leave this scene"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("NumberOfPhotons"), std::string::npos) << e.what();
+    EXPECT_EQ(e.verticesThatFit(), 0u); // a proxy would not help
+  }
+  // Under a budget that leaves room for it, the same update runs.
+  o.memoryBudget = 0;
+  EXPECT_NO_THROW(solver.update(s, o));
 }

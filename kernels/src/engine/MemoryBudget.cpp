@@ -3,6 +3,7 @@
 #include "linkgi/Error.h"
 
 #include <cmath>
+#include <limits>
 
 namespace linkgi::engine
 {
@@ -46,6 +47,15 @@ MemoryVerdict judgeMemory(const MethodSpec& spec, const MemoryShape& shape,
   }
   v.verticesThatFit = std::uint64_t(double(shape.vertices) * lo);
   return v;
+}
+
+std::uint64_t memoryLeft(const SolverStats& stats)
+{
+  if (stats.memoryBudget == 0)
+  {
+    return std::numeric_limits<std::uint64_t>::max();
+  }
+  return stats.memoryBudget > stats.hostBytesEstimated ? stats.memoryBudget - stats.hostBytesEstimated : 0;
 }
 
 void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverOptions& options,

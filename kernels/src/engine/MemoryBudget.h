@@ -30,4 +30,9 @@ MemoryVerdict judgeMemory(const MethodSpec& spec, const MemoryShape& shape,
 /// or freed at that point, so the previous result stays.
 void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverOptions& options,
   std::uint32_t stale, bool cuda, SolverStats& stats);
+
+/// What the budget leaves beyond the update's estimate (as checkMemoryBudget recorded them
+/// in `stats`): the most that a stage may allocate for what only tracing can tell (a second
+/// pass of light paths). UINT64_MAX when no budget was recorded.
+std::uint64_t memoryLeft(const SolverStats& stats);
 }

@@ -3,8 +3,10 @@
 #include "ir/IrBackends.h"
 
 #include "engine/CpuGeometry.h"
+#include "engine/MemoryBudget.h"
 
 #include "linkgi/Bounce.h"
+#include "linkgi/Memory.h"
 #include "linkgi/DirectLight.h"
 
 #include <atomic>
@@ -14,7 +16,7 @@
 namespace linkgi::ir
 {
 VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32_t subsets,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress, std::uint64_t secondPassBytes)
 {
   PathScene view = setup.view;
   const std::uint32_t slotsPerPath = view.bounces + 1;
@@ -45,6 +47,16 @@ VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32
     if (!more)
     {
       break;
+    }
+    const std::uint64_t bytes = std::uint64_t(more) * (slotsPerPath * sizeof(Vpl) + sizeof(int));
+    if (bytes > secondPassBytes)
+    {
+      throw OutOfMemoryBudget("Not enough memory: light paths mostly leave this scene (" + std::to_string(found) +
+          " of the " + std::to_string(target) + " virtual lights or photons asked for were found), and the second pass of " +
+          std::to_string(more) + " paths that would find the rest needs about " + formatBytes(bytes) +
+          ", more than the memory budget leaves (" + formatBytes(secondPassBytes) +
+          "). Ask for fewer (NumberOfVPLs, NumberOfPhotons), or a larger MemoryBudget.",
+        0);
     }
     view.paths = more;
   }
@@ -197,7 +209,8 @@ private:
   void traceVpls(const StageContext& c)
   {
     const PathSetup setup = buildPathSetup(c.scene, geometry.faceNormals, geometry.origins, c.options);
-    vpls.stage() = traceVplsCpu(setup, *geometry.tracer, c.options.instantRadiosity.interleave, c.progress);
+    vpls.stage() = traceVplsCpu(setup, *geometry.tracer, c.options.instantRadiosity.interleave, c.progress,
+      memoryLeft(c.stats));
   }
 
   void gather(const StageContext& c)

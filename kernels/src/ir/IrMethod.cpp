@@ -14,9 +14,10 @@ namespace
 using namespace engine;
 
 /// Host bytes of an update: the geometry, the VPL stage's path slots (one Vpl per bounce
-/// and path of the first pass; a dark scene's second pass, up to 64 times as many paths,
-/// is not counted), the proxy's grid and BVH when visibility uses it, and the per-element
-/// vectors. On the GPU the host holds the per-element vectors only.
+/// and path of the first pass; a second pass, up to 64 times as many paths where most leave
+/// the scene, is checked against what the budget leaves when it is known: traceVplsCpu),
+/// the proxy's grid and BVH when visibility uses it, and the per-element vectors. On the GPU
+/// the host holds the per-element vectors only.
 MemoryEstimate estimateIrMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)
 {
   MemoryEstimate m;
@@ -32,8 +33,9 @@ MemoryEstimate estimateIrMemory(const MemoryShape& shape, const SolverOptions& o
   }
   if (o.instantRadiosity.proxyVisibility && (stale & (1u << kProxyStage)))
   {
-    const std::uint64_t r = o.instantRadiosity.proxyResolution;
-    m.hostBytes += r * r * r * (sizeof(Vec3f) + sizeof(Index)) + 2 * r * r * r * 200;
+    // The grid's cells, and the proxy's triangles and BVH: at most the mesh's.
+    const std::uint64_t r = o.instantRadiosity.proxyResolution + 1;
+    m.hostBytes += r * r * r * (sizeof(Vec3f) + sizeof(Index)) + cpuGeometryBytes(shape);
   }
   if (stale & (1u << kVplStage))
   {

@@ -81,13 +81,13 @@ RadianceSitesView PhotonMap::sitesView() const
 
 void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals,
   const std::vector<RayOrigin>& origins, const RayTracer& tracer,
-  const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress)
+  const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress, std::uint64_t secondPassBytes)
 {
   SolverOptions paths = options;
   paths.instantRadiosity.vplCount = options.photonMapping.photons;
   paths.instantRadiosity.russianRoulette = true;
   const ir::PathSetup setup = pathSetup(scene, faceNormals, origins, paths);
-  const ir::VplSet hits = ir::traceVplsCpu(setup, tracer, 1, progress);
+  const ir::VplSet hits = ir::traceVplsCpu(setup, tracer, 1, progress, secondPassBytes);
   for (auto* a : { &map.positions, &map.normals, &map.flux, &map.causticPositions, &map.causticNormals, &map.causticFlux })
   {
     a->clear();

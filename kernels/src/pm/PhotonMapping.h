@@ -18,6 +18,7 @@
 #include "linkgi/SolverTypes.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace linkgi::pm
@@ -69,10 +70,12 @@ ir::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormal
 
 /// The photons of `options` (PhotonMappingOptions::photons, bounces, seed, sides): instant
 /// radiosity's light paths from every source, with Russian roulette by albedo, into `map`'s
-/// positions, normals and flux (its estimates are estimateRadiance's).
+/// positions, normals and flux (its estimates are estimateRadiance's). `secondPassBytes`:
+/// as traceVplsCpu's.
 void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals,
   const std::vector<RayOrigin>& origins, const RayTracer& tracer,
-  const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress = {});
+  const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress = {},
+  std::uint64_t secondPassBytes = UINT64_MAX);
 
 /// Builds the map's estimates from photons already in positions/normals/flux, at every
 /// `siteStride`-th photon: siteRadiance (PmMath.h) from the k nearest photons within

@@ -6,6 +6,7 @@
 #include "pm/PhotonMapping.h"
 
 #include "engine/CpuGeometry.h"
+#include "engine/MemoryBudget.h"
 
 #include "linkgi/DirectLight.h"
 #include "linkgi/Sampling.h"
@@ -91,7 +92,8 @@ private:
       return [&c, lo](const char*, double f) { return !c.progress || c.progress("Photons", lo + 0.5 * f); };
     };
     PhotonMap& next = map.stage();
-    linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, geometry.origins, *geometry.tracer, c.options, next, half(0.0));
+    linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, geometry.origins, *geometry.tracer, c.options, next, half(0.0),
+      memoryLeft(c.stats));
     estimateRadiance(next, c.options.photonMapping.estimatePhotons, siteStride(next.count()),
       kEstimateRadius * boundingDiagonal(c.scene.positions), half(0.5));
   }
