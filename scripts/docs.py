@@ -147,6 +147,9 @@ def python_reference():
     for function in (export.bake, export.export_html, export.export_glb):
         out += ["### linkgi." + function.__name__ + str(inspect.signature(function)), "",
                 fenced(inspect.cleandoc(function.__doc__), "text"), ""]
+    from linkgi import web  # imports trame only when run
+    out += ["## Live in the browser: `python -m linkgi.web`", "",
+            fenced(inspect.cleandoc(web.__doc__), "text"), ""]
     for name in sorted(n for n in dir(linkgi) if n.startswith("vtk")):
         cls = getattr(linkgi, name)
         out += ["## linkgi." + name, "", fenced(inspect.cleandoc(cls.__doc__ or ""), "text"), ""]
