@@ -11,7 +11,8 @@ script ends with the solution still pending. The GUI's event loop then runs, and
 representation's watcher, on a timer of the view's interactor, must render the view by
 itself once the solution is ready: an observer of the interactor's timer ticks ends the
 process with 0 when the drawn solution is the newest request's, with 1 after 3000 ticks.
-So the test runs without --exit.
+So the test runs without --exit. Then the Macros menu's LinkGIExport, found in
+PV_MACRO_PATH as the GUI finds it, exports the drawn solution as a page and a glTF file.
 """
 import os
 
@@ -90,12 +91,35 @@ say("ok: the GUI's render returned before the first solution")
 ticks = [0]
 
 
+def export_with_the_macro():
+    """The Macros menu's LinkGIExport, found where the GUI finds macros (PV_MACRO_PATH),
+    run in the GUI's Python on the drawn solution: it writes a page and a glTF file."""
+    folders = [f for f in os.environ.get("PV_MACRO_PATH", "").split(os.pathsep) if f]
+    macros = [os.path.join(f, "LinkGIExport.py") for f in folders
+              if os.path.exists(os.path.join(f, "LinkGIExport.py"))]
+    if not macros:
+        fail("no LinkGIExport macro in PV_MACRO_PATH (%s)" % folders)
+    out = os.environ["LINKGI_EXPORT_DIR"]
+    os.makedirs(out, exist_ok=True)
+    before = set(os.listdir(out))
+    try:
+        with open(macros[0]) as f:
+            exec(compile(f.read(), macros[0], "exec"), {"__name__": "__main__"})
+    except Exception as error:
+        fail("the LinkGIExport macro failed in the GUI: %s" % error)
+    written = sorted(set(os.listdir(out)) - before)
+    if not any(w.endswith(".html") for w in written) or not any(w.endswith(".glb") for w in written):
+        fail("the LinkGIExport macro wrote %s" % written)
+    say("ok: the GUI's LinkGIExport macro wrote %s" % written)
+
+
 def on_tick(caller, event):
     ticks[0] += 1
     gi.SMProxy.UpdatePropertyInformation()
     if information(gi, "Updates") == 1 and information(gi, "ShownRequest") == 1:
         say("ok: the watcher rendered the solution when it was ready (after %d ticks)"
             % ticks[0])
+        export_with_the_macro()
         os._exit(0)
     if ticks[0] >= 3000:
         fail("no render showed the solution after %d timer ticks" % ticks[0])
