@@ -4,7 +4,8 @@ drawn unlit by VTK at the same camera, match the global illumination mapper's pi
 shadows and direct light against per-vertex ones) in a lamp scene (automatic exposure,
 exponential curve) and a colour-mapped scene under a directional light (hue-preserving
 display); and the light terms add up: direct and indirect differ from combined where there
-is bounced light.
+is bounced light. Colours by cell give every cell points of its own with its colour (a
+plane under a directional light of intensity 1 shows the lookup table's colours exactly).
 
 Usage: TestDisplayColors.py [output directory for the images]
 """
@@ -39,7 +40,65 @@ def check(name, window, out):
     return scene
 
 
+def check_cell_colours():
+    """Colours by cell: every cell gets points of its own carrying its colour. A plane facing
+    a directional light of intensity 1, nothing to bounce off (black sky): irradiance 1
+    everywhere, so the calibrated display shows each cell's lookup-table colour exactly."""
+    from vtkmodules.vtkCommonCore import vtkIntArray, vtkLookupTable
+    from vtkmodules.vtkFiltersSources import vtkPlaneSource
+    from vtkmodules.vtkRenderingCore import vtkLight, vtkLightCollection, vtkPolyDataMapper, vtkProperty
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    plane = vtkPlaneSource()
+    plane.SetResolution(3, 2)
+    plane.Update()
+    surface = plane.GetOutput()
+    index = vtkIntArray()
+    index.SetName("index")
+    for i in range(surface.GetNumberOfCells()):
+        index.InsertNextValue(i)
+    surface.GetCellData().AddArray(index)
+    sun = vtkLight()
+    sun.SetPosition(0, 0, 1)
+    sun.SetFocalPoint(0, 0, 0)
+    gi = linkgi.vtkGlobalIlluminationFilter()
+    gi.SetInputData(surface)
+    gi.AddLight(sun)
+    gi.Update()
+    table = vtkLookupTable()
+    table.SetNumberOfTableValues(surface.GetNumberOfCells())
+    table.SetRange(0, surface.GetNumberOfCells() - 1)
+    table.Build()
+    mapper = vtkPolyDataMapper()
+    mapper.SetLookupTable(table)
+    mapper.SetScalarModeToUseCellFieldData()
+    mapper.SelectColorArray("index")
+    mapper.SetScalarRange(0, surface.GetNumberOfCells() - 1)
+    lights = vtkLightCollection()
+    lights.AddItem(sun)
+    colors = linkgi.vtkGlobalIlluminationDisplayColors()
+    colors.SetInputConnection(gi.GetOutputPort())
+    colors.SetMapper(mapper)
+    colors.SetProperty(vtkProperty())
+    colors.SetLights(lights)
+    colors.Update()
+    baked = colors.GetOutput()
+    cells = surface.GetNumberOfCells()
+    assert baked.GetNumberOfPoints() == 4 * cells, baked.GetNumberOfPoints()
+    shown = vtk_to_numpy(baked.GetPointData().GetArray("DisplayColors"))
+    rgb = [0.0, 0.0, 0.0]
+    for cell in range(cells):
+        ids = baked.GetCell(cell).GetPointIds()
+        table.GetColor(cell, rgb)
+        expected = np.round(255 * np.array(rgb))
+        for k in range(ids.GetNumberOfIds()):
+            got = shown[ids.GetId(k)]
+            assert np.abs(got - expected).max() <= 1, (cell, got, expected)
+    print(f"colours by cell: {cells} cells on points of their own, each its table colour")
+
+
 out = testing.output_dir(sys.argv)
+check_cell_colours()
 lamp = check("lamp", testing.lamp_scene(), out)
 assert lamp.parts and lamp.mode == "combined"
 check("colour-map", testing.colour_map_scene(), out)
