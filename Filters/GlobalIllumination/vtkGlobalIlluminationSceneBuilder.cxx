@@ -181,7 +181,8 @@ std::array<double, 3> BoundsCentre(vtkPolyData* mesh, const std::vector<unsigned
 }
 
 // Finds the inward closed surfaces (OrientToLights turns them), and warns where normals
-// and winding disagree (the mapper, like VTK, follows the winding there).
+// and winding disagree (LinkGI's filter and mappers follow the normals there, VTK's own
+// two-sided lighting the winding).
 void FindInwardSurfaces(vtkGlobalIlluminationSceneBuilder::Mesh& mesh)
 {
   std::vector<std::uint64_t> points(mesh.ElementPoint.begin(), mesh.ElementPoint.end());
@@ -192,9 +193,10 @@ void FindInwardSurfaces(vtkGlobalIlluminationSceneBuilder::Mesh& mesh)
   {
     std::ostringstream msg;
     msg << against << " of " << mesh.Scene.triangleCount()
-        << " triangles have point normals against their winding: LinkGI lights the side"
-        << " the normals point to, while VTK's two-sided lighting draws that side dark."
-        << " Turn ComputeNormals on, or fix the normals or the winding of those cells.";
+        << " triangles have point normals against their winding: LinkGI (this filter and"
+        << " its mappers) lights the side the normals point to, while VTK's other mappers"
+        << " draw that side dark. Turn ComputeNormals on, or fix the normals or the winding"
+        << " of those cells.";
     mesh.Warnings.push_back(msg.str());
   }
 }

@@ -4,7 +4,8 @@ drawn unlit by VTK at the same camera, match the global illumination mapper's pi
 shadows and direct light against per-vertex ones) in a lamp scene (automatic exposure,
 exponential curve) and a colour-mapped scene under a directional light (hue-preserving
 display); and the light terms add up: direct and indirect differ from combined where there
-is bounced light. Colours by cell give every cell points of its own with its colour (a
+is bounced light. The same holds where a surface's normals point against its winding (the
+mapper lights the side the normals point to, as the filter does). Colours by cell give every cell points of its own with its colour (a
 plane under a directional light of intensity 1 shows the lookup table's colours exactly).
 
 Usage: TestDisplayColors.py [output directory for the images]
@@ -102,4 +103,7 @@ check_cell_colours()
 lamp = check("lamp", testing.lamp_scene(), out)
 assert lamp.parts and lamp.mode == "combined"
 check("colour-map", testing.colour_map_scene(), out)
+# Normals against the winding: the mapper lights the side the normals point to, as the filter
+# does (VTK's own two-sided lighting would draw the plane dark).
+check("against-winding", testing.lamp_scene(against_winding=True), out)
 print("ok")

@@ -15,7 +15,7 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factories)
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
-from vtkmodules.vtkFiltersCore import vtkAppendPolyData, vtkElevationFilter
+from vtkmodules.vtkFiltersCore import vtkAppendPolyData, vtkElevationFilter, vtkReverseSense
 from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
 from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkLight, vtkPolyDataMapper, vtkRenderer,
@@ -24,7 +24,7 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkLight, vtkPolyDataMapper, 
 SIZE = (480, 320)
 
 
-def _sphere_on_plane(resolution=60):
+def _sphere_on_plane(resolution=60, against_winding=False):
     sphere = vtkSphereSource()
     sphere.SetCenter(0, 0, 0.5)
     sphere.SetRadius(0.5)
@@ -37,7 +37,17 @@ def _sphere_on_plane(resolution=60):
     plane.SetResolution(resolution, resolution)
     scene = vtkAppendPolyData()
     scene.AddInputConnection(sphere.GetOutputPort())
-    scene.AddInputConnection(plane.GetOutputPort())
+    if against_winding:
+        # The plane's triangles wound downward, its normals still up (as in models whose
+        # normals and winding disagree).
+        reverse = vtkReverseSense()
+        reverse.SetInputConnection(plane.GetOutputPort())
+        reverse.ReverseCellsOn()
+        reverse.ReverseNormalsOff()
+        scene.AddInputConnection(reverse.GetOutputPort())
+        scene.reverse = reverse  # kept alive with the append filter
+    else:
+        scene.AddInputConnection(plane.GetOutputPort())
     return scene
 
 
@@ -58,9 +68,10 @@ def _window(renderer, position=(0, -5, 3), focal_point=(0, 0, 0.3), view_up=(0, 
     return window
 
 
-def lamp_scene():
+def lamp_scene(against_winding=False):
     """A sphere on a plane under a lamp (a point light that falls off with 1/r^2): the
-    automatic exposure and the exponential curve of lamp scenes."""
+    automatic exposure and the exponential curve of lamp scenes. `against_winding`: the
+    plane's normals point against its triangles' winding."""
     renderer = vtkRenderer()
     renderer.SetBackground(0.1, 0.1, 0.1)
     lamp = vtkLight()
@@ -70,7 +81,8 @@ def lamp_scene():
     lamp.SetIntensity(10)
     lamp.SetAttenuationValues(0, 0, 1)
     renderer.AddLight(lamp)
-    shapes = _sphere_on_plane()  # kept: an output port does not keep its algorithm alive
+    shapes = _sphere_on_plane(against_winding=against_winding)  # kept: a port does not keep
+    # its algorithm alive
     gi = linkgi.vtkGlobalIlluminationFilter()
     gi.SetInputConnection(shapes.GetOutputPort())
     gi.SetLightsFromRenderer(renderer)

@@ -1,9 +1,15 @@
   // LinkGI: outgoing radiance L = Le + albedo / pi * E + glossy (linear light), and its
   // display (vtkGlobalIlluminationShading: calibrated to VTK's Lambert shading by default).
   vec3 giPosition = (giViewToWorld * vec4(vertexVC.xyz, 1.0)).xyz;
-  vec3 giNormal = normalize(mat3(giViewToWorld) * normalVCVSOutput);
-  // The triangle's own normal (from the position derivatives taken in uniform control
-  // flow), on the same side as the shading normal.
+  // The front of a triangle is the side its normals point to, as for the filter. VTK turns
+  // the normal on back faces (by winding); where a triangle's normals point against its
+  // winding, that leaves the normal facing away from the eye (giTriangleNormalVC, from the
+  // position derivatives, always faces it): turned back, the side the normals point to is
+  // lit, and its indirect light is the front's.
+  bool giAgrees = dot(giTriangleNormalVC, normalVCVSOutput) >= 0.0;
+  bool giFront = giAgrees == gl_FrontFacing;
+  vec3 giNormal = normalize(mat3(giViewToWorld) * (giAgrees ? normalVCVSOutput : -normalVCVSOutput));
+  // The triangle's own normal, on the same side as the shading normal.
   vec3 giTriangle = mat3(giViewToWorld) * giTriangleNormalVC;
   giTriangle = dot(giTriangle, giTriangle) > 0.0 ? normalize(giTriangle) : giNormal;
   giTriangle = dot(giTriangle, giNormal) < 0.0 ? -giTriangle : giTriangle;
@@ -29,7 +35,7 @@
 #endif
 #if GI_MODE != 1 && GI_HAS_INDIRECT
 #if GI_HAS_INDIRECT_BACK
-  giIrradiance += gl_FrontFacing ? giIndirectVSOutput : giIndirectBackVSOutput;
+  giIrradiance += giFront ? giIndirectVSOutput : giIndirectBackVSOutput;
 #else
   giIrradiance += giIndirectVSOutput;
 #endif
