@@ -122,33 +122,33 @@ TEST(TestGlobalIlluminationProxy, OverTheBudgetAProxyThatFitsLightsTheSurface)
   EXPECT_GT(indirect->GetRange(0)[1], 0.0);
 }
 
-TEST(TestGlobalIlluminationProxy, EveryMethodOverTheBudgetGoesThroughAProxy)
+TEST(TestGlobalIlluminationProxy, ImplicitVisibilityOverTheBudgetGoesThroughAProxy)
 {
   if (!linkgi::proxyAvailable())
   {
     GTEST_SKIP() << "This build has no OpenMesh.";
   }
-  // Each method's own estimate, then a budget of 75% of it: the same automatic proxy as the
-  // link method's, whose estimate fits that budget.
-  for (const int method : { vtkGlobalIlluminationFilter::INSTANT_RADIOSITY,
-         vtkGlobalIlluminationFilter::IMPLICIT_VISIBILITY })
-  {
-    auto probe = SphereOnFloorFilter(70);
-    probe->SetMethod(method);
-    probe->Update();
-    const double estimate = Stat(probe->GetOutput(), "HostBytesEstimated");
-    ASSERT_GT(estimate, 0.0) << "method " << method;
+  // Its own estimate, then a budget of 75% of it: the same automatic proxy as the link
+  // method's, whose estimate fits that budget. (Instant radiosity and photon mapping take
+  // the same path on a closed scene; over this open floor most of their light paths leave,
+  // and the second pass of paths is what a tight budget refuses: TestMemoryBudget.)
+  auto probe = SphereOnFloorFilter(70);
+  probe->SetMethod(vtkGlobalIlluminationFilter::IMPLICIT_VISIBILITY);
+  probe->Update();
+  const double estimate = Stat(probe->GetOutput(), "HostBytesEstimated");
+  ASSERT_GT(estimate, 0.0);
 
-    auto filter = SphereOnFloorFilter(70);
-    filter->SetMethod(method);
-    filter->SetMemoryBudget(0.75 * estimate / (1024.0 * 1024.0));
-    MessageCapture messages(filter);
-    filter->Update();
-    EXPECT_TRUE(messages.Errors.empty()) << "method " << method << ": " << messages.Errors[0];
-    EXPECT_TRUE(messages.HasWarning("lit through a proxy of about")) << "method " << method;
-    EXPECT_LE(Stat(filter->GetOutput(), "HostBytesEstimated"), 0.75 * estimate);
-    vtkDataArray* indirect = PointArray(filter->GetOutput(), "IndirectIrradiance");
-    ASSERT_NE(indirect, nullptr);
-    EXPECT_GT(indirect->GetRange(0)[1], 0.0) << "method " << method;
-  }
+  auto filter = SphereOnFloorFilter(70);
+  filter->SetMethod(vtkGlobalIlluminationFilter::IMPLICIT_VISIBILITY);
+  filter->SetMemoryBudget(0.75 * estimate / (1024.0 * 1024.0));
+  MessageCapture messages(filter);
+  filter->Update();
+  EXPECT_TRUE(messages.Errors.empty()) << messages.Errors[0];
+  EXPECT_TRUE(messages.HasWarning("lit through a proxy of about"));
+  EXPECT_TRUE(messages.HasWarning("implicit-visibility method"));
+  EXPECT_LE(Stat(filter->GetOutput(), "HostBytesEstimated"), 0.75 * estimate);
+  vtkDataArray* indirect = PointArray(filter->GetOutput(), "IndirectIrradiance");
+  ASSERT_NE(indirect, nullptr);
+  EXPECT_EQ(indirect->GetNumberOfTuples(), filter->GetOutput()->GetNumberOfPoints());
+  EXPECT_GT(indirect->GetRange(0)[1], 0.0);
 }
