@@ -105,6 +105,19 @@ assert report["bytes"] == os.path.getsize(path)
 check_file(scene, path)
 check_blender(scene, path, out)
 
+# Normals against the winding: the file's triangles are wound as the normals point (the
+# side LinkGI lit is the side viewers take as the front).
+window = testing.lamp_scene(against_winding=True)
+scene = linkgi.bake(window)
+path = os.path.join(out, "against-winding.glb")
+linkgi.export_glb(window, path)
+check_file(scene, path)
+for part in scene.parts:
+    corners = part.points[part.triangles]
+    face = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    agree = np.einsum("ij,ij->i", face, part.normals[part.triangles].sum(axis=1)) > 0
+    assert agree.all(), f"{(~agree).sum()} triangles wound against their normals"
+
 # A lit dataset, two-sided: its back faces are a node of their own with their own colours.
 plane = vtkPlaneSource()
 plane.SetResolution(8, 8)

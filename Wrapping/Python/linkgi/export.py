@@ -134,6 +134,12 @@ def _parts(baked, name, matrix, opacity, scene):
         normals = normals @ np.linalg.inv(m[:3, :3])
     lengths = np.linalg.norm(normals, axis=1, keepdims=True)
     normals = (normals / np.where(lengths > 0, lengths, 1.0)).astype(np.float32)
+    # Viewers cull and choose a side by winding; LinkGI's front is where the normals point
+    # (also after a mirroring transform): wind every triangle that way.
+    corners = points[cells]
+    face = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    against = np.einsum("ij,ij->i", face, normals[cells].sum(axis=1)) < 0
+    cells[against] = cells[against][:, ::-1]
 
     def colors(back):
         return {mode: _array(tri, vtkGlobalIlluminationDisplayColors.GetColorsArrayName(k, back))
