@@ -7,8 +7,6 @@
 
 #include "linkgi/Parallel.h"
 
-#include <cmath>
-
 namespace linkgi::iv
 {
 namespace
@@ -16,11 +14,12 @@ namespace
 using namespace engine;
 
 /// Node links that the link stage holds at its peak (each task's links after keeping
-/// each receiver's shortest per bin, and their CSR), per vertex^1.5 and bin per side.
-/// Measured on the standard rooms and Testing/Data/Models: the count depends on how much
-/// of the scene each part sees, not on sizes alone; tearoom, the most open, sets it
+/// each receiver's shortest per bin, and their CSR), per vertex and bin per side. Measured
+/// on the standard scenes and Testing/Data/Models: 28-40 on rooms from 8.6k to 121k
+/// vertices (the count depends on how much of the scene each part sees, not on sizes
+/// alone; tearoom, the most open, sets it), near 0 on small or roomless scenes
 /// (Documentation/Methods.md, "Memory").
-constexpr double kKeptLinks = 0.42;
+constexpr double kKeptLinks = 42.0;
 
 /// Host bytes of an update: the geometry and the cluster tree (two nodes per vertex); at
 /// the link stage the node links (a pair while kept by a task, a CSR column after; see
@@ -41,7 +40,7 @@ MemoryEstimate estimateIvMemory(const MemoryShape& shape, const SolverOptions& o
   {
     // Each worker's tasks hold links not yet reduced, and its allocator arena keeps what
     // they free: tearoom peaks 1.6x higher on 16 cores than on 2 (Methods.md, "Memory").
-    const double kept = kKeptLinks * double(n) * std::pow(double(v), 1.5) * (1.0 + workerCount() / 32.0);
+    const double kept = kKeptLinks * double(n) * double(v) * (1.0 + workerCount() / 32.0);
     m.hostBytes += std::uint64_t(kept * (sizeof(std::pair<Index, Index>) + sizeof(Index))) +
       v * (3 * n * n + 6 * n) * (sizeof(Index) + sizeof(float)) + 2 * v * 2 * nodeBytes;
   }
