@@ -98,9 +98,11 @@ def main(model, up, method):
     start = time.time()
     gi.Update()
     seconds = time.time() - start
-    print("%s method %d: %d points, %.2f s, peak %.0f MiB above the start"
-          % (model, method, scene.GetOutput().GetNumberOfPoints(), seconds,
-             (resident("VmHWM:") - before) / 2**20))
+    peak = resident("VmHWM:") - before
+    estimate = gi.GetOutput().GetFieldData().GetArray("LinkGI.HostBytesEstimated").GetValue(0)
+    print("%s method %d: %d points, %.2f s, peak %.0f MiB above the start, estimated %.0f MiB (%.2fx)"
+          % (model, method, scene.GetOutput().GetNumberOfPoints(), seconds, peak / 2**20,
+             estimate / 2**20, estimate / peak))
 
 
 if __name__ == "__main__":
