@@ -53,49 +53,81 @@ bool progressSays(const ProgressCallback& progress, double fraction)
   return !progress || progress("ImplicitLinks", fraction);
 }
 
-/// The paper's rule at creation: a node's bin (seen from the node) keeps only its
-/// shortest link. Applied to each receiving node's links once all are created, in parallel.
+/// The paper's rule at creation for one receiving node at a time: each direction bin (seen
+/// from the node) keeps only its shortest link, ties going to the lower source; links
+/// without a direction are all kept. Its buffers are reused from node to node.
+class ShortestPerBin
+{
+public:
+  explicit ShortestPerBin(const CubeBins& bins)
+    : BestDistance(bins.count())
+    , BestSource(bins.count(), kInvalidIndex)
+  {
+  }
+
+  /// Offers the link from `source` to `node`; false for a link without a direction, which
+  /// the caller keeps as it is.
+  bool offer(const ClusterTree& t, const CubeBins& bins, Index node, Index source)
+  {
+    const Vec3f d = t.position[source] - t.position[node];
+    const float d2 = dot(d, d);
+    if (!(d2 > 0.f))
+    {
+      return false;
+    }
+    const int b = cubeBin(d, bins.n);
+    if (this->BestSource[b] == kInvalidIndex)
+    {
+      this->Touched.push_back(b);
+    }
+    else if (d2 > this->BestDistance[b] || (d2 == this->BestDistance[b] && source > this->BestSource[b]))
+    {
+      return true;
+    }
+    this->BestDistance[b] = d2;
+    this->BestSource[b] = source;
+    return true;
+  }
+
+  /// Hands each bin's shortest source to `keep`, in bin order (deterministic), and resets.
+  template <typename Keep>
+  void take(Keep&& keep)
+  {
+    std::sort(this->Touched.begin(), this->Touched.end());
+    for (int b : this->Touched)
+    {
+      keep(this->BestSource[b]);
+      this->BestSource[b] = kInvalidIndex;
+    }
+    this->Touched.clear();
+  }
+
+private:
+  std::vector<float> BestDistance;
+  std::vector<Index> BestSource;
+  std::vector<int> Touched;
+};
+
+/// ShortestPerBin applied to each receiving node's links once all are created, in parallel.
 void keepShortestPerBin(const ClusterTree& t, const CubeBins& bins, SparseMatrix& m,
   const ProgressCallback& progress)
 {
   const std::size_t rows = m.rows();
   std::vector<Index> counts(rows, 0);
   parallelFor("ImplicitLinks", rows, 256, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> bestDistance(bins.count());
-    std::vector<Index> bestSource(bins.count(), kInvalidIndex);
-    std::vector<int> touched;
+    ShortestPerBin shortest(bins);
     for (std::size_t node = begin; node < end; ++node)
     {
       Offset out = m.rowOffsets[node];
       for (Offset e = m.rowOffsets[node]; e < m.rowOffsets[node + 1]; ++e)
       {
         const Index src = m.columns[e];
-        const Vec3f d = t.position[src] - t.position[node];
-        const float d2 = dot(d, d);
-        if (!(d2 > 0.f))
+        if (!shortest.offer(t, bins, Index(node), src))
         {
           m.columns[out++] = src; // no direction: kept
-          continue;
         }
-        const int b = cubeBin(d, bins.n);
-        if (bestSource[b] == kInvalidIndex)
-        {
-          touched.push_back(b);
-        }
-        else if (d2 > bestDistance[b] || (d2 == bestDistance[b] && src > bestSource[b]))
-        {
-          continue;
-        }
-        bestDistance[b] = d2;
-        bestSource[b] = src;
       }
-      std::sort(touched.begin(), touched.end()); // a deterministic order
-      for (int b : touched)
-      {
-        m.columns[out++] = bestSource[b];
-        bestSource[b] = kInvalidIndex;
-      }
-      touched.clear();
+      shortest.take([&](Index src) { m.columns[out++] = src; });
       counts[node] = Index(out - m.rowOffsets[node]);
     }
   }, [&progress](const char*, double f) { return progressSays(progress, 0.8 + 0.2 * f); });
@@ -119,7 +151,7 @@ void keepShortestPerBin(const ClusterTree& t, const CubeBins& bins, SparseMatrix
 /// source either way), so the result is the same, but the created links are never all held
 /// at once: they are an order of magnitude more than the links kept.
 void reducePart(const ClusterTree& t, const CubeBins& bins, std::vector<Pair>& part,
-  std::vector<float>& bestDistance, std::vector<Index>& bestSource, std::vector<int>& touched)
+  ShortestPerBin& shortest)
 {
   std::stable_sort(part.begin(), part.end(), [](const Pair& a, const Pair& b) { return a.first < b.first; });
   std::size_t out = 0;
@@ -129,32 +161,12 @@ void reducePart(const ClusterTree& t, const CubeBins& bins, std::vector<Pair>& p
     std::size_t last = first;
     for (; last < part.size() && part[last].first == node; ++last)
     {
-      const Index src = part[last].second;
-      const Vec3f d = t.position[src] - t.position[node];
-      const float d2 = dot(d, d);
-      if (!(d2 > 0.f))
+      if (!shortest.offer(t, bins, node, part[last].second))
       {
         part[out++] = part[last];
-        continue;
       }
-      const int b = cubeBin(d, bins.n);
-      if (bestSource[b] == kInvalidIndex)
-      {
-        touched.push_back(b);
-      }
-      else if (d2 > bestDistance[b] || (d2 == bestDistance[b] && src > bestSource[b]))
-      {
-        continue;
-      }
-      bestDistance[b] = d2;
-      bestSource[b] = src;
     }
-    for (int b : touched)
-    {
-      part[out++] = Pair(node, bestSource[b]);
-      bestSource[b] = kInvalidIndex;
-    }
-    touched.clear();
+    shortest.take([&](Index src) { part[out++] = Pair(node, src); });
     first = last;
   }
   part.resize(out);
@@ -272,9 +284,7 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
   parallelFor("ImplicitLinks", slices, 1, [&](std::size_t begin, std::size_t end) {
     std::vector<Pair> stack;
     auto push = [&](Index a, Index b) { stack.emplace_back(a, b); };
-    std::vector<float> bestDistance(bins.count());
-    std::vector<Index> bestSource(bins.count(), kInvalidIndex);
-    std::vector<int> touched;
+    ShortestPerBin shortest(bins);
     for (std::size_t s = begin; s < end; ++s)
     {
       std::vector<Pair>& part = parts[1 + s];
@@ -283,7 +293,7 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
         part.emplace_back(r, src);
         if (part.size() >= 2 * reduced + kLinksBeforeReduction)
         {
-          reducePart(tree, bins, part, bestDistance, bestSource, touched);
+          reducePart(tree, bins, part, shortest);
           reduced = part.size();
         }
       };
@@ -300,7 +310,7 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
         }
       }
       visited[s] = count;
-      reducePart(tree, bins, part, bestDistance, bestSource, touched);
+      reducePart(tree, bins, part, shortest);
     }
   }, [&progress](const char*, double f) { return progressSays(progress, 0.8 * f); });
   for (std::uint64_t v : visited)
