@@ -1,9 +1,13 @@
 #include "linkgi/AsyncSolver.h"
 
+#include "engine/Pipeline.h"
+#include "engine/Progression.h"
+
 #include "linkgi/Error.h"
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <mutex>
 #include <optional>
@@ -115,6 +119,15 @@ struct AsyncSolver::Impl
 
   Solver solver; // touched by the worker only
   int threads = 1;
+  // Progressive updates, touched by the worker only: the solver of the coarse stages (reset
+  // after each, so its caches never sit beside the final's), what the final stages took and
+  // the input they took it on, and the time per unit of work of each method's first coarse
+  // stage.
+  Solver previewSolver;
+  engine::StageHistory history;
+  std::shared_ptr<const Scene> finalScene;
+  SolverOptions finalOptions;
+  double previewRate[8] = {};
   std::optional<Request> lastAccepted; // for repeated identical requests
 
   mutable std::mutex mutex;
@@ -122,7 +135,10 @@ struct AsyncSolver::Impl
   std::optional<Request> pending;
   std::uint64_t nextId = 1;
   std::uint64_t running = 0; // id being solved, 0 when idle
-  double progress = 0.0;     // fraction of the running update done
+  double progress = 0.0;     // fraction of the running stage done
+  AsyncStage stage;          // ... of the running update
+  bool progressive = false;
+  double firstStageSeconds = 0.5;
   bool stopping = false;
   Clock::time_point lastRequestAt; // when the newest request was accepted
   bool continuous = false;         // it came less than kContinuous after the one before
@@ -141,7 +157,12 @@ struct AsyncSolver::Impl
   void run();
   bool solveOnThread(Request& request, bool idle);
   void solve(Request& request);
-  std::shared_ptr<AsyncResult> blended(const Request& request, const Solution& s, const SolverStats& st);
+  std::vector<SolverOptions> plan(const Request& request);
+  /// Publishes stage `stage` of `stages` of `request`; the final one also leaves the worker
+  /// idle with it.
+  void publish(const Request& request, std::uint32_t index, std::uint32_t stages, const Solver& from);
+  /// The result to publish: `s` itself, or for a final solution after a final one, blended.
+  std::shared_ptr<AsyncResult> blended(const Request& request, bool final, const Solution& s, const SolverStats& st);
 };
 
 AsyncSolver::AsyncSolver(int workerThreads) : impl(std::make_unique<Impl>())
@@ -222,16 +243,22 @@ double AsyncSolver::progress() const
   return impl->running == 0 || impl->running == ~std::uint64_t(0) ? 0.0 : impl->progress;
 }
 
+AsyncStage AsyncSolver::stage() const
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  return impl->running == 0 || impl->running == ~std::uint64_t(0) ? AsyncStage{} : impl->stage;
+}
+
 bool AsyncSolver::wait(std::uint64_t request, double timeoutSeconds) const
 {
   std::unique_lock<std::mutex> lock(impl->mutex);
-  const auto done = [&] {
-    const bool published = impl->published && impl->published->request >= request;
-    const bool idle = !impl->pending && impl->running == 0;
-    return published || idle;
+  const auto finalFor = [&] {
+    const auto& p = impl->published;
+    return p && (p->request > request || (p->request == request && p->final()));
   };
+  const auto done = [&] { return finalFor() || (!impl->pending && impl->running == 0); };
   impl->changed.wait_for(lock, std::chrono::duration<double>(timeoutSeconds), done);
-  return impl->published && impl->published->request >= request;
+  return finalFor();
 }
 
 std::string AsyncSolver::lastError() const
@@ -244,6 +271,18 @@ void AsyncSolver::setBlend(float factor)
 {
   std::lock_guard<std::mutex> lock(impl->mutex);
   impl->blend = std::clamp(factor, 1e-3f, 1.f);
+}
+
+void AsyncSolver::setProgressive(bool progressive)
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  impl->progressive = progressive;
+}
+
+void AsyncSolver::setFirstStageSeconds(double seconds)
+{
+  std::lock_guard<std::mutex> lock(impl->mutex);
+  impl->firstStageSeconds = std::isfinite(seconds) ? std::max(0.01, seconds) : 0.5;
 }
 
 void AsyncSolver::setAbortRunning(bool abort)
@@ -373,42 +412,113 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
   return again;
 }
 
+std::vector<SolverOptions> AsyncSolver::Impl::plan(const Request& request)
+{
+  engine::ProgressionPlan settings;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (!progressive || continuous)
+    {
+      return {};
+    }
+    settings.budgetSeconds = firstStageSeconds;
+  }
+  const SolverOptions& options = request.options;
+  const engine::MethodSpec& spec = engine::methodSpec(options.method);
+  const std::size_t elements = request.scene->vertexCount() * (options.twoSided ? 2 : 1);
+  double finalSeconds = -1.0; // unknown: nothing of this method and backend ran yet
+  if (finalScene && finalOptions.method == options.method && finalOptions.backend == options.backend)
+  {
+    const engine::Changes changes = engine::changesBetween(*request.scene, options, *finalScene, finalOptions);
+    finalSeconds = history.predictSeconds(engine::staleStages(spec.stages(), changes), elements);
+  }
+  settings.previewRate = previewRate[static_cast<int>(options.method) & 7];
+  return engine::planPreviews(spec, elements, options, finalSeconds, settings);
+}
+
 void AsyncSolver::Impl::solve(Request& request)
 {
   // The update stops at its next progress check after cancel() or the destructor, and, with
   // setAbortRunning(true), once a newer request is waiting, or once it starved.
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    progress = 0.0;
-  }
   const ProgressCallback stillWanted = [this, id = request.id](const char*, double fraction) {
     std::lock_guard<std::mutex> lock(mutex);
     progress = std::max(progress, fraction);
     return !stopping && !starved && running == id && !(abortRunning && pending.has_value());
   };
-  try
-  {
-    runWithConcurrency(threads, [&] { solver.update(*request.scene, request.options, stillWanted); });
-  }
-  catch (const Aborted&)
-  {
-    return;
-  }
-  catch (const std::exception& e)
-  {
+  const auto failed = [this](const std::exception& e) {
     std::lock_guard<std::mutex> lock(mutex);
     error = e.what();
     running = 0; // with the error: busy() and lastError() never disagree
-    return;
+  };
+  try
+  {
+    const std::vector<SolverOptions> previews = plan(request);
+    const auto stages = static_cast<std::uint32_t>(previews.size() + 1);
+    for (std::uint32_t s = 1; s <= stages; ++s)
+    {
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (s > 1 && (stopping || running != request.id || pending.has_value()))
+        {
+          running = 0; // a newer request starts again from its own first stage
+          return;
+        }
+        progress = 0.0;
+        stage = AsyncStage{ s, stages };
+      }
+      if (s == stages)
+      {
+        runWithConcurrency(threads, [&] { solver.update(*request.scene, request.options, stillWanted); });
+        publish(request, s, stages, solver);
+        return;
+      }
+      const SolverOptions& coarse = previews[s - 1];
+      const auto start = Clock::now();
+      runWithConcurrency(threads, [&] { previewSolver.update(*request.scene, coarse, stillWanted); });
+      if (s == 1)
+      {
+        const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        const std::size_t elements = request.scene->vertexCount() * (coarse.twoSided ? 2 : 1);
+        previewRate[static_cast<int>(coarse.method) & 7] =
+          seconds / engine::methodSpec(coarse.method).sampleWork(elements, coarse);
+      }
+      publish(request, s, stages, previewSolver);
+      previewSolver.reset(); // its caches never sit beside the final stage's
+    }
   }
-  std::shared_ptr<AsyncResult> result = blended(request, solver.solution(), solver.stats());
+  catch (const Aborted&)
+  {
+    previewSolver.reset();
+  }
+  catch (const std::exception& e)
+  {
+    previewSolver.reset();
+    failed(e);
+  }
+}
+
+void AsyncSolver::Impl::publish(const Request& request, std::uint32_t index, std::uint32_t stages, const Solver& from)
+{
+  std::shared_ptr<AsyncResult> result = blended(request, index == stages, from.solution(), from.stats());
+  result->stage = index;
+  result->stages = stages;
+  if (result->final())
+  {
+    const SolverOptions& o = request.options;
+    history.record(engine::methodSpec(o.method), from.stats(), request.scene->vertexCount() * (o.twoSided ? 2 : 1));
+    finalScene = request.scene;
+    finalOptions = o;
+  }
   std::function<void(std::uint64_t)> callback;
   {
     std::lock_guard<std::mutex> lock(mutex);
     published = std::move(result);
     error.clear();
-    // Idle with the result, in one step: a caller that saw the result never sees busy().
-    running = 0;
+    if (index == stages)
+    {
+      // Idle with the final result, in one step: a caller that saw it never sees busy().
+      running = 0;
+    }
     callback = onPublish;
   }
   changed.notify_all();
@@ -419,7 +529,7 @@ void AsyncSolver::Impl::solve(Request& request)
 }
 
 std::shared_ptr<AsyncResult> AsyncSolver::Impl::blended(
-  const Request& request, const Solution& s, const SolverStats& st)
+  const Request& request, bool final, const Solution& s, const SolverStats& st)
 {
   auto result = std::make_shared<AsyncResult>();
   result->request = request.id;
@@ -432,7 +542,9 @@ std::shared_ptr<AsyncResult> AsyncSolver::Impl::blended(
     previous = published;
     a = blend;
   }
-  if (a >= 1.f || !previous || previous->solution.elementCount() != s.elementCount())
+  // A coarse stage is shown as it is, and a final one is never blended with one.
+  if (a >= 1.f || !final || !previous || !previous->final() ||
+    previous->solution.elementCount() != s.elementCount())
   {
     return result;
   }

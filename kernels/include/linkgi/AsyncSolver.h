@@ -12,8 +12,18 @@ namespace linkgi
 struct AsyncResult
 {
   std::uint64_t request = 0; ///< the id request() returned for the scene this solves
+  /// Progressive updates: this is stage `stage` of the `stages` the request publishes (1 of
+  /// 1 without previews); only the last is the request's final solution.
+  std::uint32_t stage = 1, stages = 1;
+  bool final() const { return stage == stages; }
   Solution solution;
   SolverStats stats;
+};
+
+/// Which stage of a progressive update is being solved (1 of 1 when there are no previews).
+struct AsyncStage
+{
+  std::uint32_t stage = 0, stages = 0; ///< 0 of 0 while idle
 };
 
 /// Owns a Solver and a worker thread. request() hands the worker a new scene and returns at
@@ -41,6 +51,18 @@ struct AsyncResult
 /// thread cannot leave the idle class, so there it is aborted at its next progress check and
 /// run again at nice 10 on a new thread. Either way it never starves.
 /// setYieldToInteraction(false) keeps every update at nice 10.
+///
+/// Progressive updates (setProgressive): an update whose final solution is predicted to take
+/// long first solves and publishes one or more coarse solutions of the same light (fewer
+/// rays, VPLs, photons or bins: the method's own MethodSpec::coarser), the first one aimed at
+/// setFirstStageSeconds() of work on this machine, and then the final solution, which is the
+/// one a non-progressive update publishes, bit for bit. How long the final takes is
+/// predicted from the time each of its stale stages took the last time it ran, and the
+/// coarse sampling from the time the last coarse solution of the method took; the first
+/// coarse solution of a process samples 1/16 of the work. A new request dropped the stages
+/// still to come of the one before: it starts again from its own coarse stage. Under
+/// continuous change no coarse stages are solved (they would flicker between the final
+/// ones). See Documentation/Engine.md, "Progressive updates".
 ///
 /// Temporal blending (optional): with blend factor a in (0, 1], the indirect irradiance is
 /// published as a * new + (1 - a) * previous per element when the element count is
@@ -73,15 +95,23 @@ public:
   /// The fraction of the update being solved that is done, in [0, 1] (0 while idle): the
   /// solver's own progress, for progress bars.
   double progress() const;
-  /// Blocks until `request` (or a newer request) has been published, the worker went idle
-  /// without publishing it (superseded, cancelled or failed), or `timeoutSeconds` passed.
-  /// Returns true if a result for `request` or newer is available.
+  /// The stage of the update being solved (0 of 0 while idle).
+  AsyncStage stage() const;
+  /// Blocks until the final solution of `request` (or a newer request) has been published,
+  /// the worker went idle without publishing it (superseded, cancelled or failed), or
+  /// `timeoutSeconds` passed. Returns true if a final result for `request` or newer is
+  /// available.
   bool wait(std::uint64_t request, double timeoutSeconds = 1e9) const;
   /// Error message of the newest request that failed (empty if none).
   std::string lastError() const;
 
   /// Blend factor for temporal stability, in (0, 1]; 1 (default) publishes results as they are.
   void setBlend(float factor);
+  /// Publish coarse solutions before the final one where it is predicted to take long
+  /// (default false, see above).
+  void setProgressive(bool progressive);
+  /// Seconds of work the first coarse solution aims at (default 0.5; at least 0.01).
+  void setFirstStageSeconds(double seconds);
   /// Let a new request abort the running update (default false, see above).
   void setAbortRunning(bool abort);
   /// Run updates under continuous change in the idle scheduling class (default true, see

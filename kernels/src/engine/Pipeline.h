@@ -173,6 +173,20 @@ public:
   {
     return {};
   }
+  /// Progressive updates (AsyncSolver): the work of the sampling that `options` asks for on
+  /// `elements` elements, in the method's own unit (rays traced, vertex-VPL pairs): what
+  /// coarser() scales and what time is predicted from. 0: the method has no coarser solution.
+  virtual double sampleWork(std::size_t /*elements*/, const SolverOptions& /*options*/) const
+  {
+    return 0.0;
+  }
+  /// The options of a coarser solution of the same light whose sampling work is about
+  /// `fraction` (in (0, 1)) of that of `options`: fewer rays, VPLs, photons or bins, never
+  /// below the method's smallest useful sampling; every other option unchanged.
+  virtual SolverOptions coarser(const SolverOptions& options, double /*fraction*/) const
+  {
+    return options;
+  }
 };
 
 /// Under MPI (SolverOptions::partition): this process's rows, one flag per element, or null

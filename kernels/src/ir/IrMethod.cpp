@@ -3,6 +3,7 @@
 // stages and what makes each stale; the formulas live in ir/IrMath.h, the backends in
 // IrCpu.cpp and IrCuda.cpp.
 #include "ir/IrBackends.h"
+#include "engine/Progression.h"
 
 #include "engine/CpuGeometry.h"
 #include "ir/IrMath.h"
@@ -72,6 +73,19 @@ public:
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  double sampleWork(std::size_t elements, const SolverOptions& o) const override
+  {
+    // The gather: each element meets its subset of the VPLs.
+    return double(elements) * o.instantRadiosity.vplCount / o.instantRadiosity.interleave;
+  }
+  SolverOptions coarser(const SolverOptions& o, double fraction) const override
+  {
+    // At least 4 VPLs in every interleaved subset.
+    SolverOptions c = o;
+    const std::uint32_t subsets = o.instantRadiosity.interleave;
+    c.instantRadiosity.vplCount = scaledCount(o.instantRadiosity.vplCount, fraction, std::max(16u, 4 * subsets));
+    return c;
+  }
   MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
     bool cuda) const override
   {

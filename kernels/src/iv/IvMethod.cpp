@@ -2,6 +2,7 @@
 // makes each stale. Formulas in ClusterTree.h and ImplicitLinks.h; the CPU backend in
 // IvCpu.cpp, the CUDA backend in IvCuda.cpp. Documentation/Methods.md, "Implicit visibility".
 #include "iv/IvBackends.h"
+#include "engine/Progression.h"
 
 #include "engine/CpuGeometry.h"
 
@@ -67,6 +68,19 @@ public:
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  double sampleWork(std::size_t elements, const SolverOptions& o) const override
+  {
+    // Links per element are bounded by the bins of its cube map.
+    const double n = o.implicitVisibility.binsPerSide;
+    return double(elements) * 6.0 * n * n;
+  }
+  SolverOptions coarser(const SolverOptions& o, double fraction) const override
+  {
+    SolverOptions c = o;
+    c.implicitVisibility.binsPerSide = std::max(2u, std::min(o.implicitVisibility.binsPerSide,
+      static_cast<std::uint32_t>(o.implicitVisibility.binsPerSide * std::sqrt(fraction))));
+    return c;
+  }
   MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
     bool cuda) const override
   {

@@ -2,6 +2,7 @@
 // each stale. The formulas live in Links.h, DirectLight.h and Bounce.h; the backends in
 // LinksCpu.cpp and cuda/LinksCuda.cpp.
 #include "links/LinksBackends.h"
+#include "engine/Progression.h"
 
 namespace linkgi::links
 {
@@ -26,6 +27,16 @@ public:
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  double sampleWork(std::size_t elements, const SolverOptions& o) const override
+  {
+    return double(elements) * o.raysPerVertex; // the link rays
+  }
+  SolverOptions coarser(const SolverOptions& o, double fraction) const override
+  {
+    SolverOptions c = o;
+    c.raysPerVertex = scaledSquare(o.raysPerVertex, fraction, 16); // one 4x4 block at least
+    return c;
+  }
   MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
     bool cuda) const override
   {

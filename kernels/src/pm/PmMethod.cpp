@@ -2,6 +2,7 @@
 // what makes each stale. The pieces in pm/PhotonMapping.h, the CPU backend in PmCpu.cpp.
 // Documentation/Methods.md, "Photon mapping".
 #include "pm/PmBackends.h"
+#include "engine/Progression.h"
 
 #include "engine/CpuGeometry.h"
 #include "ir/IrHost.h"
@@ -70,6 +71,20 @@ public:
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  double sampleWork(std::size_t elements, const SolverOptions& o) const override
+  {
+    // The final gather at the sample vertices, and the photons' paths.
+    const PhotonMappingOptions& p = o.photonMapping;
+    return double(std::min<std::size_t>(p.clusters, elements)) * p.gatherRays + double(p.photons);
+  }
+  SolverOptions coarser(const SolverOptions& o, double fraction) const override
+  {
+    SolverOptions c = o;
+    PhotonMappingOptions& p = c.photonMapping;
+    p.gatherRays = scaledSquare(o.photonMapping.gatherRays, fraction, 16);
+    p.photons = scaledCount(o.photonMapping.photons, fraction, std::min(o.photonMapping.photons, 4096u));
+    return c;
+  }
   MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
     bool cuda) const override
   {

@@ -1,0 +1,98 @@
+#include "engine/Progression.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace linkgi::engine
+{
+std::uint32_t scaledSquare(std::uint32_t square, double fraction, std::uint32_t least)
+{
+  const auto side = [](double n) { return static_cast<std::uint32_t>(std::floor(std::sqrt(n) + 1e-9)); };
+  const std::uint32_t k = std::max(side(double(least)), side(fraction * double(square)));
+  return std::min(square, k * k);
+}
+
+std::uint32_t scaledCount(std::uint32_t count, double fraction, std::uint32_t least)
+{
+  const double scaled = std::round(fraction * double(count));
+  return std::min(count, std::max(least, static_cast<std::uint32_t>(std::max(0.0, scaled))));
+}
+
+void StageHistory::record(const MethodSpec& spec, const SolverStats& stats, std::size_t count)
+{
+  const auto& stages = spec.stages();
+  ms.resize(stages.size(), 0.0);
+  elements.resize(stages.size(), 0);
+  for (std::size_t i = 0; i < stages.size(); ++i)
+  {
+    const StageStats* stage = stats.stage(stages[i].name);
+    if (!stage || !stage->ran)
+    {
+      continue;
+    }
+    double total = stage->ms;
+    for (const StageStats& part : stats.stages)
+    {
+      total += part.parent == stages[i].name ? part.ms : 0.0;
+    }
+    ms[i] = total;
+    elements[i] = count;
+  }
+}
+
+double StageHistory::predictSeconds(std::uint32_t stale, std::size_t count) const
+{
+  double seconds = 0.0;
+  for (std::size_t i = 0; i < 32; ++i)
+  {
+    if (!(stale & (1u << i)))
+    {
+      continue;
+    }
+    if (i >= ms.size() || elements[i] == 0)
+    {
+      return -1.0;
+    }
+    seconds += 1e-3 * ms[i] * double(count) / double(elements[i]);
+  }
+  return seconds;
+}
+
+std::vector<SolverOptions> planPreviews(const MethodSpec& spec, std::size_t elements,
+  const SolverOptions& options, double finalSeconds, const ProgressionPlan& plan)
+{
+  std::vector<SolverOptions> previews;
+  const double work = spec.sampleWork(elements, options);
+  if (!(work > 0.0) || (finalSeconds >= 0.0 && finalSeconds < kPreviewWorthBudgets * plan.budgetSeconds))
+  {
+    return previews;
+  }
+  double fraction = plan.previewRate > 0.0 ? plan.budgetSeconds / (plan.previewRate * work) : kFirstPreviewFraction;
+  double spent = 0.0;        // predicted seconds of the coarse solutions so far
+  double previousWork = 0.0; // the last one's work
+  for (; fraction <= kPreviewLargest; fraction *= kPreviewGrowth)
+  {
+    SolverOptions coarse = spec.coarser(options, fraction);
+    const double coarseWork = spec.sampleWork(elements, coarse);
+    if (!(coarseWork < work))
+    {
+      break; // the method has no coarser sampling at these options
+    }
+    if (coarseWork <= previousWork)
+    {
+      continue; // clamped to the same sampling as the last one
+    }
+    const double seconds = plan.previewRate * coarseWork;
+    // Later stages only where the final is known to be long enough to afford them all.
+    if (!previews.empty() &&
+      (plan.previewRate <= 0.0 || finalSeconds < 0.0 || spent + seconds > kPreviewShare * finalSeconds))
+    {
+      break;
+    }
+    spent += seconds;
+    previousWork = coarseWork;
+    previews.push_back(std::move(coarse));
+  }
+  return previews;
+}
+}
