@@ -39,7 +39,10 @@ bool vtkGlobalIlluminationFilter::PollAsynchronousResult()
 {
   const auto& async = this->Internals->Async;
   const auto latest = async ? async->latest() : nullptr;
-  int newer = latest && latest->request != this->Internals->ShownRequest ? 1 : 0;
+  int newer = latest &&
+      (latest->request != this->Internals->ShownRequest || latest->stage != this->Internals->ShownStage)
+    ? 1
+    : 0;
   if (this->Asynchronous && this->Internals->Partitions.Distributed())
   {
     // RequestData is collective (the surfaces' gather): all processes re-execute, or none.
@@ -88,6 +91,16 @@ double vtkGlobalIlluminationFilter::GetAsynchronousProgress()
   return this->Internals->Async ? this->Internals->Async->progress() : 0.0;
 }
 
+int vtkGlobalIlluminationFilter::GetAsynchronousStage()
+{
+  return this->Internals->Async ? static_cast<int>(this->Internals->Async->stage().stage) : 0;
+}
+
+int vtkGlobalIlluminationFilter::GetAsynchronousStages()
+{
+  return this->Internals->Async ? static_cast<int>(this->Internals->Async->stage().stages) : 0;
+}
+
 //------------------------------------------------------------------------------
 vtkStandardNewMacro(vtkGlobalIlluminationFilter);
 
@@ -132,6 +145,8 @@ vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
   , LightIntensityScale(1.0)
   , Asynchronous(0)
   , TemporalBlend(1.0)
+  , Progressive(0)
+  , ProgressiveFirstStageSeconds(0.5)
   , Controller(nullptr)
   , Internals(new vtkInternals)
 {
@@ -497,5 +512,7 @@ void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Light Intensity Scale: " << this->LightIntensityScale << "\n";
   os << indent << "Asynchronous: " << (this->Asynchronous ? "On" : "Off") << "\n";
   os << indent << "Temporal Blend: " << this->TemporalBlend << "\n";
+  os << indent << "Progressive: " << (this->Progressive ? "On" : "Off") << "\n";
+  os << indent << "Progressive First Stage Seconds: " << this->ProgressiveFirstStageSeconds << "\n";
   os << indent << "Number Of Lights: " << this->Internals->Lights.size() << "\n";
 }

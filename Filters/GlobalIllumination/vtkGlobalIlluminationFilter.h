@@ -550,6 +550,24 @@ public:
   vtkGetMacro(TemporalBlend, double);
   ///@}
 
+  ///@{
+  /**
+   * Progressive solutions in asynchronous mode: where the final solution is predicted to take
+   * long (the first update of a mesh, a new time step, a new contour), the worker first
+   * publishes a coarse solution of the same light (fewer rays, VPLs, photons or bins),
+   * aimed at ProgressiveFirstStageSeconds of work on this machine, and then the final one,
+   * exactly what a non-progressive update gives. LinkGI.ShownStage and LinkGI.Stages in the
+   * field data say which stage the output shows. Updates that are quick anyway (a light
+   * move with the link method) and continuous changes publish their final solution alone.
+   * Synchronous updates always give the final solution. The defaults are off and 0.5 s.
+   */
+  vtkSetMacro(Progressive, vtkTypeBool);
+  vtkGetMacro(Progressive, vtkTypeBool);
+  vtkBooleanMacro(Progressive, vtkTypeBool);
+  vtkSetClampMacro(ProgressiveFirstStageSeconds, double, 0.01, 60.0);
+  vtkGetMacro(ProgressiveFirstStageSeconds, double);
+  ///@}
+
   /**
    * In asynchronous mode: if a result newer than the one in the output is ready, marks the
    * filter modified (so the next render re-executes it) and returns true. Collective under
@@ -558,8 +576,8 @@ public:
   bool PollAsynchronousResult();
 
   /**
-   * In asynchronous mode: blocks until the worker has published the result of the newest
-   * request, or went idle without it (the update failed), for at most `timeoutSeconds`;
+   * In asynchronous mode: blocks until the worker has published the final result of the
+   * newest request, or went idle without it (the update failed), for at most `timeoutSeconds`;
    * then returns what PollAsynchronousResult returns. For scripts that want the finished
    * picture. Returns false at once when nothing was requested. Collective under MPI, as
    * PollAsynchronousResult.
@@ -570,13 +588,16 @@ public:
   /**
    * In asynchronous mode: the id of the newest request (0 before the first), whether the
    * worker is busy (a request waiting or being solved), the id of the request being solved
-   * (0 while the worker is idle) and the fraction of that update done. The output's
-   * LinkGI.ShownRequest says which request it shows.
+   * (0 while the worker is idle), the fraction of its running stage done, and which stage
+   * of how many that is (1 of 1 without progressive stages; 0 of 0 while idle). The
+   * output's LinkGI.ShownRequest says which request it shows.
    */
   vtkTypeUInt64 GetAsynchronousRequest();
   bool GetAsynchronousBusy();
   vtkTypeUInt64 GetAsynchronousSolving();
   double GetAsynchronousProgress();
+  int GetAsynchronousStage();
+  int GetAsynchronousStages();
   ///@}
 
   /**
@@ -637,6 +658,8 @@ protected:
   double LightIntensityScale;
   vtkTypeBool Asynchronous;
   double TemporalBlend;
+  vtkTypeBool Progressive;
+  double ProgressiveFirstStageSeconds;
   vtkMultiProcessController* Controller;
 
 private:

@@ -430,6 +430,8 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
     this->Async = std::make_unique<linkgi::AsyncSolver>();
   }
   this->Async->setBlend(static_cast<float>(self->TemporalBlend));
+  this->Async->setProgressive(self->Progressive != 0);
+  this->Async->setFirstStageSeconds(self->ProgressiveFirstStageSeconds);
   // Returns at once; repeating the request of the scene already solved starts nothing.
   this->LastRequest = this->Async->request(this->UpdateScene(self, input), this->Options(self));
   output->ShallowCopy(input);
@@ -443,6 +445,7 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   if (latest && latest->solution.elementCount() == elements)
   {
     this->ShownRequest = latest->request; // possibly one update behind the newest request
+    this->ShownStage = latest->stage;
   }
   else
   {
@@ -489,6 +492,8 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   this->Announced = std::move(now);
   Builder::AddFieldValue(output->GetFieldData(), "Pending", std::uint64_t(this->Async->busy() ? 1 : 0));
   Builder::AddFieldValue(output->GetFieldData(), "ShownRequest", this->ShownRequest);
+  Builder::AddFieldValue(output->GetFieldData(), "ShownStage", std::uint64_t(latest ? latest->stage : 0));
+  Builder::AddFieldValue(output->GetFieldData(), "Stages", std::uint64_t(latest ? latest->stages : 0));
   return true;
 }
 

@@ -107,6 +107,7 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   // Asynchronous mode: the worker, and the request whose result the output shows.
   std::unique_ptr<linkgi::AsyncSolver> Async;
   std::uint64_t ShownRequest = 0;
+  std::uint32_t ShownStage = 0; // ... and which of its progressive stages
   /// The point arrays of the shown result, kept while it stays the newest: a render loop
   /// re-executes the filter at every light move, and arrays made anew each time would make
   /// the mapper rebuild all its buffers each frame. Kept for the result object, the mesh

@@ -9,6 +9,8 @@
 
 #include <chrono>
 #include <thread>
+#include <utility>
+#include <vector>
 
 using namespace linkgi_test;
 
@@ -107,4 +109,54 @@ TEST(GlobalIlluminationAsync, MovingALightShowsTheOldResultUntilTheNewOneArrives
   EXPECT_EQ(Stat(async.filter->GetOutput(), "ShownRequest"), 2.0);
   EXPECT_NE(PointArray(async.filter->GetOutput(), "IndirectIrradiance"), shown);
   EXPECT_EQ(Stat(async.filter->GetOutput(), "LinkBuilds"), before); // light only: no relink
+}
+
+TEST(GlobalIlluminationAsync, ProgressiveDrawsACoarseStageThenTheSynchronousResult)
+{
+  // The first update of a mesh: nothing measured yet, so a coarse stage (16 of the 64 rays)
+  // is drawn first, then the final stage, which is the synchronous result exactly. A light
+  // move that the link method answers quickly is drawn as its final solution alone.
+  CornellPipeline async(true), sync(false);
+  async.filter->ProgressiveOn();
+  async.filter->Update();
+  std::vector<std::pair<double, double>> stages; // (ShownStage, Stages) of each drawn result
+  std::vector<double> meanIndirect;
+  while (stages.empty() || stages.back().first != stages.back().second)
+  {
+    ASSERT_TRUE(async.WaitForResult());
+    vtkPolyData* out = async.filter->GetOutput();
+    stages.emplace_back(Stat(out, "ShownStage"), Stat(out, "Stages"));
+    EXPECT_EQ(Stat(out, "ShownRequest"), 1.0);
+    double sum = 0.0;
+    vtkDataArray* indirect = PointArray(out, "IndirectIrradiance");
+    for (vtkIdType i = 0; i < indirect->GetNumberOfTuples(); ++i)
+    {
+      sum += indirect->GetComponent(i, 1);
+    }
+    meanIndirect.push_back(sum / double(indirect->GetNumberOfTuples()));
+  }
+  // WaitForResult may skip a stage the worker replaced before the poll; the first update
+  // publishes two, and the drawn ones come in order.
+  EXPECT_EQ(stages.back(), std::make_pair(2.0, 2.0));
+  for (std::size_t i = 1; i < stages.size(); ++i)
+  {
+    EXPECT_GT(stages[i].first, stages[i - 1].first);
+  }
+  if (stages.size() == 2)
+  {
+    EXPECT_NEAR(meanIndirect[0], meanIndirect[1], 0.3 * meanIndirect[1]); // the same light, coarser
+  }
+  sync.filter->Update();
+  ExpectSameArray(async.filter->GetOutput(), sync.filter->GetOutput(), "DirectIrradiance");
+  ExpectSameArray(async.filter->GetOutput(), sync.filter->GetOutput(), "IndirectIrradiance");
+  EXPECT_EQ(async.filter->GetAsynchronousStage(), 0); // idle
+
+  vtkLight* light = async.filter->GetLight(0);
+  double p[3];
+  light->GetPosition(p);
+  light->SetPosition(p[0] + 0.1, p[1] - 0.1, p[2]);
+  async.filter->Update();
+  ASSERT_TRUE(async.WaitForResult());
+  EXPECT_EQ(Stat(async.filter->GetOutput(), "ShownRequest"), 2.0);
+  EXPECT_EQ(Stat(async.filter->GetOutput(), "Stages"), 1.0) << "a quick light move has no coarse stage";
 }

@@ -169,7 +169,7 @@ TEST(TestProgressive, PlanAimsAtTheBudgetAndStaysWithinTheFinalsShare)
   EXPECT_TRUE(planPreviews(links, elements, o, -1.0, plan).empty());
 }
 
-TEST(TestProgressive, HistoryPredictsTheStaleStagesScaledByElements)
+TEST(TestProgressive, HistoryPredictsTheStaleStagesScaledByTheirWork)
 {
   const MethodSpec& links = methodSpec(Method::Links);
   SolverStats stats;
@@ -188,11 +188,15 @@ TEST(TestProgressive, HistoryPredictsTheStaleStagesScaledByElements)
   part.ms = 50.0;
   stats.stages.push_back(part);
   StageHistory history;
-  EXPECT_LT(history.predictSeconds(1u, 1000), 0.0); // never ran: unknown
-  history.record(links, stats, 1000);
+  SolverOptions o;
+  EXPECT_LT(history.predictSeconds(1u, 1000.0), 0.0); // never ran: unknown
+  history.record(links, stats, historyWork(links, 1000, o));
   const std::uint32_t stale = staleStages(links.stages(), kLights);
-  EXPECT_NEAR(history.predictSeconds(stale, 1000), 0.2, 1e-12); // light links + bounces
-  EXPECT_NEAR(history.predictSeconds(staleStages(links.stages(), kEverything), 2000), 2 * 0.45, 1e-12);
+  EXPECT_NEAR(history.predictSeconds(stale, historyWork(links, 1000, o)), 0.2, 1e-12); // light links + bounces
+  // Twice the elements, four times the rays: eight times the work.
+  o.raysPerVertex *= 4;
+  EXPECT_NEAR(history.predictSeconds(staleStages(links.stages(), kEverything), historyWork(links, 2000, o)),
+    8 * 0.45, 1e-12);
 }
 
 TEST(TestProgressive, EveryMethodPublishesACoarseStageThenExactlyTheFinalSolution)

@@ -15,8 +15,11 @@ precondition did not hold (the worker was quicker than a render) fails naming it
 3. Changes while a solve runs replace the request waiting instead of queueing: two light
    moves during a link rebuild give exactly one newer solution (the second move's): the
    solver ran the bounces twice (the rebuild's and that one) and built light links once.
+   (Progressive stages are off in 2 and 3: they count the final solutions' runs.)
+4. Progressive stages: a relink is drawn as a coarse solution first, then the final one.
 """
 import os
+import time
 
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403 (the pvbatch idiom)
@@ -111,6 +114,9 @@ t.check(solved["ShownRequest"] == solved["NewestRequest"] and before.max() > 0,
         "the first solution is drawn, with indirect light")
 
 # 2. A link rebuild in the background: renders do not wait and keep the old indirect light.
+# Progressive stages off in sections 2 and 3, which count the final solver's runs; section 4
+# draws them.
+gi.GlobalIlluminationProgressive = 0
 gi.GlobalIlluminationWait = "Never"
 gi.GlobalIlluminationRays = 576
 Render(view)
@@ -174,3 +180,32 @@ t.check(final["BounceRuns"] == done["BounceRuns"] + 2 and
         "first move never ran: bounce runs %d -> %d, light-link builds %d -> %d"
         % (done["BounceRuns"], final["BounceRuns"], done["LightLinkBuilds"],
            final["LightLinkBuilds"]))
+
+# 4. Progressive stages (the representation's default): a relink predicted to take long is
+# drawn first as a coarse solution of the same light, then as the final one; the GUI's way
+# (Wait = Never, a render whenever the watcher says a solution is ready). A first stage of
+# 0.01 s makes the relink "long" on any machine.
+gi.GlobalIlluminationProgressive = 1
+gi.GlobalIlluminationFirstStageSeconds = 0.01
+gi.GlobalIlluminationWait = "Never"
+gi.GlobalIlluminationRays = 1024
+Render(view)
+request = statistics(gi)["NewestRequest"]
+drawn = []  # (ShownStage, ShownStages) of each new picture of this request
+for _ in range(12000):
+    Render(view)
+    proxy = gi.SMProxy
+    proxy.UpdatePropertyInformation()
+    shown = (proxy.GetProperty("GlobalIlluminationShownRequest").GetElement(0),
+             proxy.GetProperty("GlobalIlluminationShownStage").GetElement(0),
+             proxy.GetProperty("GlobalIlluminationShownStages").GetElement(0))
+    if shown[0] == request and (not drawn or drawn[-1] != shown[1:]):
+        drawn.append(shown[1:])
+    if drawn and drawn[-1][0] == drawn[-1][1]:
+        break
+    time.sleep(0.01)
+print("progressive stages drawn: %s" % drawn)
+t.check(drawn and drawn[-1][0] == drawn[-1][1] and drawn[-1][1] >= 2,
+        "the relink ended in its final stage, after coarse ones: %s" % drawn)
+t.check(len(drawn) >= 2 and drawn[0][0] < drawn[0][1],
+        "a coarse stage was drawn before the final one: %s" % drawn)

@@ -430,7 +430,8 @@ std::vector<SolverOptions> AsyncSolver::Impl::plan(const Request& request)
   if (finalScene && finalOptions.method == options.method && finalOptions.backend == options.backend)
   {
     const engine::Changes changes = engine::changesBetween(*request.scene, options, *finalScene, finalOptions);
-    finalSeconds = history.predictSeconds(engine::staleStages(spec.stages(), changes), elements);
+    finalSeconds = history.predictSeconds(
+      engine::staleStages(spec.stages(), changes), engine::historyWork(spec, elements, options));
   }
   settings.previewRate = previewRate[static_cast<int>(options.method) & 7];
   return engine::planPreviews(spec, elements, options, finalSeconds, settings);
@@ -505,7 +506,8 @@ void AsyncSolver::Impl::publish(const Request& request, std::uint32_t index, std
   if (result->final())
   {
     const SolverOptions& o = request.options;
-    history.record(engine::methodSpec(o.method), from.stats(), request.scene->vertexCount() * (o.twoSided ? 2 : 1));
+    const engine::MethodSpec& spec = engine::methodSpec(o.method);
+    history.record(spec, from.stats(), engine::historyWork(spec, request.scene->vertexCount() * (o.twoSided ? 2 : 1), o));
     finalScene = request.scene;
     finalOptions = o;
   }

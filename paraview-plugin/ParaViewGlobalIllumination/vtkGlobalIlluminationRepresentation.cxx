@@ -85,7 +85,25 @@ vtkSMProxy* FindProxy(vtkObject* object)
   return nullptr;
 }
 
-const char* const BackgroundText = "Global illumination (background)";
+/// What the progress bar says while the worker solves: which stage of a progressive update.
+std::string BackgroundText(vtkGlobalIlluminationFilter* filter)
+{
+  const int stage = filter->GetAsynchronousStage(), stages = filter->GetAsynchronousStages();
+  if (stages > 1 && stage < stages)
+  {
+    return "Global illumination (background, coarse " + std::to_string(stage) + " of " +
+      std::to_string(stages - 1) + ")";
+  }
+  return stages > 1 ? "Global illumination (background, final)" : "Global illumination (background)";
+}
+
+/// Whether `filter`'s output shows the final solution of its newest request.
+bool ShowsFinal(vtkGlobalIlluminationFilter* filter)
+{
+  vtkDataObject* output = filter->GetOutputDataObject(0);
+  return static_cast<vtkTypeUInt64>(FieldInt(output, "LinkGI.ShownRequest")) >= filter->GetAsynchronousRequest() &&
+    FieldInt(output, "LinkGI.ShownStage") == FieldInt(output, "LinkGI.Stages");
+}
 
 /// `a` and `b`, each true if it is true on any process of the global controller.
 void AnyOverProcesses(bool& a, bool& b)
@@ -125,6 +143,7 @@ vtkGlobalIlluminationRepresentation::vtkGlobalIlluminationRepresentation()
   // every update): there every render waits.
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   filter->SetAsynchronous(!controller || controller->GetNumberOfProcesses() <= 1);
+  filter->SetProgressive(true); // indirect light within a second, refined in the background
   filter->AddObserver(vtkCommand::WarningEvent, this, &vtkGlobalIlluminationRepresentation::OnFilterEvent);
   this->Internals->Watcher->SetInterval(100);
   this->Internals->Watcher->SetPollFunction([this] { return this->PollForSolution(); });
@@ -224,13 +243,11 @@ void vtkGlobalIlluminationRepresentation::WaitForSolutionNow()
     {
       filter->Update(); // draws the new solution
     }
-    const int shown = FieldInt(filter->GetOutputDataObject(0), "LinkGI.ShownRequest");
-    if (static_cast<vtkTypeUInt64>(shown) >= filter->GetAsynchronousRequest() ||
-      !filter->GetAsynchronousBusy())
+    if (ShowsFinal(filter) || !filter->GetAsynchronousBusy())
     {
       return;
     }
-    this->SetProgressText(BackgroundText);
+    this->SetProgressText(BackgroundText(filter).c_str());
     this->UpdateProgress(filter->GetAsynchronousProgress());
   }
 }
@@ -261,7 +278,7 @@ int vtkGlobalIlluminationRepresentation::GetLocalAsynchronousState()
   }
   if (filter->GetAsynchronousBusy() || static_cast<vtkTypeUInt64>(shown) < filter->GetAsynchronousRequest())
   {
-    this->SetProgressText(BackgroundText);
+    this->SetProgressText(BackgroundText(filter).c_str());
     this->UpdateProgress(filter->GetAsynchronousProgress());
     return SOLVING;
   }
@@ -385,11 +402,12 @@ vtkDataObject* vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
   else if (filter->GetAsynchronousBusy())
   {
     // What ParaView's progress bar shows during this render.
-    this->SetProgressText(BackgroundText);
+    this->SetProgressText(BackgroundText(filter).c_str());
     this->UpdateProgress(filter->GetAsynchronousProgress());
   }
   vtkDataObject* output = filter->GetOutputDataObject(0);
   const int shown = FieldInt(output, "LinkGI.ShownRequest");
+  const int shownStage = FieldInt(output, "LinkGI.ShownStage");
   if (!filter->GetAsynchronous())
   {
     // Synchronous (partitioned among processes): every execution is a new solution.
@@ -399,9 +417,10 @@ vtkDataObject* vtkGlobalIlluminationRepresentation::UpdateGlobalIllumination(
       ++this->NumberOfUpdates;
     }
   }
-  else if (shown != 0 && shown != internals.ShownRequest)
+  else if (shown != 0 && (shown != internals.ShownRequest || shownStage != internals.ShownStage))
   {
     internals.ShownRequest = shown;
+    internals.ShownStage = shownStage;
     ++this->NumberOfUpdates;
   }
   return output;

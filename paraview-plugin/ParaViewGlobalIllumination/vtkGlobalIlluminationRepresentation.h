@@ -122,6 +122,19 @@ public:
   double GetTemporalBlend();
   ///@}
 
+  ///@{
+  /**
+   * Progressive solutions (the filter's Progressive): where a solution would take long, a
+   * coarse one of the same light is drawn first, within about half a second of work, and
+   * the final one replaces it; the first-stage seconds are the filter's
+   * ProgressiveFirstStageSeconds. The defaults are on and 0.5 s.
+   */
+  void SetProgressive(bool progressive);
+  bool GetProgressive();
+  void SetFirstStageSeconds(double seconds);
+  double GetFirstStageSeconds();
+  ///@}
+
   /// When renders wait for the pending solution.
   enum WaitModes
   {
@@ -189,6 +202,9 @@ public:
   int GetNewestRequest();
   int GetShownRequest();
   int GetSolvingRequest();
+  /// Which progressive stage of the drawn request is drawn, of how many (1 of 1: final).
+  int GetShownStage();
+  int GetShownStages();
   ///@}
 
   /// How many times the mapper rendered its shadow maps (for tests of the shadow cache).

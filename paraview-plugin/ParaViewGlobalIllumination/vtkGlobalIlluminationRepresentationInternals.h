@@ -45,6 +45,7 @@ struct vtkGlobalIlluminationRepresentation::vtkInternals
   vtkMTimeType DrawnTime = 0;
 
   int ShownRequest = 0; // the worker's request whose solution is drawn
+  int ShownStage = 0;   // ... and which of its progressive stages
   vtkMTimeType SolvedTime = 0; // the drawn solution's, where the filter is synchronous
 
   // Where renders do not wait, on the process with the view's interactor (the GUI's

@@ -84,6 +84,26 @@ double vtkGlobalIlluminationRepresentation::GetTemporalBlend()
   return this->Internals->Filter->GetTemporalBlend();
 }
 
+void vtkGlobalIlluminationRepresentation::SetProgressive(bool progressive)
+{
+  this->Internals->Filter->SetProgressive(progressive);
+}
+
+bool vtkGlobalIlluminationRepresentation::GetProgressive()
+{
+  return this->Internals->Filter->GetProgressive() != 0;
+}
+
+void vtkGlobalIlluminationRepresentation::SetFirstStageSeconds(double seconds)
+{
+  this->Internals->Filter->SetProgressiveFirstStageSeconds(seconds);
+}
+
+double vtkGlobalIlluminationRepresentation::GetFirstStageSeconds()
+{
+  return this->Internals->Filter->GetProgressiveFirstStageSeconds();
+}
+
 //------------------------------------------------------------------------------
 double vtkGlobalIlluminationRepresentation::GetPartitionBytesReceived()
 {
@@ -115,6 +135,16 @@ int vtkGlobalIlluminationRepresentation::GetNewestRequest()
 int vtkGlobalIlluminationRepresentation::GetShownRequest()
 {
   return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.ShownRequest");
+}
+
+int vtkGlobalIlluminationRepresentation::GetShownStage()
+{
+  return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.ShownStage");
+}
+
+int vtkGlobalIlluminationRepresentation::GetShownStages()
+{
+  return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.Stages");
 }
 
 int vtkGlobalIlluminationRepresentation::GetSolvingRequest()

@@ -18,11 +18,17 @@ std::uint32_t scaledCount(std::uint32_t count, double fraction, std::uint32_t le
   return std::min(count, std::max(least, static_cast<std::uint32_t>(std::max(0.0, scaled))));
 }
 
-void StageHistory::record(const MethodSpec& spec, const SolverStats& stats, std::size_t count)
+double historyWork(const MethodSpec& spec, std::size_t elements, const SolverOptions& options)
+{
+  const double work = spec.sampleWork(elements, options);
+  return work > 0.0 ? work : double(elements);
+}
+
+void StageHistory::record(const MethodSpec& spec, const SolverStats& stats, double amount)
 {
   const auto& stages = spec.stages();
   ms.resize(stages.size(), 0.0);
-  elements.resize(stages.size(), 0);
+  work.resize(stages.size(), 0.0);
   for (std::size_t i = 0; i < stages.size(); ++i)
   {
     const StageStats* stage = stats.stage(stages[i].name);
@@ -36,11 +42,11 @@ void StageHistory::record(const MethodSpec& spec, const SolverStats& stats, std:
       total += part.parent == stages[i].name ? part.ms : 0.0;
     }
     ms[i] = total;
-    elements[i] = count;
+    work[i] = amount;
   }
 }
 
-double StageHistory::predictSeconds(std::uint32_t stale, std::size_t count) const
+double StageHistory::predictSeconds(std::uint32_t stale, double amount) const
 {
   double seconds = 0.0;
   for (std::size_t i = 0; i < 32; ++i)
@@ -49,11 +55,11 @@ double StageHistory::predictSeconds(std::uint32_t stale, std::size_t count) cons
     {
       continue;
     }
-    if (i >= ms.size() || elements[i] == 0)
+    if (i >= ms.size() || !(work[i] > 0.0))
     {
       return -1.0;
     }
-    seconds += 1e-3 * ms[i] * double(count) / double(elements[i]);
+    seconds += 1e-3 * ms[i] * amount / work[i];
   }
   return seconds;
 }

@@ -19,17 +19,22 @@ std::uint32_t scaledCount(std::uint32_t count, double fraction, std::uint32_t le
 
 /// What one backend's updates of one method took, stage by stage, as the progression
 /// predicts the next update from: per stage of the method, its milliseconds (parts included)
-/// the last time it ran and the elements it ran on (0: never ran).
+/// the last time it ran and the work it ran with (0: never ran). The work is the method's
+/// sampleWork(), or the element count where it has none.
 struct StageHistory
 {
   std::vector<double> ms;
-  std::vector<std::size_t> elements;
-  /// Records the stages `stats` says ran on `elements` elements.
-  void record(const MethodSpec& spec, const SolverStats& stats, std::size_t elements);
-  /// Seconds the stages `stale` will take on `elements` elements, each scaled from its last
-  /// run by the element count; negative when one of them never ran.
-  double predictSeconds(std::uint32_t stale, std::size_t elements) const;
+  std::vector<double> work;
+  /// Records the stages `stats` says ran, with work `work`.
+  void record(const MethodSpec& spec, const SolverStats& stats, double work);
+  /// Seconds the stages `stale` will take with work `work`, each scaled from its last run
+  /// by the work (rays or VPLs scale the sampling, elements everything); negative when one
+  /// of them never ran.
+  double predictSeconds(std::uint32_t stale, double work) const;
 };
+
+/// The work StageHistory scales by: `spec`'s sampleWork, or the element count.
+double historyWork(const MethodSpec& spec, std::size_t elements, const SolverOptions& options);
 
 /// The progression's settings and what it measured on this machine.
 struct ProgressionPlan
