@@ -30,11 +30,11 @@ SolverOptions cpuOptions(Method method)
   SolverOptions o;
   o.method = method;
   o.backend = Backend::Cpu; // bit-identical finals are asserted on the deterministic backend
-  o.raysPerVertex = 64;
-  o.instantRadiosity.vplCount = 256;
+  o.raysPerVertex = 256;
+  o.instantRadiosity.vplCount = 1024;
   o.photonMapping.photons = 16384;
   o.photonMapping.clusters = 256;
-  o.photonMapping.gatherRays = 64;
+  o.photonMapping.gatherRays = 256;
   return o;
 }
 
@@ -209,6 +209,9 @@ TEST(TestProgressive, EveryMethodPublishesACoarseStageThenExactlyTheFinalSolutio
     Published seen; // before the solver: outlives its worker's callbacks
     AsyncSolver async(2);
     async.setProgressive(true);
+    // A budget of 0.01 s buys under a quarter of these samplings on any machine, measured
+    // or not (a coarse stage of this process may have measured the rate already).
+    async.setFirstStageSeconds(0.01);
     async.setOnPublish([&](std::uint64_t) { seen.add(async.latest()); });
     Solver reference; // the non-progressive solves of the same sequence of scenes
     for (int step = 0; step < 2; ++step)
@@ -242,9 +245,9 @@ TEST(TestProgressive, EveryMethodPublishesACoarseStageThenExactlyTheFinalSolutio
       }
       if (step == 0)
       {
-        // Nothing measured yet: the first update shows a coarse stage first, a solution of
-        // the same light - the same direct light, indirect light of the same level.
-        ASSERT_EQ(mine.size(), 2u);
+        // The final's time unknown: the first update shows a coarse stage first, a solution
+        // of the same light - the same direct light, indirect light of the same level.
+        ASSERT_GE(mine.size(), 2u);
         const Solution& coarse = mine[0]->solution;
         EXPECT_TRUE(sameBits(coarse.direct, exact.direct));
         EXPECT_NEAR(meanIndirect(coarse), meanIndirect(exact), 0.3 * meanIndirect(exact));

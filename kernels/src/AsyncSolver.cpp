@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <system_error>
@@ -27,6 +28,32 @@ namespace linkgi
 namespace
 {
 using Clock = std::chrono::steady_clock;
+
+/// Seconds per unit of sampling work that each method's last first coarse stage took on each
+/// backend setting, in this process (absent: not measured yet): what the machine does,
+/// shared by every AsyncSolver, so that a second dataset's first stage is aimed as well as
+/// the first's later ones.
+class PreviewRates
+{
+public:
+  double get(const SolverOptions& o)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    const auto it = rates.find({ o.method, o.backend });
+    return it == rates.end() ? 0.0 : it->second;
+  }
+  void set(const SolverOptions& o, double rate)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    rates[{ o.method, o.backend }] = rate;
+  }
+
+private:
+  std::mutex mutex;
+  std::map<std::pair<Method, Backend>, double> rates;
+};
+PreviewRates previewRates;
+
 /// Requests closer together than this are one continuous change (an orbit, a dragged light).
 constexpr std::chrono::milliseconds kContinuous{ 1000 };
 /// How often the worker checks that an idle-class update is not starving.
@@ -121,13 +148,11 @@ struct AsyncSolver::Impl
   int threads = 1;
   // Progressive updates, touched by the worker only: the solver of the coarse stages (reset
   // after each, so its caches never sit beside the final's), what the final stages took and
-  // the input they took it on, and the time per unit of work of each method's first coarse
-  // stage.
+  // the input they took it on.
   Solver previewSolver;
   engine::StageHistory history;
   std::shared_ptr<const Scene> finalScene;
   SolverOptions finalOptions;
-  double previewRate[8] = {};
   std::optional<Request> lastAccepted; // for repeated identical requests
 
   mutable std::mutex mutex;
@@ -433,7 +458,7 @@ std::vector<SolverOptions> AsyncSolver::Impl::plan(const Request& request)
     finalSeconds = history.predictSeconds(
       engine::staleStages(spec.stages(), changes), engine::historyWork(spec, elements, options));
   }
-  settings.previewRate = previewRate[static_cast<int>(options.method) & 7];
+  settings.previewRate = previewRates.get(options);
   return engine::planPreviews(spec, elements, options, finalSeconds, settings);
 }
 
@@ -480,8 +505,7 @@ void AsyncSolver::Impl::solve(Request& request)
       {
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
         const std::size_t elements = request.scene->vertexCount() * (coarse.twoSided ? 2 : 1);
-        previewRate[static_cast<int>(coarse.method) & 7] =
-          seconds / engine::methodSpec(coarse.method).sampleWork(elements, coarse);
+        previewRates.set(coarse, seconds / engine::methodSpec(coarse.method).sampleWork(elements, coarse));
       }
       publish(request, s, stages, previewSolver);
       previewSolver.reset(); // its caches never sit beside the final stage's
