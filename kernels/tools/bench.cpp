@@ -2,6 +2,7 @@
 // rates, link counts and memory. On the CPU also a plain Embree rtcIntersect1 loop over the
 // same rays (the engine's overhead as a ratio); on the GPU our bounce gather against
 // cuSPARSE on the same matrix. --dump / --compare store and check solutions across backends.
+#include "BenchProgressive.h"
 #include "BenchScenes.h"
 #include "BenchSolutions.h"
 
@@ -49,6 +50,7 @@ struct Args
   bool proxyOnly = false; ///< only the proxy (a mesh too large for the full solve's budget)
   /// also solve with refinement up to this many vertices, default tolerance/rounds
   std::size_t refineVertices = 0;
+  bool progressive = false; ///< only the progressive record (BenchProgressive.h)
 };
 
 std::vector<std::string> split(const std::string& s)
@@ -143,12 +145,14 @@ Args parse(int argc, char** argv)
       a.bare = false;
     else if (arg == "--no-gather")
       a.gather = false;
+    else if (arg == "--progressive")
+      a.progressive = true;
     else
     {
       throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method links|instant-radiosity|implicit-visibility|photon-mapping] "
                   "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--bins 12] [--photons 262144] [--clusters 4096] [--gather-rays 256] [--proxy-vertices N [--proxy-only]] [--refine-vertices N] [--memory-budget BYTES] [--rays 256] [--bounces 3] [--repeat 3] "
                   "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] [--bvh-build gpu|sah] "
-                  "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather]; unknown argument " +
+                  "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather] [--progressive]; unknown argument " +
         arg + ".");
     }
   }
@@ -527,6 +531,12 @@ void benchScene(const std::string& name, const Args& args)
 {
   const Scene scene = bench::makeScene(name);
   const std::string stored = args.compare.empty() ? std::string() : args.compare + "/" + name + ".bin";
+  if (args.progressive)
+  {
+    std::printf("%s\n", bench::progressiveJson(name, scene, args.options, args.repeat).c_str());
+    std::fflush(stdout);
+    return;
+  }
   if (args.proxyOnly)
   {
     Solution reference;
