@@ -207,10 +207,9 @@ TEST(TestProgressive, EveryMethodPublishesACoarseStageThenExactlyTheFinalSolutio
     SCOPED_TRACE(methodSpec(m).name());
     Scene scene = test::roomWithBlock();
     Published seen; // before the solver: outlives its worker's callbacks
+    AsyncSolver::forgetMeasurements(); // as the first update of a process
     AsyncSolver async(2);
     async.setProgressive(true);
-    // A budget of 0.01 s buys under a quarter of these samplings on any machine, measured
-    // or not (a coarse stage of this process may have measured the rate already).
     async.setFirstStageSeconds(0.01);
     async.setOnPublish([&](std::uint64_t) { seen.add(async.latest()); });
     Solver reference; // the non-progressive solves of the same sequence of scenes
@@ -264,6 +263,7 @@ TEST(TestProgressive, ANewRequestDropsTheStagesLeftOfTheOldOne)
   // after a stage of a newer one.
   const SolverOptions o = cpuOptions(Method::Links);
   Published seen;
+  AsyncSolver::forgetMeasurements();
   AsyncSolver async(2);
   async.setProgressive(true);
   async.setFirstStageSeconds(0.01);

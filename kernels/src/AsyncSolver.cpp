@@ -29,11 +29,12 @@ namespace
 {
 using Clock = std::chrono::steady_clock;
 
-/// Seconds per unit of sampling work that each method's last first coarse stage took on each
-/// backend setting, in this process (absent: not measured yet): what the machine does,
-/// shared by every AsyncSolver, so that a second dataset's first stage is aimed as well as
-/// the first's later ones.
-class PreviewRates
+/// Seconds per unit of sampling work that an update of a method took on a backend setting
+/// in this process (absent: not measured yet): what the machine does, shared by every
+/// AsyncSolver, so that a second dataset is planned as well as the first's later updates.
+/// One table for the first coarse stages (what the first stage is aimed by), one for final
+/// updates that ran every stage (what an update with nothing cached is predicted by).
+class Rates
 {
 public:
   double get(const SolverOptions& o)
@@ -47,12 +48,17 @@ public:
     std::lock_guard<std::mutex> lock(mutex);
     rates[{ o.method, o.backend }] = rate;
   }
+  void clear()
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    rates.clear();
+  }
 
 private:
   std::mutex mutex;
   std::map<std::pair<Method, Backend>, double> rates;
 };
-PreviewRates previewRates;
+Rates previewRates, fullUpdateRates;
 
 /// Requests closer together than this are one continuous change (an orbit, a dragged light).
 constexpr std::chrono::milliseconds kContinuous{ 1000 };
@@ -268,6 +274,12 @@ double AsyncSolver::progress() const
   return impl->running == 0 || impl->running == ~std::uint64_t(0) ? 0.0 : impl->progress;
 }
 
+void AsyncSolver::forgetMeasurements()
+{
+  previewRates.clear();
+  fullUpdateRates.clear();
+}
+
 AsyncStage AsyncSolver::stage() const
 {
   std::lock_guard<std::mutex> lock(impl->mutex);
@@ -451,7 +463,10 @@ std::vector<SolverOptions> AsyncSolver::Impl::plan(const Request& request)
   const SolverOptions& options = request.options;
   const engine::MethodSpec& spec = engine::methodSpec(options.method);
   const std::size_t elements = request.scene->vertexCount() * (options.twoSided ? 2 : 1);
-  double finalSeconds = -1.0; // unknown: nothing of this method and backend ran yet
+  // Predicted from this solver's stages where it ran this method and backend, else from the
+  // process's full updates; unknown (negative) before either.
+  const double fullRate = fullUpdateRates.get(options);
+  double finalSeconds = fullRate > 0.0 ? fullRate * spec.sampleWork(elements, options) : -1.0;
   if (finalScene && finalOptions.method == options.method && finalOptions.backend == options.backend)
   {
     const engine::Changes changes = engine::changesBetween(*request.scene, options, *finalScene, finalOptions);
@@ -531,7 +546,15 @@ void AsyncSolver::Impl::publish(const Request& request, std::uint32_t index, std
   {
     const SolverOptions& o = request.options;
     const engine::MethodSpec& spec = engine::methodSpec(o.method);
-    history.record(spec, from.stats(), engine::historyWork(spec, request.scene->vertexCount() * (o.twoSided ? 2 : 1), o));
+    const std::size_t elements = request.scene->vertexCount() * (o.twoSided ? 2 : 1);
+    history.record(spec, from.stats(), engine::historyWork(spec, elements, o));
+    const bool full = std::all_of(spec.stages().begin(), spec.stages().end(),
+      [&](const engine::StageSpec& st) { return from.stats().ran(st.name); });
+    const double work = spec.sampleWork(elements, o);
+    if (full && work > 0.0)
+    {
+      fullUpdateRates.set(o, 1e-3 * from.stats().msTotal / work);
+    }
     finalScene = request.scene;
     finalOptions = o;
   }

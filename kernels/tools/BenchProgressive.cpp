@@ -146,8 +146,9 @@ std::string progressiveJson(const std::string& name, const Scene& input, const S
   Kind kinds[3] = { { "apply", {}, {}, {}, {} }, { "deform", {}, {}, {}, {} }, { "light", {}, {}, {}, {} } };
   for (int r = 0; r < repeat; ++r)
   {
-    // A fresh pair per run: "apply" is a first update (the process's first-stage rate, once
-    // measured, carries over as it does in an application).
+    // A fresh pair per run, in a process that has measured nothing: "apply" is the first
+    // update of an application.
+    AsyncSolver::forgetMeasurements();
     Driver progressive(true), plain(false);
     Scene scene = input;
     for (int k = 0; k < 3; ++k)

@@ -57,9 +57,10 @@ struct AsyncStage
 /// rays, VPLs, photons or bins: the method's own MethodSpec::coarser), the first one aimed at
 /// setFirstStageSeconds() of work on this machine, and then the final solution, which is the
 /// one a non-progressive update publishes, bit for bit. How long the final takes is
-/// predicted from the time each of its stale stages took the last time it ran, and the
-/// coarse sampling from the time the last coarse solution of the method took; the first
-/// coarse solution of a process samples 1/16 of the work. A new request dropped the stages
+/// predicted from the time each of its stale stages took the last time it ran (or, where this
+/// solver has not run it, from this process's last update of the method that ran every
+/// stage), and the coarse sampling from the time the last first coarse solution of the method
+/// took in this process; before any was measured, a coarse solution samples 1/16 of the work. A new request dropped the stages
 /// still to come of the one before: it starts again from its own coarse stage. Under
 /// continuous change no coarse stages are solved (they would flicker between the final
 /// ones). See Documentation/Engine.md, "Progressive updates".
@@ -112,6 +113,9 @@ public:
   void setProgressive(bool progressive);
   /// Seconds of work the first coarse solution aims at (default 0.5; at least 0.01).
   void setFirstStageSeconds(double seconds);
+  /// Forgets the times this process measured (what plans the progressive stages of every
+  /// AsyncSolver in it), as in a new process: for benchmarks and tests.
+  static void forgetMeasurements();
   /// Let a new request abort the running update (default false, see above).
   void setAbortRunning(bool abort);
   /// Run updates under continuous change in the idle scheduling class (default true, see
