@@ -3,6 +3,7 @@
 #include "engine/Pipeline.h"
 #include "engine/Progression.h"
 
+#include "linkgi/Cuda.h"
 #include "linkgi/Error.h"
 
 #include <algorithm>
@@ -159,6 +160,7 @@ struct AsyncSolver::Impl
   engine::StageHistory history;
   std::shared_ptr<const Scene> finalScene;
   SolverOptions finalOptions;
+  int gpus = -1; // CUDA devices, asked once (-1: not yet)
   std::optional<Request> lastAccepted; // for repeated identical requests
 
   mutable std::mutex mutex;
@@ -472,6 +474,20 @@ std::vector<SolverOptions> AsyncSolver::Impl::plan(const Request& request)
     const engine::Changes changes = engine::changesBetween(*request.scene, options, *finalScene, finalOptions);
     finalSeconds = history.predictSeconds(
       engine::staleStages(spec.stages(), changes), engine::historyWork(spec, elements, options));
+  }
+  if (finalSeconds < 0.0 && options.backend != Backend::Cpu)
+  {
+    // Unknown on a GPU: a GPU solves the default sampling of a mesh of 150k vertices in
+    // 0.03-0.3 s, while a coarse stage's own start (its structures, their upload) took
+    // 0.1-0.25 s there: the coarse stage would only delay the final.
+    if (gpus < 0)
+    {
+      gpus = cuda::compiled() ? static_cast<int>(cuda::devices().size()) : 0;
+    }
+    if (gpus > 0)
+    {
+      return {};
+    }
   }
   settings.previewRate = previewRates.get(options);
   return engine::planPreviews(spec, elements, options, finalSeconds, settings);

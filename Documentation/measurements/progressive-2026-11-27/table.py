@@ -1,0 +1,44 @@
+"""Prints Engine.md's progressive-stage tables from the linkgi-bench --progressive records
+of this folder (median over the runs; the error of a coarse stage against its final one).
+
+    python3 Documentation/measurements/progressive-2026-11-27/table.py
+"""
+import json
+import os
+import statistics
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+METHODS = {"photons": "photon mapping", "VPLs": "instant radiosity", "bins": "implicit visibility",
+           "rays": "links"}  # photon mapping's sampling names gather rays too: it goes first
+
+
+def method(sampling):
+    return next(name for key, name in METHODS.items() if key in sampling)
+
+
+def cell(runs):
+    """'first ms (error indirect / total), k of n runs -> final ms', medians over the runs
+    that published a coarse stage; else the final's median over all runs."""
+    staged = [r for r in runs if len(r) > 1]
+    coarse = [r[0] for r in staged]
+    final = statistics.median(r[-1]["ms"] for r in (staged or runs))
+    if not coarse:
+        return "final only, %.0f ms" % final
+    return "%.0f ms (%.0f%% / %.0f%%), %d of %d runs -> %.0f ms" % (
+        statistics.median(c["ms"] for c in coarse),
+        100 * statistics.median(c["rel_rmse_indirect"] for c in coarse),
+        100 * statistics.median(c["rel_rmse_total"] for c in coarse),
+        len(coarse), len(runs), final)
+
+
+for name in ("bench-cpu-2core-vm.jsonl", "bench-cuda-h200.jsonl"):
+    print("\n" + name)
+    print("| scene | method | apply | plain | deformation | plain | light move | plain |")
+    print("|---|---|---|---|---|---|---|---|")
+    for line in open(os.path.join(HERE, name)):
+        r = json.loads(line)
+        row = [r["scene"], method(r["final_sampling"])]
+        for kind in ("apply", "deform", "light"):
+            if kind in r:
+                row += [cell(r[kind]["runs"]), "%.0f ms" % r[kind]["median_plain_ms"]]
+        print("| " + " | ".join(row) + " |")

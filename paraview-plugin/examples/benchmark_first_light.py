@@ -1,0 +1,119 @@
+"""pvbatch benchmark: when the Global Illumination representation first draws indirect light,
+and when its final solution, after Apply, a new contour value and a light move.
+
+    pvbatch paraview-plugin/examples/benchmark_first_light.py --plugin <LinkGI.so>
+        [--extent 64] [--plain] [--output result.json]
+
+(with PYTHONPATH holding ParaView's Python modules, as Testing/ParaView/CMakeLists.txt sets
+it). The surface: Wavelet -extent..extent contoured at RTData 160 (extent 64: the 150k-point
+surface of the orbit benchmark), view 800x600, the light kit. The GUI's way of drawing: Wait
+For Global Illumination = Never, and a Render every 20 ms (the GUI's watcher polls every
+100 ms) until the final solution of the newest request is drawn; each update's figures are
+seconds from the change (Show for Apply) to the first Render that drew a solution of it
+with indirect light, and to the one that drew its final solution.
+
+1. Apply: Show, Representation = Global Illumination, Render.
+2. A new contour value (161, 162, 163; a new mesh each, as a time step), three times.
+3. A light move: with a scene point light instead of the light kit, the light moved.
+
+One Apply per process: what it measures is the first dataset of a ParaView session, so run
+the script several times for a median. --plain turns the progressive stages off (Progressive
+= 0) for the same protocol. Prints the JSON and writes it to --output if given.
+"""
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import time
+
+from paraview.simple import *  # noqa: F401,F403 (the pvbatch idiom)
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--plugin", required=True)
+parser.add_argument("--extent", type=int, default=64)
+parser.add_argument("--plain", action="store_true", help="progressive stages off")
+parser.add_argument("--output")
+arguments = parser.parse_args(sys.argv[1:])
+LoadPlugin(arguments.plugin, remote=False, ns=globals())
+
+
+def information(display, name):
+    display.SMProxy.UpdatePropertyInformation()
+    return display.SMProxy.GetProperty("GlobalIllumination" + name).GetElement(0)
+
+
+def until_final(view, display, start, timeout=600.0):
+    """Renders every 20 ms until the newest request's final solution is drawn; returns the
+    seconds since `start` of the first and of the final solution drawn, and the stages."""
+    first = None
+    while time.perf_counter() - start < timeout:
+        Render(view)
+        request = information(display, "NewestRequest")
+        if information(display, "ShownRequest") == request:
+            now = time.perf_counter() - start
+            stage, stages = information(display, "ShownStage"), information(display, "ShownStages")
+            first = now if first is None else first
+            if stage == stages:
+                return {"first_s": round(first, 3), "final_s": round(now, 3), "stages": stages}
+        time.sleep(0.02)
+    raise RuntimeError("no final solution within %g s" % timeout)
+
+
+def commit():
+    try:
+        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                              text=True, cwd=os.path.dirname(os.path.abspath(__file__))).stdout.strip()
+    except OSError:
+        return ""
+
+
+view = CreateView("RenderView")
+view.ViewSize = [800, 600]
+extent = arguments.extent
+wavelet = Wavelet(WholeExtent=[-extent, extent] * 3)
+contour = Contour(Input=wavelet, ContourBy=["POINTS", "RTData"], Isosurfaces=[160.0])
+contour.UpdatePipeline()
+result = {"benchmark": "paraview-plugin/examples/benchmark_first_light.py",
+          "date": time.strftime("%Y-%m-%d"), "commit": commit(),
+          "machine": {"cpu": platform.processor() or platform.machine(), "cores": os.cpu_count(),
+                      "load_average": os.getloadavg()},
+          "points": contour.GetDataInformation().GetNumberOfPoints(),
+          "progressive": not arguments.plain}
+
+start = time.perf_counter()
+display = Show(contour, view)
+display.Representation = "Global Illumination"
+display.GlobalIlluminationWait = "Never"
+display.GlobalIlluminationProgressive = 0 if arguments.plain else 1
+view.ResetCamera()
+result["apply"] = until_final(view, display, start)
+
+result["contour"] = []
+for value in (161.0, 162.0, 163.0):
+    start = time.perf_counter()
+    contour.Isosurfaces = [value]
+    result["contour"].append(until_final(view, display, start))
+
+lamp = CreateLight()
+lamp.Coords = "Scene"
+lamp.Type = "Positional"
+lamp.ConeAngle = 180
+lamp.Position = [extent * 0.5, extent * 2.0, extent * 1.5]
+lamp.Intensity = float(extent * extent * 2)
+view.UseLight = 0
+view.AdditionalLights = [lamp]
+until_final(view, display, time.perf_counter())
+start = time.perf_counter()
+lamp.Position = [-extent * 0.5, extent * 2.0, extent * 1.5]
+result["light"] = until_final(view, display, start)
+result["machine"]["load_average_after"] = os.getloadavg()
+
+text = json.dumps(result, indent=2)
+print(text)
+if arguments.output:
+    with open(arguments.output, "w") as out:
+        out.write(text + "\n")
+sys.stdout.flush()
+os._exit(0)  # skip pvbatch's teardown of live proxies
