@@ -96,6 +96,11 @@ int vtkGlobalIlluminationFilter::GetAsynchronousStage()
   return this->Internals->Async ? static_cast<int>(this->Internals->Async->stage().stage) : 0;
 }
 
+std::string vtkGlobalIlluminationFilter::GetAsynchronousError()
+{
+  return this->Internals->Async ? this->Internals->Async->lastError() : std::string();
+}
+
 int vtkGlobalIlluminationFilter::GetAsynchronousStages()
 {
   return this->Internals->Async ? static_cast<int>(this->Internals->Async->stage().stages) : 0;

@@ -78,6 +78,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <memory> // for std::unique_ptr
+#include <string> // for std::string
 
 class vtkImageData;
 class vtkLight;
@@ -598,6 +599,8 @@ public:
   double GetAsynchronousProgress();
   int GetAsynchronousStage();
   int GetAsynchronousStages();
+  /// The error of the newest asynchronous update that failed (empty if none).
+  std::string GetAsynchronousError();
   ///@}
 
   /**

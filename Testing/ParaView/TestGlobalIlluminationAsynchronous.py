@@ -37,7 +37,9 @@ def statistics(display):
     proxy.UpdatePropertyInformation()
     names = ("LinkBuilds", "LightLinkBuilds", "BounceRuns", "Updates", "NewestRequest",
              "ShownRequest", "SolvingRequest", "ShadowMapRenders")
-    return {n: proxy.GetProperty("GlobalIllumination" + n).GetElement(0) for n in names}
+    state = {n: proxy.GetProperty("GlobalIllumination" + n).GetElement(0) for n in names}
+    state["LastError"] = proxy.GetProperty("GlobalIlluminationLastError").GetElement(0)
+    return state
 
 
 def pixels(view, name):

@@ -61,6 +61,12 @@ private:
 };
 Rates previewRates, fullUpdateRates;
 
+/// The elements of `scene` solved with `options`: its vertices, and their back sides.
+std::size_t elementCount(const Scene& scene, const SolverOptions& options)
+{
+  return scene.vertexCount() * (options.twoSided ? 2 : 1);
+}
+
 /// Requests closer together than this are one continuous change (an orbit, a dragged light).
 constexpr std::chrono::milliseconds kContinuous{ 1000 };
 /// How often the worker checks that an idle-class update is not starving.
@@ -464,7 +470,7 @@ std::vector<SolverOptions> AsyncSolver::Impl::plan(const Request& request)
   }
   const SolverOptions& options = request.options;
   const engine::MethodSpec& spec = engine::methodSpec(options.method);
-  const std::size_t elements = request.scene->vertexCount() * (options.twoSided ? 2 : 1);
+  const std::size_t elements = elementCount(*request.scene, options);
   // Predicted from this solver's stages where it ran this method and backend, else from the
   // process's full updates; unknown (negative) before either.
   const double fullRate = fullUpdateRates.get(options);
@@ -502,11 +508,6 @@ void AsyncSolver::Impl::solve(Request& request)
     progress = std::max(progress, fraction);
     return !stopping && !starved && running == id && !(abortRunning && pending.has_value());
   };
-  const auto failed = [this](const std::exception& e) {
-    std::lock_guard<std::mutex> lock(mutex);
-    error = e.what();
-    running = 0; // with the error: busy() and lastError() never disagree
-  };
   try
   {
     const std::vector<SolverOptions> previews = plan(request);
@@ -535,8 +536,8 @@ void AsyncSolver::Impl::solve(Request& request)
       if (s == 1)
       {
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-        const std::size_t elements = request.scene->vertexCount() * (coarse.twoSided ? 2 : 1);
-        previewRates.set(coarse, seconds / engine::methodSpec(coarse.method).sampleWork(elements, coarse));
+        const double work = engine::methodSpec(coarse.method).sampleWork(elementCount(*request.scene, coarse), coarse);
+        previewRates.set(coarse, seconds / work);
       }
       publish(request, s, stages, previewSolver);
       previewSolver.reset(); // its caches never sit beside the final stage's
@@ -549,7 +550,9 @@ void AsyncSolver::Impl::solve(Request& request)
   catch (const std::exception& e)
   {
     previewSolver.reset();
-    failed(e);
+    std::lock_guard<std::mutex> lock(mutex);
+    error = e.what();
+    running = 0; // with the error: busy() and lastError() never disagree
   }
 }
 
@@ -562,7 +565,7 @@ void AsyncSolver::Impl::publish(const Request& request, std::uint32_t index, std
   {
     const SolverOptions& o = request.options;
     const engine::MethodSpec& spec = engine::methodSpec(o.method);
-    const std::size_t elements = request.scene->vertexCount() * (o.twoSided ? 2 : 1);
+    const std::size_t elements = elementCount(*request.scene, o);
     history.record(spec, from.stats(), engine::historyWork(spec, elements, o));
     const bool full = std::all_of(spec.stages().begin(), spec.stages().end(),
       [&](const engine::StageSpec& st) { return from.stats().ran(st.name); });

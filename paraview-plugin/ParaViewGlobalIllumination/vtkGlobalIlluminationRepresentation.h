@@ -45,6 +45,7 @@
 #include "vtkGeometryRepresentationWithFaces.h"
 
 #include <memory> // for std::unique_ptr
+#include <string> // for std::string
 
 class vtkGlobalIlluminationFilter;
 class vtkGlobalIlluminationShading;
@@ -205,6 +206,8 @@ public:
   /// Which progressive stage of the drawn request is drawn, of how many (1 of 1: final).
   int GetShownStage();
   int GetShownStages();
+  /// The error of the newest background update that failed (empty if none).
+  const char* GetLastError();
   ///@}
 
   /// How many times the mapper rendered its shadow maps (for tests of the shadow cache).
@@ -282,6 +285,7 @@ private:
 
   struct vtkInternals;
   std::unique_ptr<vtkInternals> Internals;
+  std::string LastError; // what GetLastError() returned
 };
 
 #endif

@@ -152,6 +152,12 @@ int vtkGlobalIlluminationRepresentation::GetSolvingRequest()
   return static_cast<int>(this->Internals->Filter->GetAsynchronousSolving());
 }
 
+const char* vtkGlobalIlluminationRepresentation::GetLastError()
+{
+  this->LastError = this->Internals->Filter->GetAsynchronousError();
+  return this->LastError.c_str();
+}
+
 int vtkGlobalIlluminationRepresentation::GetShadowMapRenders()
 {
   return static_cast<vtkGlobalIlluminationCompositeMapper*>(this->Mapper)->GetShadowMapRenderCount();

@@ -34,7 +34,7 @@ public:
   SolverOptions coarser(const SolverOptions& o, double fraction) const override
   {
     SolverOptions c = o;
-    c.raysPerVertex = scaledSquare(o.raysPerVertex, fraction, 16); // one 4x4 block at least
+    c.raysPerVertex = scaledSquare(o.raysPerVertex, fraction, 4); // 2x2 directions at least
     return c;
   }
   MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
