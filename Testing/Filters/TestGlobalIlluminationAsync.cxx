@@ -115,7 +115,7 @@ TEST(GlobalIlluminationAsync, MovingALightShowsTheOldResultUntilTheNewOneArrives
 
 TEST(GlobalIlluminationAsync, ProgressiveDrawsACoarseStageThenTheSynchronousResult)
 {
-  // The first update of a mesh: nothing measured yet, so a coarse stage (4 of the 64 rays)
+  // The first update of a mesh: nothing measured yet, so a coarse stage (9 of the 64 rays)
   // is drawn first, then the final stage, which is the synchronous result exactly. A light
   // move that the link method answers quickly is drawn as its final solution alone.
   linkgi::AsyncSolver::forgetMeasurements(); // as in a new process: the final's time unknown

@@ -133,10 +133,10 @@ TEST(TestProgressive, PlanAimsAtTheBudgetAndStaysWithinTheFinalsShare)
   const double work = links.sampleWork(elements, o);
   ProgressionPlan plan; // 0.5 s, nothing measured yet
 
-  // The first update: nothing measured, one coarse stage at 1/64 of the work.
+  // The first update: nothing measured, one coarse stage at 1/32 of the work.
   std::vector<SolverOptions> previews = planPreviews(links, elements, o, -1.0, plan);
   ASSERT_EQ(previews.size(), 1u);
-  EXPECT_EQ(previews[0].raysPerVertex, 16u);
+  EXPECT_EQ(previews[0].raysPerVertex, 25u); // the square below 1024 / 32
 
   // A final predicted under four budgets is published alone.
   EXPECT_TRUE(planPreviews(links, elements, o, 1.9, plan).empty());
@@ -164,7 +164,7 @@ TEST(TestProgressive, PlanAimsAtTheBudgetAndStaysWithinTheFinalsShare)
   plan.previewRate = 1e-10;
   EXPECT_TRUE(planPreviews(links, elements, o, -1.0, plan).empty());
   // At the method's least sampling already: nothing coarser to show.
-  o.raysPerVertex = 4;
+  o.raysPerVertex = 9;
   plan.previewRate = 0.0;
   EXPECT_TRUE(planPreviews(links, elements, o, -1.0, plan).empty());
 }

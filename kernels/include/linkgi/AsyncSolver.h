@@ -60,7 +60,7 @@ struct AsyncStage
 /// predicted from the time each of its stale stages took the last time it ran (or, where this
 /// solver has not run it, from this process's last update of the method that ran every
 /// stage), and the coarse sampling from the time the last first coarse solution of the method
-/// took in this process; before any was measured, a coarse solution samples 1/64 of the work. A new request dropped the stages
+/// took in this process; before any was measured, a coarse solution samples 1/32 of the work. A new request dropped the stages
 /// still to come of the one before: it starts again from its own coarse stage. Under
 /// continuous change no coarse stages are solved (they would flicker between the final
 /// ones). See Documentation/Engine.md, "Progressive updates".

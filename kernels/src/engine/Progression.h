@@ -47,9 +47,8 @@ struct ProgressionPlan
 };
 
 /// Before the first measurement the first coarse solution samples this fraction of the work
-/// (the link method's 256 rays: 4; the 150k-point wavelet contour then takes about 0.5 s on
-/// one core of the 2-core VM).
-constexpr double kFirstPreviewFraction = 1.0 / 64.0;
+/// (the link method's 256 rays: 9, its least).
+constexpr double kFirstPreviewFraction = 1.0 / 32.0;
 /// A final update predicted to take less than this many budgets is published alone: a
 /// coarse solution would arrive little earlier and delay it by a large share.
 constexpr double kPreviewWorthBudgets = 4.0;
