@@ -31,7 +31,7 @@ def cell(runs):
         len(coarse), len(runs), final)
 
 
-for name in ("bench-cpu-2core-vm.jsonl", "bench-cuda-h200.jsonl"):
+for name in ("bench-cpu-2core-vm.jsonl", "bench-cuda-h200.jsonl", "bench-cuda-h200-033b104.jsonl"):
     print("\n" + name)
     print("| scene | method | apply | plain | deformation | plain | light move | plain |")
     print("|---|---|---|---|---|---|---|---|")
