@@ -143,7 +143,7 @@ vtkGlobalIlluminationRepresentation::vtkGlobalIlluminationRepresentation()
   // every update): there every render waits.
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   filter->SetAsynchronous(!controller || controller->GetNumberOfProcesses() <= 1);
-  filter->SetProgressive(true); // indirect light within a second, refined in the background
+  filter->SetProgressive(true); // a coarse indirect light first, the final one after
   filter->AddObserver(vtkCommand::WarningEvent, this, &vtkGlobalIlluminationRepresentation::OnFilterEvent);
   this->Internals->Watcher->SetInterval(100);
   this->Internals->Watcher->SetPollFunction([this] { return this->PollForSolution(); });
