@@ -159,7 +159,6 @@ struct AsyncSolver::Impl
 
   Solver solver; // touched by the worker only
   int threads = 1;
-  int coarseThreads = 1; // a coarse stage's (see the constructor)
   // Progressive updates, touched by the worker only: the solver of the coarse stages (reset
   // after each, so its caches never sit beside the final's), what the final stages took and
   // the input they took it on.
@@ -207,12 +206,9 @@ struct AsyncSolver::Impl
 
 AsyncSolver::AsyncSolver(int workerThreads) : impl(std::make_unique<Impl>())
 {
-  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  impl->threads = workerThreads > 0 ? workerThreads : std::max(1, cores - 1);
-  // The default leaves a core to the render loop. A coarse stage takes it too: it lasts about
-  // a first-stage budget, runs at nice 10 (below the renderer), and is never solved under
-  // continuous change (an orbit), where the renderer needs the core at every frame.
-  impl->coarseThreads = workerThreads > 0 ? workerThreads : cores;
+  impl->threads = workerThreads > 0
+    ? workerThreads
+    : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) - 1);
   impl->worker = std::thread([this] { impl->run(); });
 }
 
@@ -536,7 +532,7 @@ void AsyncSolver::Impl::solve(Request& request)
       }
       const SolverOptions& coarse = previews[s - 1];
       const auto start = Clock::now();
-      runWithConcurrency(coarseThreads, [&] { previewSolver.update(*request.scene, coarse, stillWanted); });
+      runWithConcurrency(threads, [&] { previewSolver.update(*request.scene, coarse, stillWanted); });
       if (s == 1)
       {
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -73,9 +73,8 @@ struct AsyncStage
 class AsyncSolver
 {
 public:
-  /// `workerThreads` caps the threads the solve uses (0 = all cores but one, leaving the
-  /// remaining core to the render loop; a coarse progressive stage, short and never solved
-  /// under continuous change, then takes every core).
+  /// `workerThreads` caps the threads the solve uses (0 = all cores but one), leaving the
+  /// remaining core to the render loop.
   explicit AsyncSolver(int workerThreads = 0);
   ~AsyncSolver(); ///< cancels the running update and joins the worker
   AsyncSolver(const AsyncSolver&) = delete;
