@@ -10,7 +10,6 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
-#include <map>
 #include <mutex>
 #include <optional>
 #include <system_error>
@@ -29,43 +28,6 @@ namespace linkgi
 namespace
 {
 using Clock = std::chrono::steady_clock;
-
-/// Seconds per unit of sampling work that an update of a method took on a backend setting
-/// in this process (absent: not measured yet): what the machine does, shared by every
-/// AsyncSolver, so that a second dataset is planned as well as the first's later updates.
-/// One table for the first coarse stages (what the first stage is aimed by), one for final
-/// updates that ran every stage (what an update with nothing cached is predicted by).
-class Rates
-{
-public:
-  double get(const SolverOptions& o)
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    const auto it = rates.find({ o.method, o.backend });
-    return it == rates.end() ? 0.0 : it->second;
-  }
-  void set(const SolverOptions& o, double rate)
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    rates[{ o.method, o.backend }] = rate;
-  }
-  void clear()
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    rates.clear();
-  }
-
-private:
-  std::mutex mutex;
-  std::map<std::pair<Method, Backend>, double> rates;
-};
-Rates previewRates, fullUpdateRates;
-
-/// The elements of `scene` solved with `options`: its vertices, and their back sides.
-std::size_t elementCount(const Scene& scene, const SolverOptions& options)
-{
-  return scene.vertexCount() * (options.twoSided ? 2 : 1);
-}
 
 /// Requests closer together than this are one continuous change (an orbit, a dragged light).
 constexpr std::chrono::milliseconds kContinuous{ 1000 };
@@ -284,8 +246,7 @@ double AsyncSolver::progress() const
 
 void AsyncSolver::forgetMeasurements()
 {
-  previewRates.clear();
-  fullUpdateRates.clear();
+  engine::forgetRates();
 }
 
 AsyncStage AsyncSolver::stage() const
@@ -470,10 +431,10 @@ std::vector<SolverOptions> AsyncSolver::Impl::plan(const Request& request)
   }
   const SolverOptions& options = request.options;
   const engine::MethodSpec& spec = engine::methodSpec(options.method);
-  const std::size_t elements = elementCount(*request.scene, options);
+  const std::size_t elements = engine::elementCount(*request.scene, options);
   // Predicted from this solver's stages where it ran this method and backend, else from the
   // process's full updates; unknown (negative) before either.
-  const double fullRate = fullUpdateRates.get(options);
+  const double fullRate = engine::measuredRate(engine::RateOf::FullUpdate, options);
   double finalSeconds = fullRate > 0.0 ? fullRate * spec.sampleWork(elements, options) : -1.0;
   if (finalScene && finalOptions.method == options.method && finalOptions.backend == options.backend)
   {
@@ -495,7 +456,7 @@ std::vector<SolverOptions> AsyncSolver::Impl::plan(const Request& request)
       return {};
     }
   }
-  settings.previewRate = previewRates.get(options);
+  settings.previewRate = engine::measuredRate(engine::RateOf::FirstCoarseStage, options);
   return engine::planPreviews(spec, elements, options, finalSeconds, settings);
 }
 
@@ -536,8 +497,8 @@ void AsyncSolver::Impl::solve(Request& request)
       if (s == 1)
       {
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-        const double work = engine::methodSpec(coarse.method).sampleWork(elementCount(*request.scene, coarse), coarse);
-        previewRates.set(coarse, seconds / work);
+        const double work = engine::methodSpec(coarse.method).sampleWork(engine::elementCount(*request.scene, coarse), coarse);
+        engine::recordRate(engine::RateOf::FirstCoarseStage, coarse, seconds / work);
       }
       publish(request, s, stages, previewSolver);
       previewSolver.reset(); // its caches never sit beside the final stage's
@@ -565,14 +526,14 @@ void AsyncSolver::Impl::publish(const Request& request, std::uint32_t index, std
   {
     const SolverOptions& o = request.options;
     const engine::MethodSpec& spec = engine::methodSpec(o.method);
-    const std::size_t elements = elementCount(*request.scene, o);
+    const std::size_t elements = engine::elementCount(*request.scene, o);
     history.record(spec, from.stats(), engine::historyWork(spec, elements, o));
     const bool full = std::all_of(spec.stages().begin(), spec.stages().end(),
       [&](const engine::StageSpec& st) { return from.stats().ran(st.name); });
     const double work = spec.sampleWork(elements, o);
     if (full && work > 0.0)
     {
-      fullUpdateRates.set(o, 1e-3 * from.stats().msTotal / work);
+      engine::recordRate(engine::RateOf::FullUpdate, o, 1e-3 * from.stats().msTotal / work);
     }
     finalScene = request.scene;
     finalOptions = o;

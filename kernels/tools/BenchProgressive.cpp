@@ -1,4 +1,5 @@
 #include "BenchProgressive.h"
+#include "BenchStats.h"
 
 #include "linkgi/AsyncSolver.h"
 #include "linkgi/Error.h"
@@ -88,12 +89,6 @@ private:
   Clock::time_point start;
   AsyncSolver async; // last: its worker's callbacks use the members above
 };
-
-double median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 std::vector<Vec3f> total(const Solution& s)
 {

@@ -4,6 +4,7 @@
 // cuSPARSE on the same matrix. --dump / --compare store and check solutions across backends.
 #include "BenchProgressive.h"
 #include "BenchScenes.h"
+#include "BenchStats.h"
 #include "BenchSolutions.h"
 
 #include "linkgi/Cuda.h"
@@ -38,6 +39,7 @@ double bareEmbreeRaysPerSecond(const Scene& scene, const SolverOptions& options)
 namespace
 {
 using namespace linkgi;
+using bench::median;
 
 struct Args
 {
@@ -164,12 +166,6 @@ double peakHostMb()
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return usage.ru_maxrss / 1024.0;
-}
-
-double median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 /// Moves every light a little: a light-only change.

@@ -2,9 +2,41 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
+#include <utility>
 
 namespace linkgi::engine
 {
+namespace
+{
+std::mutex ratesMutex;
+std::map<std::pair<RateOf, std::pair<Method, Backend>>, double> rates;
+}
+
+std::size_t elementCount(const Scene& scene, const SolverOptions& options)
+{
+  return scene.vertexCount() * (options.twoSided ? 2 : 1);
+}
+
+double measuredRate(RateOf kind, const SolverOptions& options)
+{
+  std::lock_guard<std::mutex> lock(ratesMutex);
+  const auto it = rates.find({ kind, { options.method, options.backend } });
+  return it == rates.end() ? 0.0 : it->second;
+}
+
+void recordRate(RateOf kind, const SolverOptions& options, double secondsPerWork)
+{
+  std::lock_guard<std::mutex> lock(ratesMutex);
+  rates[{ kind, { options.method, options.backend } }] = secondsPerWork;
+}
+
+void forgetRates()
+{
+  std::lock_guard<std::mutex> lock(ratesMutex);
+  rates.clear();
+}
 std::uint32_t scaledSquare(std::uint32_t square, double fraction, std::uint32_t least)
 {
   const auto side = [](double n) { return static_cast<std::uint32_t>(std::floor(std::sqrt(n) + 1e-9)); };

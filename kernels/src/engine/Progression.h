@@ -36,6 +36,24 @@ struct StageHistory
 /// The work StageHistory scales by: `spec`'s sampleWork, or the element count.
 double historyWork(const MethodSpec& spec, std::size_t elements, const SolverOptions& options);
 
+/// The elements of `scene` solved with `options`: its vertices, and their back sides.
+std::size_t elementCount(const Scene& scene, const SolverOptions& options);
+
+/// What this process measured of the machine, shared by every AsyncSolver in it so that a
+/// second dataset is planned as well as the first's later updates: seconds per unit of
+/// sampling work (MethodSpec::sampleWork) per method and backend setting, of the last first
+/// coarse stage (what a first stage is aimed by) and of the last final update that ran
+/// every stage (what an update with nothing cached is predicted by). 0: not measured yet.
+enum class RateOf
+{
+  FirstCoarseStage,
+  FullUpdate
+};
+double measuredRate(RateOf kind, const SolverOptions& options);
+void recordRate(RateOf kind, const SolverOptions& options, double secondsPerWork);
+/// Forgets every measured rate, as in a new process.
+void forgetRates();
+
 /// The progression's settings and what it measured on this machine.
 struct ProgressionPlan
 {
