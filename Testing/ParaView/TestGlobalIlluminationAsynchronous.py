@@ -155,19 +155,31 @@ gi.GlobalIlluminationDisplayMode = "Combined"
 
 # 3. Two light moves while the links are rebuilt: the first move's request is replaced.
 # The longer rebuild (4096 rays) here: it must outlast two renders, the one above one (with
-# 1024, and once in a loaded CI run with 2048, it finished first).
-gi.GlobalIlluminationWait = "Never"
-gi.GlobalIlluminationRays = 4096
-Render(view)
-rebuild = statistics(gi)
-light.Position = [-1.0, 2.5, 1.0]
-Render(view)
-light.Position = [-1.0, 2.5, -1.0]
-Render(view)
-moved = statistics(gi)
-if moved["SolvingRequest"] != rebuild["NewestRequest"]:
-    t.fail("precondition: the link rebuild (request %d) ended before both moves were "
-           "requested (%s)" % (rebuild["NewestRequest"], moved))
+# 1024, and once in a loaded CI run with 2048, it finished first). Where a rebuild still ended
+# before both moves were requested (seen in loaded CI runs, with no error), the precondition
+# of the check does not hold: it is tried again with a new rebuild, at most three times.
+base = done
+for attempt, rays in enumerate((4096, 4900, 5776)):
+    if attempt:
+        gi.GlobalIlluminationWait = "Always"
+        Render(view)  # the previous attempt's requests solved
+        base = statistics(gi)
+    gi.GlobalIlluminationWait = "Never"
+    gi.GlobalIlluminationRays = rays
+    Render(view)
+    rebuild = statistics(gi)
+    light.Position = [-1.0, 2.5, 1.0 - attempt]
+    Render(view)
+    light.Position = [-1.0, 2.5, -1.0 - attempt]
+    Render(view)
+    moved = statistics(gi)
+    if moved["SolvingRequest"] == rebuild["NewestRequest"]:
+        break
+    print("note: the link rebuild (request %d) ended before both moves were requested (%s)"
+          % (rebuild["NewestRequest"], moved))
+else:
+    t.fail("precondition: in three tries, the link rebuild ended before both moves were "
+           "requested")
 t.check(moved["NewestRequest"] == rebuild["NewestRequest"] + 2,
         "each move made a request (%d, %d)" % (rebuild["NewestRequest"] + 1,
                                                moved["NewestRequest"]))
@@ -176,11 +188,11 @@ Render(view)
 final = statistics(gi)
 t.check(final["ShownRequest"] == moved["NewestRequest"],
         "the second move's solution is drawn (request %d)" % final["ShownRequest"])
-t.check(final["BounceRuns"] == done["BounceRuns"] + 2 and
-        final["LightLinkBuilds"] == done["LightLinkBuilds"] + 1,
+t.check(final["BounceRuns"] == base["BounceRuns"] + 2 and
+        final["LightLinkBuilds"] == base["LightLinkBuilds"] + 1,
         "the solver ran twice, the rebuild and the second move (one light-link build); the "
         "first move never ran: bounce runs %d -> %d, light-link builds %d -> %d"
-        % (done["BounceRuns"], final["BounceRuns"], done["LightLinkBuilds"],
+        % (base["BounceRuns"], final["BounceRuns"], base["LightLinkBuilds"],
            final["LightLinkBuilds"]))
 
 # 4. Progressive stages (the representation's default): a relink predicted to take long is
