@@ -8,9 +8,9 @@
 #include "vtkReverseSense.h"
 #include "vtkXMLPolyDataReader.h"
 
-#include "linkgi/MeshBuilder.h"
-#include "linkgi/Metrics.h"
-#include "linkgi/Reference.h"
+#include "scene/MeshBuilder.h"
+#include "shared/Metrics.h"
+#include "methods/reference/Reference.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>

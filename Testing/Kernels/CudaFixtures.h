@@ -1,8 +1,8 @@
 // Helpers of the CUDA backend tests: skipping without a GPU, and comparing solutions.
 #pragma once
 
-#include "linkgi/Cuda.h"
-#include "linkgi/Metrics.h"
+#include "cuda/Cuda.h"
+#include "shared/Metrics.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>

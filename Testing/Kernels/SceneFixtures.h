@@ -3,8 +3,8 @@
 #pragma once
 
 #include "linkgi/Error.h"
-#include "linkgi/MeshBuilder.h"
-#include "linkgi/Reference.h"
+#include "scene/MeshBuilder.h"
+#include "methods/reference/Reference.h"
 #include "linkgi/SolverTypes.h"
 
 #include <functional>

@@ -1,8 +1,8 @@
 // The solver against closed-form answers and against the path-traced reference.
 #include "SceneFixtures.h"
 
-#include "linkgi/Metrics.h"
-#include "linkgi/Reference.h"
+#include "shared/Metrics.h"
+#include "methods/reference/Reference.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 

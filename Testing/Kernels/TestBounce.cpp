@@ -1,4 +1,4 @@
-#include "linkgi/Bounce.h"
+#include "shared/Bounce.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // find exactly the hits a brute-force loop over all triangles finds, before and after refit.
 #include "SceneFixtures.h"
 
-#include "linkgi/BvhBuild.h"
+#include "shared/BvhBuild.h"
 #include "linkgi/Scenes.h"
 
 #include <gtest/gtest.h>

@@ -5,7 +5,7 @@
 #include "SceneFixtures.h"
 
 #include "linkgi/Scenes.h"
-#include "proxy/CollapseMesh.h"
+#include "resolution/CollapseMesh.h"
 
 #include <gtest/gtest.h>
 

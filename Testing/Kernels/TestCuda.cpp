@@ -4,7 +4,7 @@
 #include "CudaFixtures.h"
 #include "SceneFixtures.h"
 
-#include "linkgi/BvhBuild.h"
+#include "shared/BvhBuild.h"
 #include "linkgi/Scenes.h"
 
 #include <cmath>

@@ -6,7 +6,7 @@
 #include "SceneFixtures.h"
 
 #include "engine/CudaFactory.h"
-#include "linkgi/Cuda.h"
+#include "cuda/Cuda.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // The CUDA engine's split of a relink among identical GPUs (equalCostSplit): contiguous
 // ranges of equal cost by the last link stage's batches. Host logic: runs without a GPU.
-#include "cuda/CudaEngine.h"
+#include "methods/links/cuda/CudaEngine.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include "cuda/CudaCheck.h"
 #include "cuda/GPUBuffer.h"
 
-#include "linkgi/Cuda.h"
+#include "cuda/Cuda.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>

@@ -4,13 +4,13 @@
 #include "CudaFixtures.h"
 #include "SceneFixtures.h"
 
-#include "iv/ClusterTree.h"
-#include "iv/ImplicitLinks.h"
+#include "methods/iv/ClusterTree.h"
+#include "methods/iv/ImplicitLinks.h"
 
-#include "linkgi/Cuda.h"
+#include "cuda/Cuda.h"
 #include "linkgi/Error.h"
-#include "linkgi/Metrics.h"
-#include "linkgi/Reference.h"
+#include "shared/Metrics.h"
+#include "methods/reference/Reference.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 

@@ -3,12 +3,12 @@
 #include "CudaFixtures.h"
 #include "SceneFixtures.h"
 
-#include "ir/IrBackends.h"
+#include "methods/ir/IrBackends.h"
 
 #include "linkgi/Error.h"
-#include "linkgi/Links.h"
-#include "linkgi/Metrics.h"
-#include "linkgi/Reference.h"
+#include "methods/links/Links.h"
+#include "shared/Metrics.h"
+#include "methods/reference/Reference.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 

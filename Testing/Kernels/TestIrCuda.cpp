@@ -4,7 +4,7 @@
 #include "CudaFixtures.h"
 #include "SceneFixtures.h"
 
-#include "ir/IrKernels.h"
+#include "methods/ir/cuda/IrKernels.h"
 
 #include "cuda/GPUBuffer.h"
 #include "cuda/Primitives.h"

@@ -1,6 +1,6 @@
 // Link-entry offsets past 2^32 on the CPU, without the 40 GB such a matrix needs: the row
 // offsets from per-row counts, and the gather over rows whose offsets start above 2^32.
-#include "linkgi/Bounce.h"
+#include "shared/Bounce.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 #include "SceneFixtures.h"
 
-#include "linkgi/Links.h"
-#include "linkgi/Metrics.h"
+#include "methods/links/Links.h"
+#include "shared/Metrics.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 #include "engine/MemoryBudget.h"
 
 #include "linkgi/Error.h"
-#include "linkgi/Links.h"
+#include "methods/links/Links.h"
 #include "linkgi/Memory.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"

@@ -3,7 +3,7 @@
 // about 1e-19 of a vertex (the likely cause of the two "deadly signal" reports of the long
 // SolverOptions fuzz run). unshadowedIrradiance (CPU, CUDA and the reference)
 // bounds r from below and the result from above, so the solution stays finite.
-#include "linkgi/DirectLight.h"
+#include "shared/DirectLight.h"
 #include "linkgi/Error.h"
 #include "linkgi/Solver.h"
 

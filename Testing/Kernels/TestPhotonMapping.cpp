@@ -4,14 +4,14 @@
 #include "CudaFixtures.h"
 #include "SceneFixtures.h"
 
-#include "pm/PhotonMapping.h"
-#include "pm/PmBackends.h"
-#include "pm/PmTypes.h"
+#include "methods/pm/PhotonMapping.h"
+#include "methods/pm/PmBackends.h"
+#include "methods/pm/PmTypes.h"
 
-#include "linkgi/Links.h"
-#include "linkgi/Metrics.h"
-#include "linkgi/RayTracer.h"
-#include "linkgi/Reference.h"
+#include "methods/links/Links.h"
+#include "shared/Metrics.h"
+#include "shared/RayTracer.h"
+#include "methods/reference/Reference.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 

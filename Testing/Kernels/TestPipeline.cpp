@@ -4,7 +4,7 @@
 
 #include "engine/Pipeline.h"
 
-#include "linkgi/Cuda.h"
+#include "cuda/Cuda.h"
 #include "linkgi/Error.h"
 #include "linkgi/Solver.h"
 

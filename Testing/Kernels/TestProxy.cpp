@@ -3,7 +3,7 @@
 #include "SceneFixtures.h"
 
 #include "linkgi/Error.h"
-#include "linkgi/Metrics.h"
+#include "shared/Metrics.h"
 #include "linkgi/Proxy.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"

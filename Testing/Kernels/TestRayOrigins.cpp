@@ -2,8 +2,8 @@
 // millimetre detail in a ten-metre scene is lit as it is alone, by every method and backend.
 #include "CudaFixtures.h"
 
-#include "linkgi/MeshBuilder.h"
-#include "linkgi/RayOrigin.h"
+#include "scene/MeshBuilder.h"
+#include "shared/RayOrigin.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // The reference path tracer against closed-form answers, and the error metrics.
 #include "linkgi/Error.h"
-#include "linkgi/Metrics.h"
-#include "linkgi/Reference.h"
+#include "shared/Metrics.h"
+#include "methods/reference/Reference.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>

@@ -6,9 +6,9 @@
 #include "SceneFixtures.h"
 
 #include "linkgi/Error.h"
-#include "linkgi/Metrics.h"
+#include "shared/Metrics.h"
 #include "linkgi/Proxy.h"
-#include "linkgi/Reference.h"
+#include "methods/reference/Reference.h"
 #include "linkgi/Refine.h"
 
 #include <gtest/gtest.h>

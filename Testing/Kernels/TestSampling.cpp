@@ -1,5 +1,5 @@
 #include "linkgi/Error.h"
-#include "linkgi/Sampling.h"
+#include "shared/Sampling.h"
 
 #include <gtest/gtest.h>
 

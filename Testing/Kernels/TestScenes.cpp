@@ -1,7 +1,7 @@
 // Standard scenes and MeshBuilder: sizes after the paper's Table 1, consistent arrays, winding
 // that agrees with the normals, a closed inward furnace, and topology-preserving deformation.
 #include "linkgi/Error.h"
-#include "linkgi/MeshBuilder.h"
+#include "scene/MeshBuilder.h"
 #include "linkgi/Scenes.h"
 
 #include <gtest/gtest.h>

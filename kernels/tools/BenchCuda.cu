@@ -2,12 +2,12 @@
 // gather (16-byte vector loads) versus three scalar cusparseSpMV calls.
 #include "BenchCuda.h"
 
-#include "cuda/CudaEngine.h"
+#include "methods/links/cuda/CudaEngine.h"
 #include "cuda/GPUBuffer.h"
 #include "cuda/Kernels.h"
 
-#include "linkgi/Links.h"
-#include "linkgi/Topology.h"
+#include "methods/links/Links.h"
+#include "scene/Topology.h"
 
 #include <cusparse.h>
 

@@ -1,8 +1,8 @@
 // The yardstick of the CPU backend: a plain parallel rtcIntersect1 loop over the solver's
 // link rays on a default Embree scene.
-#include "linkgi/Links.h"
-#include "linkgi/Parallel.h"
-#include "linkgi/Sampling.h"
+#include "methods/links/Links.h"
+#include "cpu/Parallel.h"
+#include "shared/Sampling.h"
 #include "linkgi/Solver.h"
 
 #include <embree3/rtcore.h>

@@ -3,8 +3,8 @@
 
 #include "linkgi/AsyncSolver.h"
 #include "linkgi/Error.h"
-#include "linkgi/Metrics.h"
-#include "linkgi/Parallel.h"
+#include "shared/Metrics.h"
+#include "cpu/Parallel.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,6 +1,6 @@
 #include "BenchScenes.h"
 
-#include "linkgi/MeshBuilder.h"
+#include "scene/MeshBuilder.h"
 #include "linkgi/Scenes.h"
 
 #include <cmath>

@@ -1,7 +1,7 @@
 #include "BenchSolutions.h"
 
 #include "linkgi/Error.h"
-#include "linkgi/Metrics.h"
+#include "shared/Metrics.h"
 
 #include <fstream>
 #include <sstream>

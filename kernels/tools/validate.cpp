@@ -5,9 +5,9 @@
 // per wall for CELL >= 0.6) is solved plainly and with refinement, and both are measured on
 // the published box's fine grid against the reference there.
 #include "linkgi/Error.h"
-#include "linkgi/Metrics.h"
+#include "shared/Metrics.h"
 #include "linkgi/Proxy.h"
-#include "linkgi/Reference.h"
+#include "methods/reference/Reference.h"
 #include "linkgi/Refine.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"

@@ -5,8 +5,8 @@
 // emission are the input's.
 #pragma once
 
-#include "linkgi/Parallel.h"
 #include "linkgi/Scene.h"
+#include "linkgi/SolverTypes.h"
 
 #include <array>
 #include <string>

@@ -4,7 +4,6 @@
 // round (an ordinary Solver); see Documentation/Methods.md, "Refinement".
 #pragma once
 
-#include "linkgi/RayTracer.h"
 #include "linkgi/Solver.h"
 
 #include <array>
@@ -16,6 +15,8 @@
 
 namespace linkgi
 {
+class RayTracer;
+
 struct RefinementOptions
 {
   /// An edge is split when, relative to the local level of light (the mean total irradiance

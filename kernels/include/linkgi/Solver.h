@@ -2,7 +2,6 @@
 // (Documentation/Engine.md).
 #pragma once
 
-#include "linkgi/Parallel.h"
 #include "linkgi/SolverTypes.h"
 
 #include <memory>

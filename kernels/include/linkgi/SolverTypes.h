@@ -12,6 +12,10 @@
 
 namespace linkgi
 {
+/// Called on the thread that started the work, between chunks: `fraction` in [0,1] of the
+/// current stage. Return false to abort; the engine then throws linkgi::Aborted.
+using ProgressCallback = std::function<bool(const char* stage, double fraction)>;
+
 /// This process's share of a scene that several processes (MPI ranks) solve together, each
 /// holding the whole scene: the CPU backend links or gathers only the rows (receiving
 /// elements) marked here and completes each bounce's per-element vector through exchange(),

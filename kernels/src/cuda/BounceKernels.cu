@@ -1,8 +1,8 @@
 // Light exchange on the GPU: a custom RGB CSR gather (one pass over the matrix for all three
 // channels, 16-byte vector loads), fused with the next radiance; smoothing and the output.
-#include "Kernels.h"
+#include "cuda/Kernels.h"
 
-#include "linkgi/Bounce.h"
+#include "shared/Bounce.h"
 
 namespace linkgi::cuda
 {

@@ -1,4 +1,4 @@
-#include "CudaCheck.h"
+#include "cuda/CudaCheck.h"
 
 #include <cuda_runtime_api.h>
 

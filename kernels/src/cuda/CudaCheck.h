@@ -2,7 +2,7 @@
 // out-of-memory, answers by falling back to the CPU); nothing aborts the process.
 #pragma once
 
-#include "linkgi/Cuda.h"
+#include "cuda/Cuda.h"
 
 #include <cuda_runtime_api.h>
 

@@ -1,4 +1,4 @@
-#include "linkgi/Cuda.h"
+#include "cuda/Cuda.h"
 
 #include <cuda_runtime_api.h>
 

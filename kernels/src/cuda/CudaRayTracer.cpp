@@ -1,9 +1,9 @@
 // The RayTracer interface on one GPU (for tools and tests; the solver's CUDA path keeps
 // rays and hits on the device instead).
-#include "DeviceBvh.h"
-#include "Kernels.h"
+#include "cuda/DeviceBvh.h"
+#include "cuda/Kernels.h"
 
-#include "linkgi/Cuda.h"
+#include "cuda/Cuda.h"
 
 #include <mutex>
 

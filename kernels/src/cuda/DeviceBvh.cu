@@ -1,8 +1,8 @@
-#include "DeviceBvh.h"
-#include "DeviceBvhBuild.h"
+#include "cuda/DeviceBvh.h"
+#include "cuda/DeviceBvhBuild.h"
 
-#include "Kernels.h"
-#include "Primitives.h"
+#include "cuda/Kernels.h"
+#include "cuda/Primitives.h"
 
 #include <cstdio>
 #include <cstdlib>

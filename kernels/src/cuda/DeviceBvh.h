@@ -3,9 +3,9 @@
 // bottom-up bounds (LINKGI_CUDA_BVH=linear); refit reuses the hierarchy.
 #pragma once
 
-#include "GPUBuffer.h"
+#include "cuda/GPUBuffer.h"
 
-#include "linkgi/BvhBuild.h"
+#include "shared/BvhBuild.h"
 
 namespace linkgi::cuda
 {

@@ -1,10 +1,10 @@
 // PLOC on the GPU (DeviceBvh::cluster): the agglomerative clustering that builds the BVH's
 // hierarchy over the Morton-sorted triangles (DeviceBvh.cu sorts them and finishes the tree).
-#include "DeviceBvh.h"
-#include "DeviceBvhBuild.h"
+#include "cuda/DeviceBvh.h"
+#include "cuda/DeviceBvhBuild.h"
 
-#include "Kernels.h"
-#include "Primitives.h"
+#include "cuda/Kernels.h"
+#include "cuda/Primitives.h"
 
 #include <cub/block/block_scan.cuh>
 

@@ -1,10 +1,10 @@
 // The one-ring topology, origin shifts and face normals on the GPU (DeviceTopology.h).
-#include "DeviceTopology.h"
+#include "cuda/DeviceTopology.h"
 
-#include "Primitives.h"
+#include "cuda/Primitives.h"
 
 #include "linkgi/Error.h"
-#include "linkgi/Links.h"
+#include "methods/links/Links.h"
 
 #include <string>
 

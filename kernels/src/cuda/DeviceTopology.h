@@ -3,9 +3,9 @@
 // no device code.
 #pragma once
 
-#include "GPUBuffer.h"
+#include "cuda/GPUBuffer.h"
 
-#include "linkgi/RayOrigin.h"
+#include "shared/RayOrigin.h"
 #include "linkgi/Scene.h"
 
 namespace linkgi::cuda

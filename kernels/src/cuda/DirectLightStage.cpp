@@ -1,6 +1,6 @@
-#include "DirectLightStage.h"
+#include "cuda/DirectLightStage.h"
 
-#include "linkgi/Links.h"
+#include "methods/links/Links.h"
 
 #include <algorithm>
 

@@ -2,10 +2,10 @@
 // the CPU's is computeDirectLight (DirectLight.h).
 #pragma once
 
-#include "DeviceBvh.h"
-#include "DeviceTopology.h"
-#include "GPUBuffer.h"
-#include "Kernels.h"
+#include "cuda/DeviceBvh.h"
+#include "cuda/DeviceTopology.h"
+#include "cuda/GPUBuffer.h"
+#include "cuda/Kernels.h"
 
 #include "linkgi/SolverTypes.h"
 

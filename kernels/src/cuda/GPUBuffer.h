@@ -2,7 +2,7 @@
 // allocation (and freed there).
 #pragma once
 
-#include "CudaCheck.h"
+#include "cuda/CudaCheck.h"
 
 #include <algorithm>
 #include <atomic>

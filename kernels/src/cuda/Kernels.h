@@ -4,10 +4,10 @@
 // (Bvh.h, BvhBuild.h, Links.h, DirectLight.h, Bounce.h) that the CPU uses too.
 #pragma once
 
-#include "CudaCheck.h"
+#include "cuda/CudaCheck.h"
 
-#include "linkgi/Bvh.h"
-#include "linkgi/RayOrigin.h"
+#include "shared/Bvh.h"
+#include "shared/RayOrigin.h"
 #include "linkgi/Scene.h"
 
 #include <cuda_runtime_api.h>

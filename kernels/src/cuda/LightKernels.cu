@@ -1,8 +1,8 @@
 // Light links on the GPU: one any-hit shadow ray per lit vertex and per edge midpoint of a
 // lit vertex (the 1:4 subdivision points), then the hat-weighted visibility per vertex.
-#include "Kernels.h"
+#include "cuda/Kernels.h"
 
-#include "linkgi/DirectLight.h"
+#include "shared/DirectLight.h"
 
 namespace linkgi::cuda
 {

@@ -2,7 +2,7 @@
 
 #include "cuda/DirectLightStage.h"
 
-#include "linkgi/Cuda.h"
+#include "cuda/Cuda.h"
 
 #include <cmath>
 

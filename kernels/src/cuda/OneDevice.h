@@ -11,7 +11,7 @@
 #include "cuda/PinnedStaging.h"
 
 #include "engine/Pipeline.h"
-#include "ir/IrHost.h"
+#include "methods/ir/IrHost.h"
 
 #include <initializer_list>
 #include <string>

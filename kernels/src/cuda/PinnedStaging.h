@@ -3,9 +3,9 @@
 // and go through the driver's own staging.
 #pragma once
 
-#include "GPUBuffer.h"
+#include "cuda/GPUBuffer.h"
 
-#include "linkgi/Parallel.h"
+#include "cpu/Parallel.h"
 
 #include <cstring>
 #include <vector>

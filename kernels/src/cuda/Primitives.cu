@@ -1,4 +1,4 @@
-#include "Primitives.h"
+#include "cuda/Primitives.h"
 
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>

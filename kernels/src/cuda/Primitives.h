@@ -2,7 +2,7 @@
 // compiled once, in Primitives.cu.
 #pragma once
 
-#include "GPUBuffer.h"
+#include "cuda/GPUBuffer.h"
 
 #include "linkgi/Config.h"
 

@@ -1,6 +1,6 @@
 #include "engine/CudaFactory.h"
 
-#include "linkgi/Cuda.h"
+#include "cuda/Cuda.h"
 
 namespace linkgi::engine
 {

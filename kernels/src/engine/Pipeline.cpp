@@ -1,7 +1,7 @@
 #include "engine/Pipeline.h"
 
 #include "linkgi/Error.h"
-#include "linkgi/Sampling.h"
+#include "shared/Sampling.h"
 
 #include <cmath>
 #include <cstring>

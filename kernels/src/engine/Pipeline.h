@@ -6,7 +6,7 @@
 #pragma once
 
 #include "linkgi/Memory.h"
-#include "linkgi/Parallel.h"
+#include "cpu/Parallel.h"
 #include "linkgi/SolverTypes.h"
 
 #include <chrono>

@@ -1,0 +1,51 @@
+// The instant-radiosity method's stages and backends, as its MethodSpec creates them
+// (IrMethod.cpp).
+#pragma once
+
+#include "engine/Pipeline.h"
+
+#include <cstdint>
+
+namespace linkgi::ir
+{
+/// The stages, in the order of IrMethod.cpp's table.
+enum Stage : std::size_t
+{
+  kGeometryStage,  ///< topology, ray origins, face normals, acceleration structure
+  kProxyStage,     ///< the coarse visibility proxy (nothing when proxy visibility is off)
+  kVplStage,       ///< light paths from every source: the VPL set
+  kLightLinkStage, ///< shadow rays to the point, spot and directional lights: E_d
+  kGatherStage,    ///< per element: the sum over its VPL subset with visibility
+  kFinishStage     ///< feature-aware smoothing, outgoing radiance, the output
+};
+
+/// Embree (or our BVH) and all cores (IrCpu.cpp).
+std::unique_ptr<engine::MethodBackend> createCpuBackend(const SolverOptions& options);
+/// The GPU (IrCuda.cpp); CudaUnavailable.cpp throws CudaError instead.
+std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions& options);
+}
+
+#include "methods/ir/IrHost.h"
+
+namespace linkgi::ir
+{
+/// Every light path of `setup` traced against `tracer` (the mesh), split into `subsets`.
+/// A scene whose paths mostly leave it gets a second pass of more paths (secondPassPaths);
+/// when that pass's slots would take more than `secondPassBytes`, OutOfMemoryBudget says so
+/// before they are allocated (the update's estimate counts the first pass only).
+VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32_t subsets,
+  const ProgressCallback& progress = {}, std::uint64_t secondPassBytes = UINT64_MAX);
+
+/// E_ind per element (both sides when twoSided): each gathers its VPL subset, shadow rays
+/// against `visibility` (the mesh, or the proxy when params.proxyMargin > 0). `rays` gets
+/// the shadow rays traced. With `rows` (one flag per element), only those elements gather;
+/// the others are zero.
+std::vector<Vec3f> gatherCpu(const Scene& scene, const std::vector<RayOrigin>& origins,
+  const VplSet& vpls, const RayTracer* visibility, const GatherParams& params, bool twoSided,
+  std::uint64_t* rays = nullptr, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
+
+/// The same gather on the first GPU (mesh, BVH and shifts built there; exact visibility):
+/// for comparing the backends on one VPL set. Throws CudaError without a device or CUDA.
+std::vector<Vec3f> gatherCuda(const Scene& scene, const VplSet& vpls, const GatherParams& params,
+  bool twoSided);
+}

@@ -1,0 +1,262 @@
+// Instant radiosity on the CPU: Embree (or our BVH) through the RayTracer interface, loops
+// on the engine's thread pool; the direct light is the shared light-link stage.
+#include "methods/ir/IrBackends.h"
+
+#include "cpu/CpuGeometry.h"
+#include "engine/MemoryBudget.h"
+
+#include "shared/Bounce.h"
+#include "linkgi/Memory.h"
+#include "shared/DirectLight.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+namespace linkgi::ir
+{
+VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32_t subsets,
+  const ProgressCallback& progress, std::uint64_t secondPassBytes)
+{
+  PathScene view = setup.view;
+  const std::uint32_t slotsPerPath = view.bounces + 1;
+  std::vector<Vpl> slots;
+  std::vector<int> counts;
+  const auto trace = [&tracer](const Ray& ray) {
+    Hit h;
+    tracer.trace(&ray, &h, 1);
+    return h;
+  };
+  const std::uint32_t target = setup.targetVpls;
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    slots.resize(std::size_t(view.paths) * slotsPerPath);
+    counts.assign(view.paths, 0);
+    parallelFor("VPLs", view.paths, 64, [&](std::size_t first, std::size_t last) {
+      for (std::size_t p = first; p < last; ++p)
+      {
+        counts[p] = traceLightPath(view, std::uint32_t(p), slots.data() + p * slotsPerPath, trace);
+      }
+    }, progress);
+    std::size_t found = 0;
+    for (int n : counts)
+    {
+      found += std::size_t(n);
+    }
+    const std::uint32_t more = pass == 0 ? secondPassPaths(view.paths, found, target, slotsPerPath) : 0;
+    if (!more)
+    {
+      break;
+    }
+    const std::uint64_t bytes = std::uint64_t(more) * (slotsPerPath * sizeof(Vpl) + sizeof(int));
+    if (bytes > secondPassBytes)
+    {
+      throw OutOfMemoryBudget("Not enough memory: light paths mostly leave this scene (" + std::to_string(found) +
+          " of the " + std::to_string(target) + " virtual lights or photons asked for were found), and the second pass of " +
+          std::to_string(more) + " paths that would find the rest needs about " + formatBytes(bytes) +
+          ", more than the memory budget leaves (" + formatBytes(secondPassBytes) +
+          "). Ask for fewer (NumberOfVPLs, NumberOfPhotons), or a larger MemoryBudget.",
+        0);
+    }
+    view.paths = more;
+  }
+  return packVpls(slots, counts, slotsPerPath, subsets);
+}
+
+std::vector<Vec3f> gatherCpu(const Scene& s, const std::vector<RayOrigin>& origins, const VplSet& set,
+  const RayTracer* visibility, const GatherParams& gp, bool twoSided, std::uint64_t* rays,
+  const ProgressCallback& progress, const std::uint8_t* rows)
+{
+  const Elements elements{ s.vertexCount(), twoSided };
+  std::vector<Vec3f> irradiance(elements.count());
+  std::atomic<std::uint64_t> traced{ 0 };
+  const std::uint32_t subsets = std::uint32_t(set.subsetScale.size());
+  parallelFor("Gather", elements.count(), 16, [&](std::size_t first, std::size_t last) {
+    std::vector<Ray> batch;
+    std::vector<Vec3f> contribution;
+    std::vector<std::uint8_t> blocked;
+    std::uint64_t count = 0;
+    for (std::size_t e = first; e < last; ++e)
+    {
+      if (rows && !rows[e])
+      {
+        continue; // another process's row
+      }
+      const Index v = elements.vertexOf(e);
+      const float sign = elements.sideSign(e);
+      const Vec3f n = s.normals[v] * sign;
+      const Vec3f x = s.positions[v] + origins[v].shift;
+      const Vec3f origin = vertexLightOrigin(s.positions[v], s.normals[v], origins[v], sign);
+      const std::uint32_t r = vertexSubset(v, subsets, gp.seed);
+      batch.clear();
+      contribution.clear();
+      for (std::uint32_t k = set.subsetOffsets[r]; k < set.subsetOffsets[r + 1]; ++k)
+      {
+        Ray ray;
+        const Vec3f e_k = vplIrradiance(set.vpls[k], x, origin, n, gp.dmin, ray);
+        if (maxComponent(e_k) > 0.f && (gp.proxyMargin <= 0.f || proxyShadowRay(ray, gp.proxyMargin)))
+        {
+          batch.push_back(ray);
+          contribution.push_back(e_k);
+        }
+        else if (maxComponent(e_k) > 0.f)
+        {
+          irradiance[e] += e_k; // too close for the proxy to tell: visible
+        }
+      }
+      blocked.assign(batch.size(), 0);
+      if (visibility && !batch.empty())
+      {
+        visibility->occluded(batch.data(), blocked.data(), batch.size());
+      }
+      count += batch.size();
+      Vec3f sum = irradiance[e];
+      for (std::size_t i = 0; i < batch.size(); ++i)
+      {
+        if (!blocked[i])
+        {
+          sum += contribution[i];
+        }
+      }
+      irradiance[e] = sum * set.subsetScale[r];
+    }
+    traced += count;
+  }, progress);
+  if (rays)
+  {
+    *rays = traced;
+  }
+  return irradiance;
+}
+
+namespace
+{
+using namespace engine;
+
+class IrCpu final : public MethodBackend
+{
+public:
+  void run(std::size_t stage, const StageContext& c) override
+  {
+    switch (stage)
+    {
+      case kGeometryStage:
+        geometryTouched = true;
+        return geometry.update(c);
+      case kProxyStage:
+        return buildProxyTracer(c);
+      case kVplStage:
+        return traceVpls(c);
+      case kLightLinkStage:
+        direct.stage() = computeDirectLight(c.scene, geometry.topology, geometry.origins,
+          *geometry.tracer, c.options.twoSided, c.options.lightOversampling, c.progress);
+        return;
+      case kGatherStage:
+        return gather(c);
+      case kFinishStage:
+        return finish(c);
+    }
+  }
+
+  void commit() override
+  {
+    vpls.commit();
+    direct.commit();
+    gathered.commit();
+    geometryTouched = false;
+  }
+
+  bool discard() override
+  {
+    vpls.discard();
+    direct.discard();
+    gathered.discard();
+    // The tracers and host geometry are updated in place (see LinksCpu).
+    const bool whole = !geometryTouched;
+    geometryTouched = false;
+    return whole;
+  }
+
+  void describe(SolverStats& st) const override
+  {
+    geometry.describe(st);
+    st.rays = gathered.committed().rays;
+    st.linksRaw = st.linksCompressed = st.linkBytes = 0;
+    st.lightRays = direct.committed().shadowRays;
+    st.vpls = vpls.committed().count();
+  }
+
+private:
+  void buildProxyTracer(const StageContext& c)
+  {
+    geometryTouched = true;
+    proxyTracer.reset();
+    proxyMargin = 0.f;
+    const InstantRadiosityOptions& o = c.options.instantRadiosity;
+    if (!o.proxyVisibility)
+    {
+      return;
+    }
+    proxy = buildProxy(c.scene, o.proxyResolution);
+    proxyMargin = proxy.margin;
+    if (!proxy.triangles.empty())
+    {
+      proxyTracer = createCpuRayTracer();
+      proxyTracer->build(proxy.positions, proxy.triangles);
+    }
+  }
+
+  void traceVpls(const StageContext& c)
+  {
+    const PathSetup setup = buildPathSetup(c.scene, geometry.faceNormals, geometry.origins, c.options);
+    vpls.stage() = traceVplsCpu(setup, *geometry.tracer, c.options.instantRadiosity.interleave, c.progress,
+      memoryLeft(c.stats));
+  }
+
+  void gather(const StageContext& c)
+  {
+    const VplSet& set = vpls.now();
+    GatherParams gp;
+    gp.dmin = c.options.instantRadiosity.clampDistance * boundingDiagonal(c.scene.positions);
+    gp.proxyMargin = c.options.instantRadiosity.proxyVisibility ? proxyMargin : 0.f;
+    gp.seed = c.options.seed;
+    const RayTracer* visibility = gp.proxyMargin > 0.f ? proxyTracer.get() : geometry.tracer.get();
+    // Under MPI each process gathers its rows; one exchange completes E_ind everywhere, so
+    // that the smoothing across partition boundaries sees its neighbours.
+    const std::uint8_t* rows = ownRows(c.options, Elements{ c.scene.vertexCount(), c.options.twoSided }.count());
+    Gathered& out = gathered.stage();
+    out.irradiance = gatherCpu(c.scene, geometry.origins, set, visibility, gp, c.options.twoSided, &out.rays,
+      c.progress, rows);
+    if (rows)
+    {
+      c.options.partition->exchange(out.irradiance);
+    }
+  }
+
+  void finish(const StageContext& c)
+  {
+    finishSolution(c, geometry.topology, gathered.now().irradiance, direct.now().irradiance);
+  }
+
+  CpuGeometry geometry;
+  Proxy proxy;
+  std::unique_ptr<RayTracer> proxyTracer;
+  float proxyMargin = 0.f;
+  bool geometryTouched = false;
+  /// The gather stage's results: E_ind per element and the shadow rays it traced.
+  struct Gathered
+  {
+    std::vector<Vec3f> irradiance;
+    std::uint64_t rays = 0;
+  };
+  Staged<VplSet> vpls;
+  Staged<DirectLightResult> direct;
+  Staged<Gathered> gathered;
+};
+}
+
+std::unique_ptr<MethodBackend> createCpuBackend(const SolverOptions&)
+{
+  return std::make_unique<IrCpu>();
+}
+}

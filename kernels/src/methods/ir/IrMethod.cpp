@@ -1,0 +1,102 @@
+// Instant radiosity with virtual point lights (Keller 1997, as Marques & Santos 2010 run it),
+// per vertex: nothing is precomputed, so a deformation costs what a light move costs. Its
+// stages and what makes each stale; the formulas live in ir/IrMath.h, the backends in
+// IrCpu.cpp and IrCuda.cpp.
+#include "methods/ir/IrBackends.h"
+#include "engine/Progression.h"
+
+#include "cpu/CpuGeometry.h"
+#include "methods/ir/IrMath.h"
+
+namespace linkgi::ir
+{
+namespace
+{
+using namespace engine;
+
+/// Host bytes of an update: the geometry, the VPL stage's path slots (one Vpl per bounce
+/// and path of the first pass; a second pass, up to 64 times as many paths where most leave
+/// the scene, is checked against what the budget leaves when it is known: traceVplsCpu),
+/// the proxy's grid and BVH when visibility uses it, and the per-element vectors. On the GPU
+/// the host holds the per-element vectors only.
+MemoryEstimate estimateIrMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)
+{
+  MemoryEstimate m;
+  m.hostBytes = cpuSolutionBytes(shape, o);
+  if (cuda)
+  {
+    m.hostBytes += shape.vertices * (o.twoSided ? 2 : 1) * sizeof(Vec3f) * 6;
+    return m;
+  }
+  if (stale & (1u << kGeometryStage))
+  {
+    m.hostBytes += cpuGeometryBytes(shape);
+  }
+  if (o.instantRadiosity.proxyVisibility && (stale & (1u << kProxyStage)))
+  {
+    // The grid's cells, and the proxy's triangles and BVH: at most the mesh's.
+    const std::uint64_t r = o.instantRadiosity.proxyResolution + 1;
+    m.hostBytes += r * r * r * (sizeof(Vec3f) + sizeof(Index)) + cpuGeometryBytes(shape);
+  }
+  if (stale & (1u << kVplStage))
+  {
+    m.hostBytes += std::uint64_t(pathCount(o)) * (o.bounces + 1) * (sizeof(Vpl) + sizeof(int)) * 2;
+  }
+  return m;
+}
+
+class InstantRadiosityMethod final : public MethodSpec
+{
+public:
+  const char* name() const override { return "instant-radiosity"; }
+  const std::vector<StageSpec>& stages() const override
+  {
+    constexpr std::uint32_t geometry = 1u << kGeometryStage;
+    // Every light path is traced again whenever anything it could meet changed: the lights,
+    // the materials, the environment, the geometry (through the Geometry stage), the seed,
+    // the sides, the bounce count or the method's options. That is the method's point: a
+    // deformation costs what a light move costs. Progress shares: the gather is nearly all
+    // of an update on either backend.
+    static const std::vector<StageSpec> table = {
+      { "Geometry", "", kGeometry | kBackendSetup, 0u, 3.0 },
+      { "Proxy", "ProxyBuilds", kMethodOptions, geometry, 1.0 },
+      { "VPLs", "VplBuilds",
+        kLights | kAlbedo | kEmission | kEnvironmentLayout | kEnvironmentRadiance | kSampling |
+          kSides | kIteration | kMethodOptions,
+        geometry, 3.0 },
+      { "LightLinks", "LightLinkBuilds", kLights | kLightSampling | kSides, geometry, 7.0 },
+      { "Gather", "GatherRuns", kSides | kMethodOptions,
+        geometry | (1u << kProxyStage) | (1u << kVplStage), 85.0 },
+      { "Finish", "", kEverything, geometry | (1u << kGatherStage) | (1u << kLightLinkStage), 1.0 },
+    };
+    return table;
+  }
+  std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
+  std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  double sampleWork(std::size_t elements, const SolverOptions& o) const override
+  {
+    // The gather: each element meets its subset of the VPLs.
+    return double(elements) * o.instantRadiosity.vplCount / o.instantRadiosity.interleave;
+  }
+  SolverOptions coarser(const SolverOptions& o, double fraction) const override
+  {
+    // At least 4 VPLs in every interleaved subset.
+    SolverOptions c = o;
+    const std::uint32_t subsets = o.instantRadiosity.interleave;
+    c.instantRadiosity.vplCount = scaledCount(o.instantRadiosity.vplCount, fraction, std::max(16u, 4 * subsets));
+    return c;
+  }
+  MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
+    bool cuda) const override
+  {
+    return estimateIrMemory(shape, o, stale, cuda);
+  }
+};
+}
+
+const MethodSpec& instantRadiosityMethod()
+{
+  static const InstantRadiosityMethod method;
+  return method;
+}
+}

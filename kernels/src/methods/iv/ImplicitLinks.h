@@ -1,0 +1,140 @@
+// Implicit-visibility links (Dong, Kautz, Theobalt & Seidel 2007): links between the nodes
+// of a ClusterTree, binned by direction in a world-aligned cube map of 6 x N x N bins; the
+// shortest link per bin wins, so visibility is implied and no ray is traced.
+#pragma once
+
+#include "methods/iv/ClusterTree.h"
+#include "methods/iv/IvShared.h"
+
+#include "shared/Bounce.h"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace linkgi::iv
+{
+/// The cube-map bin (face * N * N + row * N + column) of a nonzero direction d. Faces:
+/// +x, -x, +y, -y, +z, -z.
+LINKGI_HOST_DEVICE inline int cubeBin(const Vec3f& d, int n)
+{
+  const float ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
+  int face;
+  float u, v, m;
+  if (ax >= ay && ax >= az)
+  {
+    face = d.x > 0.f ? 0 : 1;
+    m = ax;
+    u = d.y;
+    v = d.z;
+  }
+  else if (ay >= az)
+  {
+    face = d.y > 0.f ? 2 : 3;
+    m = ay;
+    u = d.x;
+    v = d.z;
+  }
+  else
+  {
+    face = d.z > 0.f ? 4 : 5;
+    m = az;
+    u = d.x;
+    v = d.y;
+  }
+  // Clamped by comparisons (a NaN gives 0), not fminf/fmaxf: on the host those are libm
+  // calls, and this runs for every link.
+  const float last = float(n - 1);
+  const float x = (u / m + 1.f) * 0.5f * n, y = (v / m + 1.f) * 0.5f * n;
+  const int col = static_cast<int>(x > 0.f ? (x < last ? x : last) : 0.f);
+  const int row = static_cast<int>(y > 0.f ? (y < last ? y : last) : 0.f);
+  return (face * n + row) * n + col;
+}
+
+/// The 6 N^2 bins: unit centre directions and exact solid angles (they sum to 4 pi; a
+/// corner bin is about a fifth of a centre bin).
+struct CubeBins
+{
+  int n = 0;
+  std::vector<Vec3f> center;
+  std::vector<float> solidAngle;
+  static CubeBins make(int n);
+  std::size_t count() const { return center.size(); }
+  /// 4 pi / (6 N^2): the subdivision threshold.
+  float meanSolidAngle() const { return 4.f * kPi / float(count()); }
+};
+
+struct LinkCreationOptions
+{
+  /// Heights above a receiver's plane below this count as on it (coplanar discs never
+  /// exchange light): a small fraction of the scene size.
+  float planeEpsilon = 0.f;
+  /// Clusters whose normals spread by more than this half angle (radians) are subdivided
+  /// before they are linked, so that which side a source shows is decided per narrow cone.
+  float maxConeAngle = 0.785398f;
+
+  /// The options for `scene`: the plane epsilon a tenth of its ray epsilon.
+  static LinkCreationOptions of(const Scene& scene);
+};
+
+/// Links as created between tree nodes, before refinement: row = receiving node, columns
+/// = source nodes. A pair of nodes is linked once both see the other within a bin's solid
+/// angle (else the larger is subdivided) and each end that can face the other receives;
+/// then each receiving node's bins (seen from its centre) keep only their shortest link.
+struct NodeLinks
+{
+  SparseMatrix byReceiver; ///< weights unused (empty)
+  std::uint64_t pairsVisited = 0;
+  std::uint64_t created = 0; ///< links gathered for the final pass in which each node's bins keep their shortest (each task has already kept its own shortest)
+};
+
+/// The pair recursion's record of every node (positions, bounds, first child).
+std::vector<NodeBounds> nodeBounds(const ClusterTree& tree);
+/// The pair recursion's rules over a tree: `nodes`, `left`, `right` (ClusterTree's, or
+/// their copies on a GPU) and the thresholds of `bins` and `options`.
+PairRules pairRules(const NodeBounds* nodes, const Index* left, const Index* right, std::size_t leafCount,
+  const CubeBins& bins, const LinkCreationOptions& options);
+
+/// `rows` (per leaf, or null for all): only the links that reach these leaves' ancestors
+/// (a process's share under MPI); pairs of which neither holds such a leaf are not followed.
+NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
+  const LinkCreationOptions& options, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
+
+/// What the leaves gather after refinement and push-down.
+struct LeafLinks
+{
+  /// Row = leaf (vertex), column = source node, weight = the bin's cosine-weighted solid
+  /// angle. Sources that show the leaf their back occupy their bin but are not listed
+  /// (they are black, as a ray hitting a back face sees black in the link method).
+  SparseMatrix transport;
+  /// Row = leaf, column = environment texel (environmentTexelRadiance's layout): the bins
+  /// of the leaf's hemisphere that no link occupies.
+  SparseMatrix environment;
+  std::uint64_t occupiedBins = 0, emptyBins = 0;
+};
+
+/// Refinement and push-down in one pass: for each leaf, the links of every node on its path
+/// to the root compete per bin, as seen from the leaf (direction and distance from its
+/// disc to the source), and the shortest wins. This is what the paper's top-down
+/// refinement (a shorter link further down removes a parent's link in its bin, a longer
+/// one is removed) followed by pushing every receiving end to the leaves leaves at a leaf.
+/// Leaf discs too close to fit a bin are drawn into every bin they cover. Bins of the
+/// leaf's hemisphere are weighted by solid angle x cosine at their centre, scaled so that
+/// the whole hemisphere weighs pi (a closed surface gathers exactly). `receiverOffsets`
+/// (per leaf, or empty): where a leaf looks from, relative to its vertex (the ray-origin
+/// shift towards its one-ring, so a vertex on a contact line looks from inside the room).
+/// `rows` (per leaf, or null for all): the leaves to push to; the others get empty rows
+/// (a process's share under MPI, SolverOptions::partition).
+LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
+  const Environment& environment, const std::vector<RayOrigin>& receivers,
+  const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
+
+/// (Each function reports its own fraction in [0, 1] through `progress`.)
+/// n_B gather iterations: L at the leaves, pulled up the tree (area-weighted), gathered at
+/// the leaves through `transport`; as iterateBounces, from E_ind = 0, returns E_ind.
+/// With `exchange` (a partition's), `transport` holds this process's rows only and each
+/// gather is completed by the other processes' rows before the next bounce pulls it up.
+std::vector<Vec3f> iterateHierarchicalBounces(const ClusterTree& tree,
+  const SparseMatrix& transport, const BounceInputs& inputs, std::uint32_t bounces,
+  const ProgressCallback& progress = {}, const std::function<void(std::vector<Vec3f>&)>& exchange = {});
+}

@@ -1,0 +1,97 @@
+// The implicit-visibility method (Dong, Kautz, Theobalt & Seidel 2007): its stages and what
+// makes each stale. Formulas in ClusterTree.h and ImplicitLinks.h; the CPU backend in
+// IvCpu.cpp, the CUDA backend in IvCuda.cpp. Documentation/Methods.md, "Implicit visibility".
+#include "methods/iv/IvBackends.h"
+#include "engine/Progression.h"
+
+#include "cpu/CpuGeometry.h"
+
+#include "cpu/Parallel.h"
+
+namespace linkgi::iv
+{
+namespace
+{
+using namespace engine;
+
+/// Node links that the link stage holds at its peak (each task's links after keeping
+/// each receiver's shortest per bin, and their CSR), per vertex and bin per side. Measured
+/// on the standard scenes and Testing/Data/Models: 28-40 on rooms from 8.6k to 121k
+/// vertices (the count depends on how much of the scene each part sees, not on sizes
+/// alone; tearoom, the most open, sets it), near 0 on small or roomless scenes
+/// (Documentation/Methods.md, "Memory").
+constexpr double kKeptLinks = 42.0;
+
+/// Host bytes of an update: the geometry and the cluster tree (two nodes per vertex); at
+/// the link stage the node links (a pair while kept by a task, a CSR column after; see
+/// kKeptLinks), each leaf's hemisphere of bins at most (transport or environment, column
+/// and weight) and the nodes' bounds; per element the vectors of the bounces. Not a bound:
+/// the node links depend on the scene.
+MemoryEstimate estimateIvMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)
+{
+  const std::uint64_t v = shape.vertices, n = o.implicitVisibility.binsPerSide;
+  constexpr std::uint64_t nodeBytes = 3 * sizeof(Index) + 2 * sizeof(Vec3f) + 4 * sizeof(float);
+  MemoryEstimate m;
+  m.hostBytes = cpuSolutionBytes(shape, o) + 2 * v * nodeBytes;
+  if (!cuda && (stale & (1u << kElementStage)))
+  {
+    m.hostBytes += cpuGeometryBytes(shape);
+  }
+  if (stale & (1u << kLinkStage))
+  {
+    // Each worker's tasks hold links not yet reduced, and its allocator arena keeps what
+    // they free: tearoom peaks 1.6x higher on 16 cores than on 2 (Methods.md, "Memory").
+    const double kept = kKeptLinks * double(n) * double(v) * (1.0 + workerCount() / 32.0);
+    m.hostBytes += std::uint64_t(kept * (sizeof(std::pair<Index, Index>) + sizeof(Index))) +
+      v * (3 * n * n + 6 * n) * (sizeof(Index) + sizeof(float)) + 2 * v * 2 * nodeBytes;
+  }
+  return m;
+}
+
+class ImplicitVisibilityMethod final : public MethodSpec
+{
+public:
+  const char* name() const override { return "implicit-visibility"; }
+  const std::vector<StageSpec>& stages() const override
+  {
+    // The links are rebuilt whenever the geometry moves: that is the method (no rays, so
+    // a new structure per frame is affordable). kSampling holds the partition's rows under
+    // MPI (which leaves a process pushes to); the method reads none of its rays, twist and
+    // seed. Shares: torso on the CPU at N = 12.
+    static const std::vector<StageSpec> table = {
+      { "Elements", "ElementUpdates", kGeometry, 0u, 5.0 },
+      { "ImplicitLinks", "ImplicitLinkBuilds", kMethodOptions | kEnvironmentLayout | kSampling, 1u << kElementStage, 80.0 },
+      { "LightLinks", "LightLinkBuilds", kLights | kLightSampling | kSides, 1u << kElementStage, 10.0 },
+      { "Bounces", "BounceRuns", kEverything, (1u << kElementStage) | (1u << kLinkStage) | (1u << kLightLinkStage), 5.0 },
+    };
+    return table;
+  }
+  std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
+  std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  double sampleWork(std::size_t elements, const SolverOptions& o) const override
+  {
+    // Links per element are bounded by the bins of its cube map.
+    const double n = o.implicitVisibility.binsPerSide;
+    return double(elements) * 6.0 * n * n;
+  }
+  SolverOptions coarser(const SolverOptions& o, double fraction) const override
+  {
+    SolverOptions c = o;
+    c.implicitVisibility.binsPerSide = std::max(2u, std::min(o.implicitVisibility.binsPerSide,
+      static_cast<std::uint32_t>(o.implicitVisibility.binsPerSide * std::sqrt(fraction))));
+    return c;
+  }
+  MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
+    bool cuda) const override
+  {
+    return estimateIvMemory(shape, o, stale, cuda);
+  }
+};
+}
+
+const MethodSpec& implicitVisibilityMethod()
+{
+  static const ImplicitVisibilityMethod method;
+  return method;
+}
+}

@@ -1,0 +1,245 @@
+// Push to the leaves (ImplicitLinks.h pushToLeaves): every leaf's row of the transport and
+// environment matrices from the node links of its ancestors, keeping the shortest link per
+// direction bin. Split from ImplicitLinks.cpp, which creates the node links.
+#include "methods/iv/ImplicitLinks.h"
+
+#include "linkgi/Error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace linkgi::iv
+{
+namespace
+{
+/// Rows [begin, end) of a matrix, built by one task.
+struct RowSlice
+{
+  std::vector<Index> counts, columns, envCounts, envColumns;
+  std::vector<float> weights, envWeights;
+};
+
+/// Sorts one row's (column, weight) entries by column and merges equal columns.
+void mergeRow(std::vector<std::pair<Index, float>>& row, std::vector<Index>& columns,
+  std::vector<float>& weights, std::vector<Index>& counts)
+{
+  std::sort(row.begin(), row.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  Index count = 0;
+  for (std::size_t i = 0; i < row.size(); ++i)
+  {
+    if (i > 0 && row[i].first == row[i - 1].first)
+    {
+      weights.back() += row[i].second;
+      continue;
+    }
+    columns.push_back(row[i].first);
+    weights.push_back(row[i].second);
+    ++count;
+  }
+  counts.push_back(count);
+  row.clear();
+}
+
+void concatenate(const std::vector<RowSlice>& slices, bool environment, SparseMatrix& m)
+{
+  std::vector<Index> counts;
+  for (const RowSlice& s : slices)
+  {
+    const auto& c = environment ? s.envCounts : s.counts;
+    counts.insert(counts.end(), c.begin(), c.end());
+  }
+  exclusiveOffsets(counts, 0, m.rowOffsets);
+  m.columns.clear();
+  m.weights.clear();
+  m.columns.reserve(m.rowOffsets.back());
+  m.weights.reserve(m.rowOffsets.back());
+  for (const RowSlice& s : slices)
+  {
+    const auto& c = environment ? s.envColumns : s.columns;
+    const auto& w = environment ? s.envWeights : s.weights;
+    m.columns.insert(m.columns.end(), c.begin(), c.end());
+    m.weights.insert(m.weights.end(), w.begin(), w.end());
+  }
+}
+
+/// Leaf discs nearer than twice their radius (neighbours; a disc across a contact) cover
+/// many bins of the receiver at p: each is drawn into every bin whose centre ray hits it, at
+/// the hit's distance, so that the bins beside close neighbours and across a contact do
+/// not stay empty and see through the surface.
+void rasterizeNearDiscs(const ClusterTree& t, const std::vector<Index>& discs, const Vec3f& p,
+  const Vec3f& n, const CubeBins& bins, std::vector<float>& bestDistance, std::vector<Index>& bestSource)
+{
+  if (discs.empty())
+  {
+    return;
+  }
+  for (std::size_t b = 0; b < bins.count(); ++b)
+  {
+    const Vec3f& dir = bins.center[b];
+    if (dot(dir, n) <= 0.f)
+    {
+      continue;
+    }
+    for (Index src : discs)
+    {
+      const float d2 = nearDiscHit(p, dir, t.position[src], t.normal[src], t.radius[src]);
+      if (d2 < 0.f)
+      {
+        continue;
+      }
+      if (bestSource[b] == kInvalidIndex || d2 < bestDistance[b] || (d2 == bestDistance[b] && src < bestSource[b]))
+      {
+        bestDistance[b] = d2;
+        bestSource[b] = src;
+      }
+    }
+  }
+}
+}
+
+LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
+  const Environment& environment, const std::vector<RayOrigin>& receivers,
+  const ProgressCallback& progress, const std::uint8_t* rows)
+{
+  const std::size_t leaves = tree.leafCount, nb = bins.count();
+  const std::size_t sliceCount = std::min<std::size_t>(leaves, std::size_t(workerCount()) * 16);
+  std::vector<RowSlice> slices(sliceCount);
+  std::vector<std::uint64_t> occupied(sliceCount, 0), empty(sliceCount, 0);
+  const SparseMatrix& m = links.byReceiver;
+  const float binAngle = std::sqrt(bins.meanSolidAngle());
+  // A link keeps the bin it has at its receiving node (below), whichever leaf it is pushed
+  // to: one cube-bin lookup per link instead of one per link and leaf beneath it.
+  std::vector<Index> binTexel(nb); // the environment texel each bin's centre sees
+  for (std::size_t b = 0; b < nb; ++b)
+  {
+    binTexel[b] = environment.texelIndex(bins.center[b]);
+  }
+  std::vector<int> linkBin(m.nonZeros(), -1);
+  parallelRanges(m.rows(), 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t node = begin; node < end; ++node)
+    {
+      for (Offset e = m.rowOffsets[node]; e < m.rowOffsets[node + 1]; ++e)
+      {
+        const Vec3f d = tree.position[m.columns[e]] - tree.position[node];
+        linkBin[e] = dot(d, d) > 0.f ? cubeBin(d, bins.n) : -1;
+      }
+    }
+  });
+  parallelFor("ImplicitLinks", sliceCount, 1, [&](std::size_t first, std::size_t last) {
+    std::vector<float> bestDistance(nb);
+    std::vector<Index> bestSource(nb, kInvalidIndex);
+    std::vector<std::pair<Index, float>> row, envRow;
+    std::vector<Index> nearDiscs;
+    for (std::size_t s = first; s < last; ++s)
+    {
+      RowSlice& out = slices[s];
+      // Local counts: neighbouring slices' counters share a cache line.
+      std::uint64_t occupiedHere = 0, emptyHere = 0;
+      for (std::size_t leaf = s * leaves / sliceCount; leaf < (s + 1) * leaves / sliceCount; ++leaf)
+      {
+        if (rows && !rows[leaf])
+        {
+          out.counts.push_back(0); // another process's row
+          out.envCounts.push_back(0);
+          continue;
+        }
+        const Vec3f n = tree.normal[leaf];
+        const Vec3f p = receivers.empty() ? tree.position[leaf] : tree.position[leaf] + receivers[leaf].shift;
+        for (Index node = Index(leaf); node != kInvalidIndex; node = tree.parent[node])
+        {
+          for (Offset e = m.rowOffsets[node]; e < m.rowOffsets[node + 1]; ++e)
+          {
+            const Index src = m.columns[e];
+            // `bin` >= 0: the point's bin is known (the link's own at an ancestor node).
+            const auto offer = [&](const Vec3f& q, int bin) {
+              const Vec3f d = q - p;
+              const float d2 = dot(d, d);
+              if (!(d2 > 0.f) || dot(n, d) <= 0.f)
+              {
+                return; // behind this leaf's plane, though its ancestor could see it
+              }
+              // A link pushed down keeps the bin it has at its node (as in the paper): a
+              // node's bins hold one link each, and re-binning from the leaf would leave
+              // holes between them.
+              if (bin < 0)
+              {
+                const Vec3f binned = node == leaf ? d : q - tree.position[node];
+                bin = cubeBin(dot(binned, binned) > 0.f ? binned : d, bins.n);
+              }
+              if (bestSource[bin] == kInvalidIndex || d2 < bestDistance[bin] ||
+                (d2 == bestDistance[bin] && src < bestSource[bin]))
+              {
+                bestDistance[bin] = d2;
+                bestSource[bin] = src;
+              }
+            };
+            offer(tree.position[src], node == leaf ? -1 : linkBin[e]);
+            if (tree.isLeaf(src))
+            {
+              const Vec3f toSource = tree.position[src] - p;
+              const float r2 = dot(toSource, toSource), radius = tree.radius[src];
+              const DiscReach reach = discReach(radius, r2, binAngle);
+              if (reach == DiscReach::Near)
+              {
+                nearDiscs.push_back(src); // a neighbour, or a disc across a contact
+              }
+              else if (reach == DiscReach::Splat)
+              {
+                auto point = [&](const Vec3f& q) { offer(q, -1); };
+                splatDisc(tree.position[src], tree.normal[src], radius, std::sqrt(r2), binAngle, point);
+              }
+            }
+          }
+        }
+        rasterizeNearDiscs(tree, nearDiscs, p, n, bins, bestDistance, bestSource);
+        nearDiscs.clear();
+        float hemisphere = 0.f;
+        for (std::size_t b = 0; b < nb; ++b)
+        {
+          const float c = dot(n, bins.center[b]);
+          const Index src = bestSource[b];
+          bestSource[b] = kInvalidIndex;
+          if (c <= 0.f)
+          {
+            continue;
+          }
+          const float w = bins.solidAngle[b] * c;
+          hemisphere += w;
+          if (src == kInvalidIndex)
+          {
+            envRow.emplace_back(binTexel[b], w);
+            ++emptyHere;
+            continue;
+          }
+          ++occupiedHere;
+          if (dot(tree.normal[src], p - tree.position[src]) > 0.f)
+          {
+            row.emplace_back(src, w);
+          }
+        }
+        const float scale = hemisphere > 0.f ? kPi / hemisphere : 0.f;
+        for (auto* r : { &row, &envRow })
+        {
+          for (auto& entry : *r)
+          {
+            entry.second *= scale;
+          }
+        }
+        mergeRow(row, out.columns, out.weights, out.counts);
+        mergeRow(envRow, out.envColumns, out.envWeights, out.envCounts);
+      }
+      occupied[s] = occupiedHere;
+      empty[s] = emptyHere;
+    }
+  }, [&progress](const char*, double f) { return !progress || progress("ImplicitLinks", f); });
+  LeafLinks result;
+  concatenate(slices, false, result.transport);
+  concatenate(slices, true, result.environment);
+  for (std::size_t s = 0; s < sliceCount; ++s)
+  {
+    result.occupiedBins += occupied[s];
+    result.emptyBins += empty[s];
+  }
+  return result;
+}
+}

@@ -1,0 +1,325 @@
+// The implicit-visibility method on one GPU. The cluster tree is the host's (built when the
+// topology changes, refit otherwise: ~1 ms on the torso) and goes up as one record per node;
+// the pair recursion (one kernel per level of pairs), each node's shortest link per bin,
+// the push to the leaves (one block per leaf, its bins in shared memory), the gathers and
+// the pull-ups run on the device. The mesh, the direct light and the finish are the pieces
+// every one-GPU backend shares (cuda/OneDevice.h). Formulas: iv/IvShared.h, as on the CPU.
+#include "methods/iv/ImplicitLinks.h"
+#include "methods/iv/IvBackends.h"
+#include "methods/iv/cuda/IvKernels.h"
+
+#include "cuda/OneDevice.h"
+
+#include "cuda/Cuda.h"
+#include "shared/Metrics.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace linkgi::iv
+{
+namespace
+{
+using namespace engine;
+using cuda::GPUBuffer;
+using cuda::Rgba;
+
+class IvCuda final : public MethodBackend
+{
+public:
+  void run(std::size_t stage, const StageContext& c) override
+  {
+    // Device state is updated in place: a failed update leaves it unusable (discard()).
+    switch (stage)
+    {
+      case kElementStage:
+        return updateElements(c);
+      case kLinkStage:
+        return buildLinks(c);
+      case kLightLinkStage:
+        return lightLinks(c);
+      case kBounceStage:
+        return bounce(c);
+    }
+  }
+  void commit() override {}
+  bool discard() override { return false; }
+
+  void describe(SolverStats& st) const override
+  {
+    device.describe(st);
+    st.rays = 0; // visibility is implied: no link rays
+    st.linksRaw = nodeLinks;
+    st.linksCompressed = transportEntries;
+    st.linkBytes = (transportEntries + environmentEntries) * (sizeof(Index) + sizeof(float));
+    st.lightRays = lightRays;
+  }
+
+private:
+  void updateElements(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    mesh.update(s, c.changes, stream, &c.stats);
+    const auto t = std::chrono::steady_clock::now();
+    const std::vector<float> areas = vertexAreas(s);
+    if ((c.changes & kTopology) || tree.leafCount != s.vertexCount())
+    {
+      tree = ClusterTree::build(s, areas);
+      uploadStructure();
+      c.part("HierarchyBuild", msSince(t));
+    }
+    else
+    {
+      tree.refit(s, areas);
+      c.part("HierarchyRefit", msSince(t));
+    }
+    nodes.upload(nodeBounds(tree), stream);
+    area.upload(tree.area, stream);
+    linkOptions = LinkCreationOptions::of(s); // a pass over the positions: once per geometry
+  }
+
+  /// What does not move with the vertices: children, parents, and the interior nodes by
+  /// height for the pull-up (nodes of one height do not depend on each other).
+  void uploadStructure()
+  {
+    const std::size_t leaves = tree.leafCount, interior = tree.left.size();
+    std::vector<Index> height(tree.nodeCount(), 0);
+    Index tallest = 0;
+    for (std::size_t i = 0; i < interior; ++i)
+    {
+      const std::size_t id = leaves + i;
+      height[id] = 1 + std::max(height[tree.left[i]], height[tree.right[i]]);
+      tallest = std::max(tallest, height[id]);
+    }
+    levelOffsets.assign(std::size_t(tallest) + 1, 0);
+    for (std::size_t i = 0; i < interior; ++i)
+    {
+      ++levelOffsets[height[leaves + i]]; // counts of height h at [h], h >= 1
+    }
+    Index sum = 0;
+    for (Index& o : levelOffsets)
+    {
+      const Index n = o;
+      o = sum;
+      sum += n;
+    }
+    levelOffsets.push_back(sum);
+    levelOffsets.erase(levelOffsets.begin()); // level l = height l + 1
+    std::vector<Index> order(interior), next(levelOffsets.begin(), levelOffsets.end() - 1);
+    for (std::size_t i = 0; i < interior; ++i)
+    {
+      order[next[height[leaves + i] - 1]++] = Index(leaves + i);
+    }
+    levelNodes.upload(order, stream);
+    left.upload(tree.left, stream);
+    right.upload(tree.right, stream);
+    parent.upload(tree.parent, stream);
+  }
+
+  void buildLinks(const StageContext& c)
+  {
+    const int n = int(c.options.implicitVisibility.binsPerSide);
+    if (n > gpu::kMaxBinsPerSide)
+    {
+      throw CudaError("The implicit-visibility method on the GPU holds at most " +
+          std::to_string(gpu::kMaxBinsPerSide) + " bins per side; " + std::to_string(n) + " were asked for.",
+        false);
+    }
+    if (bins.n != n)
+    {
+      bins = CubeBins::make(n);
+      binCenters.upload(bins.center, stream);
+      binSolidAngles.upload(bins.solidAngle, stream);
+    }
+    std::vector<Index> texels(bins.count());
+    for (std::size_t b = 0; b < bins.count(); ++b)
+    {
+      texels[b] = c.scene.environment.texelIndex(bins.center[b]);
+    }
+    binTexels.upload(texels, stream);
+
+    // The pair recursion, breadth first: one launch per level of pairs, each level's
+    // links and next pairs appended; a level that overflows its buffers runs again.
+    const PairRules rules = pairRules(nodes.data(), left.data(), right.data(), tree.leafCount, bins, linkOptions);
+    const gpu::NodePair root{ tree.root(), tree.root() };
+    frontier.upload(&root, 1, stream);
+    std::size_t frontierCount = 1, linkCount = 0;
+    counters.resize(2);
+    unsigned long long* pinned = device.counters + kNextSlot; // [next, links]
+    while (frontierCount)
+    {
+      c.check(0.0);
+      for (;;)
+      {
+        const unsigned long long start[2] = { 0, linkCount };
+        LINKGI_CUDA_CHECK(cudaMemcpyAsync(counters.data(), start, sizeof start, cudaMemcpyHostToDevice, stream));
+        const std::size_t nextRoom = std::max<std::size_t>(next.size(), 4 * frontierCount);
+        next.resize(nextRoom);
+        gpu::visitPairs(rules, frontier.data(), frontierCount, { next.data(), counters.data(), next.size() },
+          { links.data(), counters.data() + 1, links.size() }, stream);
+        LINKGI_CUDA_CHECK(cudaMemcpyAsync(pinned, counters.data(), 2 * sizeof(unsigned long long),
+          cudaMemcpyDeviceToHost, stream));
+        LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+        if (pinned[0] <= next.size() && pinned[1] <= links.size())
+        {
+          break;
+        }
+        // Too little room: grow (the links so far kept) and run the level again.
+        next.resize(std::size_t(pinned[0]));
+        links.growKeep(std::max<std::size_t>(std::size_t(pinned[1]) + std::size_t(pinned[1]) / 2, links.size()), stream);
+      }
+      linkCount = std::size_t(pinned[1]);
+      frontierCount = std::size_t(pinned[0]);
+      std::swap(frontier, next);
+    }
+    gpu::keepShortestPerBin(links.data(), linkCount, nodes.data(), tree.nodeCount(), n, nodeRows, stream);
+
+    gpu::PushParams p;
+    p.nodes = nodes.data();
+    p.parent = parent.data();
+    p.rowStarts = nodeRows.rowStarts.data();
+    p.rowCounts = nodeRows.rowCounts.data();
+    p.columns = nodeRows.columns.data();
+    p.receivers = mesh.origins.data();
+    p.binCenters = binCenters.data();
+    p.binSolidAngles = binSolidAngles.data();
+    p.binTexels = binTexels.data();
+    p.leafCount = Index(tree.leafCount);
+    p.binsPerSide = n;
+    p.binAngle = std::sqrt(bins.meanSolidAngle());
+    totals.resize(5);
+    totals.fillZero(stream);
+    stride = bins.count();
+    gpu::pushToLeaves(p, stride, leafRows, totals.data(), stream);
+    // The totals say how long the rows are (the bounces' threads per row) and whether a
+    // leaf had more near discs than the push holds.
+    LINKGI_CUDA_CHECK(cudaMemcpyAsync(device.counters + kTotalsSlot, totals.data(), 5 * sizeof(unsigned long long),
+      cudaMemcpyDeviceToHost, stream));
+    Offset lastStart = 0;
+    Index lastCount = 0;
+    if (tree.nodeCount())
+    {
+      LINKGI_CUDA_CHECK(cudaMemcpyAsync(&lastStart, nodeRows.rowStarts.data() + tree.nodeCount() - 1, sizeof lastStart,
+        cudaMemcpyDeviceToHost, stream));
+      LINKGI_CUDA_CHECK(cudaMemcpyAsync(&lastCount, nodeRows.rowCounts.data() + tree.nodeCount() - 1, sizeof lastCount,
+        cudaMemcpyDeviceToHost, stream));
+    }
+    LINKGI_CUDA_CHECK(cudaStreamSynchronize(stream));
+    const unsigned long long* t = device.counters + kTotalsSlot;
+    if (t[4])
+    {
+      throw CudaError(std::to_string(t[4]) + " leaves had more near discs than the GPU's push holds.", false);
+    }
+    nodeLinks = lastStart + lastCount;
+    transportEntries = t[2];
+    environmentEntries = t[3];
+  }
+
+  void lightLinks(const StageContext& c)
+  {
+    direct.queue(c.scene, c.options, mesh, device.counters + kLightSlot, stream);
+    lightPending = true;
+  }
+
+  cuda::CsrView view(const GPUBuffer<Index>& counts, const GPUBuffer<Index>& columns, const GPUBuffer<float>& weights,
+    Offset entries) const
+  {
+    cuda::CsrView v;
+    v.rowStarts = leafRows.rowStarts.data();
+    v.rowCounts = counts.data();
+    v.columns = columns.data();
+    v.weights = weights.data();
+    v.rows = Index(tree.leafCount);
+    v.firstElement = 0;
+    v.nonZeros = entries;
+    v.lanes = cuda::lanesForRows(entries, tree.leafCount);
+    return v;
+  }
+
+  void bounce(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    const SolverOptions& o = c.options;
+    const std::size_t nv = tree.leafCount;
+    if (c.changes & (kTopology | kAlbedo))
+    {
+      albedo.upload(s.albedo, stream);
+    }
+    if (c.changes & (kTopology | kEmission))
+    {
+      emission.upload(s.emission, stream);
+    }
+    std::vector<Rgba> texels;
+    for (const Vec3f& r : environmentTexelRadiance(s.environment))
+    {
+      texels.push_back(cuda::toRgba(r));
+    }
+    texelRadiance.upload(texels, stream);
+    for (GPUBuffer<Rgba>* b : { &envIrradiance, &fixed, &indirect })
+    {
+      b->resize(std::max<std::size_t>(nv, 1));
+    }
+    radiance.resize(std::max<std::size_t>(tree.nodeCount(), 1));
+    cuda::gatherRgb(view(leafRows.envCounts, leafRows.envColumns, leafRows.envWeights, environmentEntries),
+      texelRadiance.data(), envIrradiance.data(), stream);
+    gpu::addDirect(direct.direct.data(), envIrradiance.data(), nv, fixed.data(), stream);
+    indirect.fillZero(stream);
+    gpu::TreeLevels levels;
+    levels.left = left.data();
+    levels.right = right.data();
+    levels.area = area.data();
+    levels.levelNodes = levelNodes.data();
+    levels.leafCount = Index(nv);
+    const Vec3f* le = s.emission.empty() ? nullptr : emission.data();
+    const cuda::CsrView w = view(leafRows.counts, leafRows.columns, leafRows.weights, transportEntries);
+    for (std::uint32_t b = 0; b < o.bounces; ++b)
+    {
+      c.check(double(b) / std::max(1u, o.bounces));
+      gpu::leafRadianceAndPullUp(levels, levelOffsets, albedo.data(), le, fixed.data(), indirect.data(),
+        radiance.data(), stream);
+      cuda::gatherRgb(w, radiance.data(), indirect.data(), stream);
+    }
+    gpu::addTo(envIrradiance.data(), nv, indirect.data(), stream);
+    done.run(s, o, mesh, direct.direct.data(), indirect.data(), albedo.data(), le, c.solution, {}, stream);
+    if (lightPending)
+    {
+      lightRays = device.counters[kLightSlot];
+      lightPending = false;
+    }
+  }
+
+  /// counters' slots (pinned): the direct light's shadow rays, a level's [next pairs, links],
+  /// the push's five totals.
+  static constexpr int kLightSlot = 0, kNextSlot = 1, kTotalsSlot = 3, kSlots = 8;
+
+  cuda::DeviceContext device{ kSlots };
+  cudaStream_t stream = device.stream;
+  cuda::DeviceMesh mesh;
+  cuda::DeviceDirectLight direct;
+  cuda::DeviceFinish done;
+
+  ClusterTree tree;
+  CubeBins bins;
+  LinkCreationOptions linkOptions;
+  std::vector<Index> levelOffsets;
+  GPUBuffer<NodeBounds> nodes;
+  GPUBuffer<float> area, binSolidAngles;
+  GPUBuffer<Index> left, right, parent, levelNodes, binTexels;
+  GPUBuffer<Vec3f> binCenters, albedo, emission;
+  GPUBuffer<gpu::NodePair> frontier, next, links;
+  GPUBuffer<unsigned long long> counters, totals;
+  gpu::NodeRows nodeRows;
+  gpu::LeafRows leafRows;
+  std::size_t stride = 0;
+  GPUBuffer<Rgba> texelRadiance, envIrradiance, fixed, indirect, radiance;
+  std::uint64_t nodeLinks = 0, transportEntries = 0, environmentEntries = 0, lightRays = 0;
+  bool lightPending = false;
+};
+}
+
+std::unique_ptr<MethodBackend> createCudaBackend(const SolverOptions&)
+{
+  return std::make_unique<IvCuda>();
+}
+}

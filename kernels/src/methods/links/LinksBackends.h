@@ -1,0 +1,28 @@
+// The link-structure method's backends, as its MethodSpec creates them (LinksMethod.cpp).
+#pragma once
+
+#include "engine/Pipeline.h"
+#include "methods/links/Links.h"
+
+namespace linkgi::links
+{
+/// The stages, in the order of LinksMethod.cpp's table.
+enum Stage : std::size_t
+{
+  kGeometryStage,   ///< topology, ray origins, face normals, acceleration structure
+  kLinkStage,       ///< link rays and their compression into W and Wenv
+  kLightLinkStage,  ///< shadow rays: E_d
+  kBounceStage      ///< E_env, Jacobi bounces, smoothing, outgoing radiance
+};
+
+/// LinksPerElement::bound for a mesh of this shape under these options.
+LinksPerElement linksPerElement(const MemoryShape& shape, const SolverOptions& options);
+
+/// The CPU backend's peak bytes for the stages `stale` (LinksCpu.cpp, beside what it allocates).
+MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& options, std::uint32_t stale);
+
+/// Embree (or our BVH) and all cores.
+std::unique_ptr<engine::MethodBackend> createCpuBackend(const SolverOptions& options);
+/// The CUDA engine (cuda/LinksCuda.cpp); CudaUnavailable.cpp throws CudaError instead.
+std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions& options);
+}

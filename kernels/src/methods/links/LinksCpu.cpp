@@ -1,0 +1,221 @@
+// The link-structure method on the CPU: Embree (or our BVH) and all cores.
+#include "methods/links/LinksBackends.h"
+
+#include "cpu/CpuGeometry.h"
+
+#include "shared/Bounce.h"
+#include "linkgi/Error.h"
+#include "shared/DirectLight.h"
+#include "methods/links/Links.h"
+#include "linkgi/Memory.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace linkgi::links
+{
+namespace
+{
+using namespace engine;
+
+class LinksCpu final : public MethodBackend
+{
+public:
+  void run(std::size_t stage, const StageContext& c) override
+  {
+    switch (stage)
+    {
+      case kGeometryStage:
+        return updateGeometry(c);
+      case kLinkStage:
+        return buildLinks(c);
+      case kLightLinkStage:
+        return lightLinks(c);
+      case kBounceStage:
+        return bounce(c);
+    }
+  }
+
+  void commit() override
+  {
+    if (linksStaged)
+    {
+      std::swap(links, nextLinks);
+      nextLinks = LinkStructure();
+    }
+    if (directStaged)
+    {
+      std::swap(direct, nextDirect);
+    }
+    linksStaged = directStaged = geometryTouched = linksDropped = false;
+  }
+
+  bool discard() override
+  {
+    linksStaged = directStaged = false;
+    // The tracer and the host geometry are updated in place: after a failure they may
+    // belong to the failed scene, and the next update must rebuild them.
+    const bool whole = !geometryTouched && !linksDropped;
+    geometryTouched = linksDropped = false;
+    return whole;
+  }
+
+  void describe(SolverStats& st) const override
+  {
+    geometry.describe(st);
+    st.rays = links.rays;
+    st.linksRaw = links.rawLinks;
+    st.linksCompressed = links.transport.nonZeros();
+    st.linkBytes = links.transport.bytes() + links.environment.bytes();
+    st.lightRays = direct.shadowRays;
+  }
+
+private:
+  void updateGeometry(const StageContext& c)
+  {
+    geometryTouched = true;
+    geometry.update(c);
+  }
+
+
+  void buildLinks(const StageContext& c)
+  {
+    const SolverOptions& o = c.options;
+    const LinkOptions linkOptions{ o.raysPerVertex, o.twoSided, o.twist, o.seed,
+      ownRows(o, Elements{ c.scene.vertexCount(), o.twoSided }.count()) };
+    const auto within = [&c](double lo, double hi) -> ProgressCallback {
+      return [&c, lo, hi](const char*, double f) { return !c.progress || c.progress("Links", lo + (hi - lo) * f); };
+    };
+    // Traced and compressed element by element: no buffer of every hit (4 KB per element
+    // at 256 rays, held between updates before). The links being replaced go first, so that
+    // a re-link holds one set of links at its peak, not the old and the new side by side; a
+    // failed re-link then has none to keep (discard), and the next update links again.
+    if (!links.transport.rowOffsets.empty())
+    {
+      links = LinkStructure();
+      linksDropped = true;
+      returnFreedMemory();
+    }
+    double msCompress = 0.0;
+    nextLinks = linkgi::buildLinks(c.scene, geometry.origins, *geometry.tracer, geometry.faceNormals, linkOptions, within(0.0, 1.0), &msCompress);
+    c.part("Compress", msCompress);
+    linksStaged = true;
+  }
+
+  void lightLinks(const StageContext& c)
+  {
+    nextDirect = computeDirectLight(c.scene, geometry.topology, geometry.origins, *geometry.tracer, c.options.twoSided,
+      c.options.lightOversampling, c.progress);
+    directStaged = true;
+  }
+
+  void bounce(const StageContext& c)
+  {
+    const Scene& s = c.scene;
+    const SolverOptions& o = c.options;
+    const LinkStructure& linksNow = linksStaged ? nextLinks : links;
+    const DirectLightResult& directNow = directStaged ? nextDirect : direct;
+    const Elements elements{ s.vertexCount(), o.twoSided };
+    const std::size_t ne = elements.count(), nv = s.vertexCount();
+
+    const std::vector<Vec3f> texels = environmentTexelRadiance(s.environment);
+    std::vector<Vec3f> envIrradiance(ne);
+    gatherRgb(linksNow.environment, texels.data(), envIrradiance.data());
+    const bool partitioned = ownRows(o, ne) != nullptr;
+    if (partitioned)
+    {
+      o.partition->exchange(envIrradiance);
+    }
+    BounceInputs inputs;
+    inputs.fixedIrradiance.resize(ne);
+    inputs.albedo.resize(ne);
+    for (std::size_t e = 0; e < ne; ++e)
+    {
+      inputs.fixedIrradiance[e] = directNow.irradiance[e] + envIrradiance[e];
+      inputs.albedo[e] = s.albedo[elements.vertexOf(e)];
+    }
+    if (!s.emission.empty())
+    {
+      // Emissive surfaces emit from their front side only.
+      inputs.emission.assign(ne, Vec3f(0.f));
+      std::copy(s.emission.begin(), s.emission.end(), inputs.emission.begin());
+    }
+    std::vector<Vec3f> indirect = iterateBounces(linksNow.transport, inputs, o.bounces, c.progress,
+      exchangeOf(o));
+    for (std::size_t e = 0; e < ne; ++e)
+    {
+      indirect[e] += envIrradiance[e];
+    }
+    if (o.smoothing)
+    {
+      const auto t = std::chrono::steady_clock::now();
+      const float cosFeature = std::cos(o.featureAngleDegrees * (kPi / 180.f));
+      indirect = smoothFeatureAware(indirect, geometry.topology, s.normals, elements, cosFeature);
+      c.part("Smoothing", msSince(t));
+    }
+
+    Solution& sol = c.solution;
+    sol.direct = directNow.irradiance;
+    sol.radiance.resize(ne);
+    for (std::size_t e = 0; e < ne; ++e)
+    {
+      const Vec3f le = (e < nv && !s.emission.empty()) ? s.emission[e] : Vec3f(0.f);
+      sol.radiance[e] = outgoingRadiance(inputs.albedo[e], sol.direct[e], indirect[e], le);
+    }
+    sol.indirect = std::move(indirect);
+  }
+
+  CpuGeometry geometry;
+  bool geometryTouched = false;
+  LinkStructure links, nextLinks;
+  bool linksDropped = false; ///< the cached links were freed for a re-link that has not committed
+  DirectLightResult direct, nextDirect;
+  bool linksStaged = false, directStaged = false;
+};
+}
+
+LinksPerElement linksPerElement(const MemoryShape& shape, const SolverOptions& o)
+{
+  return LinksPerElement::bound(o.raysPerVertex, shape.vertices * (o.twoSided ? 2 : 1), shape.texels);
+}
+
+MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale)
+{
+  const std::uint64_t e = shape.vertices * (o.twoSided ? 2 : 1);
+  const std::uint64_t n = o.raysPerVertex;
+  constexpr std::uint64_t vec3 = sizeof(Vec3f), csrEntry = sizeof(Index) + sizeof(float);
+  std::uint64_t bytes = 0;
+  if (stale & (1u << kGeometryStage))
+  {
+    bytes += cpuGeometryBytes(shape);
+  }
+  if (stale & (1u << kLinkStage))
+  {
+    // buildLinks: the CSR at the links' bound (linkRows reserves it; only the links
+    // written become resident, so this bounds them); a band's chunk buffers (a 32nd of the
+    // rows, at most 512 chunks of 64) at the bound with their vectors' growth; the row
+    // counts and offsets; per worker a dense scratch row, one element's rays and hits.
+    const LinksPerElement links = linksPerElement(shape, o);
+    const std::uint64_t perRow = (links.transport + links.environment) * csrEntry;
+    const std::uint64_t perElement = perRow + 2 * (sizeof(Index) + sizeof(Offset));
+    const std::uint64_t bandRows = std::min<std::uint64_t>(e / 32 + 64, 512 * 64);
+    const std::uint64_t perWorker = (e + shape.texels) * sizeof(float) + n * (sizeof(Hit) + sizeof(Ray));
+    bytes += bandRows * perRow * 2;
+    bytes += e * perElement + std::uint64_t(workerCount()) * perWorker;
+  }
+  if (stale & (1u << kLightLinkStage))
+  {
+    bytes += e * vec3 * 2; // E_d, staged beside the cached one
+  }
+  // Bounces: the environment's irradiance, the fixed irradiance, albedo, emission, two
+  // Jacobi vectors, the smoothed copy and the solution's three arrays.
+  bytes += e * vec3 * 10;
+  return { bytes, 0 };
+}
+
+std::unique_ptr<MethodBackend> createCpuBackend(const SolverOptions&)
+{
+  return std::make_unique<LinksCpu>();
+}
+}

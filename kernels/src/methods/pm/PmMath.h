@@ -1,0 +1,188 @@
+// Photon mapping's per-item math, for the CPU backend (PhotonMapping.cpp) and the CUDA
+// backend (PmKernels.cu) alike: a radiance estimate at a photon, the caustic estimate at a
+// vertex, one final-gather ray, one vertex's interpolation. Searches are PmTypes.h's;
+// scenes are instant radiosity's PathScene (ir/IrMath.h), whose light paths are the photons.
+#pragma once
+
+#include "methods/pm/PmTypes.h"
+
+#include "methods/ir/IrMath.h"
+
+namespace linkgi::pm
+{
+/// Photons count towards an estimate within 37 degrees of its normal.
+constexpr float kEstimateCos = 0.8f;
+/// Interpolants per vertex: its own cluster's sample and up to five more (Clusters).
+constexpr int kInterpolants = 6;
+
+/// The photon map's arrays, borrowed (host or device).
+struct PhotonsView
+{
+  PointTreeView tree; ///< over the positions
+  const Vec3f* normals = nullptr;
+  const Vec3f* flux = nullptr;
+};
+
+/// The outgoing radiance a diffuse surface reflects at photon i (Christensen's precomputed
+/// estimate) from its k nearest photons, as Jensen estimates it: the flux of those within 37
+/// degrees of its normal / (pi r^2) / pi, r the k-th one's distance, or sqrt(max2) where
+/// fewer are that near; zero from fewer than two. The search takes every photon, not only
+/// those facing its way: a photon on a thin part in a crowd of photons facing elsewhere would
+/// otherwise search all of them. `heap`: room for k.
+LINKGI_HOST_DEVICE inline Vec3f siteRadiance(const PhotonsView& p, Index i, std::uint32_t k, float max2,
+  Neighbour* heap)
+{
+  const Vec3f normal = p.normals[i];
+  const Vec3f q = p.tree.points[i];
+  const std::uint32_t found = kNearest(p.tree, q, k, max2, [](Index) { return true; }, heap);
+  Vec3f sum(0.f);
+  std::uint32_t facing = 0;
+  for (std::uint32_t j = 0; j < found; ++j)
+  {
+    if (dot(p.normals[heap[j].index], normal) > kEstimateCos)
+    {
+      sum += p.flux[heap[j].index];
+      ++facing;
+    }
+  }
+  if (facing < 2)
+  {
+    return Vec3f(0.f); // a lone photon says nothing about density
+  }
+  const float r2 = found == k ? heap[0].d2 : max2;
+  return r2 > 0.f ? sum * (1.f / (kPi * kPi * r2)) : Vec3f(0.f);
+}
+
+/// Caustic irradiance at a vertex (position x, normal n, albedo rho, one-ring area `area`)
+/// from the caustic photons: a cone filter of radius R, the k-th nearest photon on its side
+/// within sqrt(max2) (sqrt(max2) with fewer), but at least the radius of a disc as large as
+/// the one-ring (3 x area), where the filter integrates like the vertex's hat function: a
+/// caustic sharper than the mesh keeps its power instead of the one vertex that holds it
+/// claiming a tiny disc's density. The flux reflected over rho. `heap`: room for k.
+LINKGI_HOST_DEVICE inline Vec3f causticEstimate(const PhotonsView& c, const Vec3f& x, const Vec3f& n,
+  const Vec3f& rho, float area, std::uint32_t k, float max2, Neighbour* heap)
+{
+  const auto sameSide = [&](Index j) { return dot(c.normals[j], n) > kEstimateCos; };
+  const std::uint32_t found = kNearest(c.tree, x, k, max2, sameSide, heap);
+  if (found == 0)
+  {
+    return Vec3f(0.f);
+  }
+  float r2 = found == k ? heap[0].d2 : max2;
+  r2 = fmaxf(r2, 3.f * area / kPi);
+  if (!(r2 > 0.f))
+  {
+    return Vec3f(0.f);
+  }
+  const float radius = std::sqrt(r2);
+  Vec3f sum(0.f);
+  forEachWithin(c.tree, x, r2, [&](Index j, float d2) {
+    if (sameSide(j))
+    {
+      sum += c.flux[j] * fmaxf(0.f, 1.f - std::sqrt(d2) / radius);
+    }
+  });
+  Vec3f out(0.f);
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    out[ch] = rho[ch] > 0.f ? sum[ch] * 3.f / (kPi * r2 * rho[ch]) : 0.f;
+  }
+  return out;
+}
+
+/// What one final-gather ray brings back.
+struct GatherHit
+{
+  Vec3f radiance{ 0.f }; ///< photon-map radiance at a diffuse hit, the sky's on a miss
+  float distance = 0.f;  ///< to the diffuse hit (for the harmonic mean), 0 on a miss
+  bool hit = false;
+};
+
+/// A final-gather ray whose first hit `h` is known: mirrors and glass send it on (reflected,
+/// or refracted with the Fresnel odds, by a hash of the sample's cluster and the ray's
+/// number), up to kMaxSpecularBounces turns; then it reads the photon map's radiance at its
+/// diffuse hit (the back of a one-sided surface is black; a back of a two-sided one was lit
+/// by photons stored with the back's normal), or the sky. `trace(ray)` returns the closest Hit.
+template <typename Trace>
+LINKGI_HOST_DEVICE inline GatherHit shadeGatherRay(const ir::PathScene& s, const RadianceSitesView& sites,
+  Ray ray, Hit h, std::uint32_t cluster, std::uint32_t r, bool twoSided, const Trace& trace)
+{
+  for (std::uint32_t turn = 1; turn <= ir::kMaxSpecularBounces; ++turn)
+  {
+    const std::uint8_t material = h.triangle != kInvalidIndex && s.materials ? s.materials[h.triangle] : 0u;
+    if (material == std::uint8_t(MaterialType::Diffuse))
+    {
+      break;
+    }
+    const Vec3f fn = s.faceNormals[h.triangle];
+    const Triangle& t = s.triangles[h.triangle];
+    const float b0 = 1.f - h.u - h.v;
+    const Vec3f p = s.positions[t.v[0]] * b0 + s.positions[t.v[1]] * h.u + s.positions[t.v[2]] * h.v;
+    Vec3f n = normalize(s.normals[t.v[0]] * b0 + s.normals[t.v[1]] * h.u + s.normals[t.v[2]] * h.v);
+    if (!(dot(n, n) > 0.f) || dot(n, fn) <= 0.f)
+    {
+      n = fn;
+    }
+    const Vec3f d = normalize(ray.direction);
+    const bool back = dot(d, fn) > 0.f;
+    const Vec3f facing = back ? -n : n;
+    const float ior = s.ior ? s.ior[h.triangle] : 1.5f;
+    const Vec3f next = material == std::uint8_t(MaterialType::Mirror)
+      ? ir::reflect(d, facing)
+      : ir::dielectricDirection(d, facing, back ? ior : 1.f / ior, hashToUnit(hash32(cluster) ^ r, turn));
+    ray.origin = p + (dot(next, fn) > 0.f ? fn : -fn) * triangleOffset(s.origins, t);
+    ray.direction = next;
+    ray.tnear = 0.f;
+    ray.tfar = 3.0e38f;
+    h = trace(ray);
+  }
+  GatherHit out;
+  if (h.triangle == kInvalidIndex)
+  {
+    out.radiance = ir::skyRadiance(s, normalize(ray.direction));
+    return out;
+  }
+  out.hit = true;
+  out.distance = h.t * length(ray.direction);
+  Vec3f fn = s.faceNormals[h.triangle];
+  if (dot(ray.direction, fn) > 0.f)
+  {
+    if (!twoSided)
+    {
+      return out;
+    }
+    fn = -fn;
+  }
+  const Triangle& t = s.triangles[h.triangle];
+  const float b0 = 1.f - h.u - h.v;
+  const Vec3f y = s.positions[t.v[0]] * b0 + s.positions[t.v[1]] * h.u + s.positions[t.v[2]] * h.v;
+  out.radiance = lookupRadiance(sites, y, fn);
+  return out;
+}
+
+/// Vertex v's irradiance from its interpolants' samples (row: kInterpolants clusters, its
+/// own first, kInvalidIndex past the last), weighted as in irradiance caching:
+/// w = 1 / (|x - s| / R + sqrt(2 - 2 n.n_s)) over samples facing the same way; its own
+/// cluster's when none does.
+LINKGI_HOST_DEVICE inline Vec3f interpolateVertex(const Vec3f* positions, const Vec3f* normals, Index v,
+  const Index* row, const Index* sample, const Vec3f* irradiance, const float* harmonicDistance)
+{
+  Vec3f sum(0.f);
+  float weights = 0.f;
+  for (int i = 0; i < kInterpolants && row[i] != kInvalidIndex; ++i)
+  {
+    const Index j = row[i], sv = sample[j];
+    const float c = dot(normals[v], normals[sv]);
+    if (c <= 0.f)
+    {
+      continue;
+    }
+    const float e = length(positions[v] - positions[sv]) / fmaxf(harmonicDistance[j], 1e-30f) +
+      std::sqrt(fmaxf(0.f, 2.f - 2.f * c));
+    const float w = 1.f / fmaxf(e, 1e-4f);
+    sum += irradiance[j] * w;
+    weights += w;
+  }
+  return weights > 0.f ? sum / weights : irradiance[row[0]];
+}
+}

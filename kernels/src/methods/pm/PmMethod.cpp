@@ -1,0 +1,101 @@
+// Photon mapping with clustered final gather (Wang, Wang, Zhou & Guo 2009): its stages and
+// what makes each stale. The pieces in pm/PhotonMapping.h, the CPU backend in PmCpu.cpp.
+// Documentation/Methods.md, "Photon mapping".
+#include "methods/pm/PmBackends.h"
+#include "engine/Progression.h"
+
+#include "cpu/CpuGeometry.h"
+#include "methods/ir/IrHost.h"
+#include "methods/pm/PhotonMapping.h"
+
+namespace linkgi::pm
+{
+namespace
+{
+using namespace engine;
+
+/// Host bytes of an update: the geometry; the photon stage's path slots (one Vpl per bounce
+/// and path of the first pass; a second pass, up to 64 times as many paths where most leave
+/// the scene, is checked against what the budget leaves when it is known: traceVplsCpu) and the map (per photon: position, normal, flux, the
+/// kd-tree's order, the estimates at every siteStride-th); per vertex the clusters'
+/// assignment and interpolants; and the per-element vectors. On the GPU the host holds the
+/// per-element vectors and the map it reads back.
+MemoryEstimate estimatePmMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)
+{
+  const std::uint64_t photons = o.photonMapping.photons;
+  MemoryEstimate m;
+  m.hostBytes = cpuSolutionBytes(shape, o);
+  if (!cuda && (stale & (1u << kGeometryStage)))
+  {
+    m.hostBytes += cpuGeometryBytes(shape);
+  }
+  if (stale & (1u << kPhotonStage))
+  {
+    SolverOptions paths = o;
+    paths.instantRadiosity.vplCount = o.photonMapping.photons;
+    const std::uint64_t sites = std::min<std::uint64_t>(kMaxSites, photons / siteStride(photons) + 1);
+    m.hostBytes += (cuda ? 0 : std::uint64_t(ir::pathCount(paths)) * (o.bounces + 1) * (sizeof(ir::Vpl) + sizeof(int))) +
+      photons * (3 * sizeof(Vec3f) + sizeof(Index)) + sites * (3 * sizeof(Vec3f) + sizeof(Index));
+  }
+  if (stale & (1u << kClusterStage))
+  {
+    m.hostBytes += shape.vertices * (1 + Clusters::kInterpolants) * sizeof(Index) * 2;
+  }
+  return m;
+}
+
+class PhotonMappingMethod final : public MethodSpec
+{
+public:
+  const char* name() const override { return "photon-mapping"; }
+  bool carriesSpecular() const override { return true; }
+  const std::vector<StageSpec>& stages() const override
+  {
+    constexpr std::uint32_t geometry = 1u << kGeometryStage;
+    // Photons are traced again whenever anything a light path meets changed (as instant
+    // radiosity's VPLs); the clusters depend on the geometry alone, so a light move keeps
+    // them. Shares: cornell on the CPU.
+    static const std::vector<StageSpec> table = {
+      { "Geometry", "", kGeometry | kBackendSetup, 0u, 3.0 },
+      { "Photons", "PhotonTraces",
+        kLights | kAlbedo | kEmission | kEnvironmentLayout | kEnvironmentRadiance | kSampling |
+          kSides | kIteration | kMethodOptions,
+        geometry, 25.0 },
+      { "Clusters", "ClusterBuilds", kMethodOptions, geometry, 10.0 },
+      { "LightLinks", "LightLinkBuilds", kLights | kLightSampling | kSides, geometry, 7.0 },
+      { "Gather", "GatherRuns", kSides | kSampling | kMethodOptions | kEnvironmentLayout | kEnvironmentRadiance,
+        geometry | (1u << kPhotonStage) | (1u << kClusterStage), 50.0 },
+      { "Finish", "", kEverything, geometry | (1u << kGatherStage) | (1u << kLightLinkStage), 1.0 },
+    };
+    return table;
+  }
+  std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
+  std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  double sampleWork(std::size_t elements, const SolverOptions& o) const override
+  {
+    // The final gather at the sample vertices, and the photons' paths.
+    const PhotonMappingOptions& p = o.photonMapping;
+    return double(std::min<std::size_t>(p.clusters, elements)) * p.gatherRays + double(p.photons);
+  }
+  SolverOptions coarser(const SolverOptions& o, double fraction) const override
+  {
+    SolverOptions c = o;
+    PhotonMappingOptions& p = c.photonMapping;
+    p.gatherRays = scaledSquare(o.photonMapping.gatherRays, fraction, 16);
+    p.photons = scaledCount(o.photonMapping.photons, fraction, std::min(o.photonMapping.photons, 4096u));
+    return c;
+  }
+  MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
+    bool cuda) const override
+  {
+    return estimatePmMemory(shape, o, stale, cuda);
+  }
+};
+}
+
+const MethodSpec& photonMappingMethod()
+{
+  static const PhotonMappingMethod method;
+  return method;
+}
+}

@@ -1,0 +1,328 @@
+#include "linkgi/Orientation.h"
+
+#include "shared/DirectLight.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace linkgi
+{
+namespace
+{
+/// Dense point index of every vertex: vertices split from one point share it.
+std::vector<Index> densePoints(std::size_t vertices, const std::vector<std::uint64_t>& pointIds, std::size_t& points)
+{
+  std::vector<Index> dense(vertices);
+  if (pointIds.empty())
+  {
+    std::iota(dense.begin(), dense.end(), Index(0));
+    points = vertices;
+    return dense;
+  }
+  std::vector<std::pair<std::uint64_t, Index>> byPoint(vertices);
+  for (std::size_t v = 0; v < vertices; ++v)
+  {
+    byPoint[v] = { pointIds[v], Index(v) };
+  }
+  std::sort(byPoint.begin(), byPoint.end());
+  points = 0;
+  for (std::size_t i = 0; i < vertices; ++i)
+  {
+    if (i > 0 && byPoint[i].first != byPoint[i - 1].first)
+    {
+      ++points;
+    }
+    dense[byPoint[i].second] = Index(points);
+  }
+  points += vertices > 0 ? 1 : 0;
+  return dense;
+}
+
+struct UnionFind
+{
+  std::vector<Index> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), Index(0)); }
+  Index find(Index x)
+  {
+    while (parent[x] != x)
+    {
+      parent[x] = parent[parent[x]];
+      x = parent[x];
+    }
+    return x;
+  }
+  void join(Index a, Index b) { parent[find(a)] = find(b); }
+};
+
+/// Per surface: its bounds, the length of its holes' borders, and integrals over its
+/// front sides: area, vector area and enclosed volume.
+struct SurfaceSums
+{
+  std::size_t triangles = 0;
+  double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  double boundary = 0.0, area = 0.0, volume = 0.0;
+  double vectorArea[3] = { 0.0, 0.0, 0.0 };
+};
+
+void sub(const Vec3f& a, const double c[3], double out[3])
+{
+  out[0] = double(a.x) - c[0];
+  out[1] = double(a.y) - c[1];
+  out[2] = double(a.z) - c[2];
+}
+}
+
+SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std::uint64_t>& pointIds)
+{
+  SurfaceOrientation report;
+  const std::size_t nv = scene.vertexCount(), nt = scene.triangleCount();
+  if (nv == 0 || nt == 0 || (!pointIds.empty() && pointIds.size() != nv))
+  {
+    return report;
+  }
+  std::size_t points = 0;
+  const std::vector<Index> point = densePoints(nv, pointIds, points);
+  std::vector<Index> vertexOf(points);
+  for (std::size_t v = 0; v < nv; ++v)
+  {
+    vertexOf[point[v]] = Index(v);
+  }
+
+  // Surfaces: triangles joined through shared points; edges keyed by their two points.
+  UnionFind surfaces(points);
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * nt);
+  for (const Triangle& t : scene.triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const Index a = point[t.v[k]], b = point[t.v[(k + 1) % 3]];
+      surfaces.join(a, b);
+      edges.push_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<Index> surfaceOfRoot(points, kInvalidIndex);
+  std::vector<SurfaceSums> sums;
+  const auto surfaceOf = [&](Index p) {
+    const Index root = surfaces.find(p);
+    if (surfaceOfRoot[root] == kInvalidIndex)
+    {
+      surfaceOfRoot[root] = Index(sums.size());
+      sums.emplace_back();
+    }
+    return surfaceOfRoot[root];
+  };
+  for (std::size_t i = 0; i < edges.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j] == edges[i])
+    {
+      ++j;
+    }
+    if (j - i == 1) // an edge of one triangle: on the border of a hole
+    {
+      const Index a = Index(edges[i] >> 32), b = Index(edges[i] & 0xffffffffu);
+      sums[surfaceOf(a)].boundary += length(scene.positions[vertexOf[a]] - scene.positions[vertexOf[b]]);
+    }
+    i = j;
+  }
+  for (std::size_t v = 0; v < nv; ++v)
+  {
+    SurfaceSums& s = sums[surfaceOf(point[v])];
+    const Vec3f& p = scene.positions[v];
+    const double x[3] = { p.x, p.y, p.z };
+    for (int k = 0; k < 3; ++k)
+    {
+      s.lo[k] = std::min(s.lo[k], x[k]);
+      s.hi[k] = std::max(s.hi[k], x[k]);
+    }
+  }
+  for (const Triangle& t : scene.triangles)
+  {
+    SurfaceSums& s = sums[surfaceOf(point[t.v[0]])];
+    const double c[3] = { 0.5 * (s.lo[0] + s.hi[0]), 0.5 * (s.lo[1] + s.hi[1]), 0.5 * (s.lo[2] + s.hi[2]) };
+    double a[3], b[3], d[3];
+    sub(scene.positions[t.v[0]], c, a);
+    sub(scene.positions[t.v[1]], c, b);
+    sub(scene.positions[t.v[2]], c, d);
+    const double e1[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double e2[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+    const double w[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+      e1[0] * e2[1] - e1[1] * e2[0] };
+    const Vec3f n = scene.normals[t.v[0]] + scene.normals[t.v[1]] + scene.normals[t.v[2]];
+    const double facing = w[0] * n.x + w[1] * n.y + w[2] * n.z;
+    report.againstWinding += facing < 0.0 ? 1 : 0;
+    const double front = facing < 0.0 ? -1.0 : 1.0;
+    // The tetrahedron (centre, a, b, d), signed by the winding, turned to the normals' side.
+    s.volume += front * (a[0] * w[0] + a[1] * w[1] + a[2] * w[2]) / 6.0;
+    s.area += 0.5 * std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    for (int k = 0; k < 3; ++k)
+    {
+      s.vectorArea[k] += 0.5 * front * w[k];
+    }
+    ++s.triangles;
+  }
+
+  report.surfaces = sums.size();
+  std::vector<Index> inwardOf(sums.size(), kInvalidIndex);
+  for (std::size_t i = 0; i < sums.size(); ++i)
+  {
+    const SurfaceSums& s = sums[i];
+    const double radius = 0.5 * std::sqrt((s.hi[0] - s.lo[0]) * (s.hi[0] - s.lo[0]) +
+      (s.hi[1] - s.lo[1]) * (s.hi[1] - s.lo[1]) + (s.hi[2] - s.lo[2]) * (s.hi[2] - s.lo[2]));
+    const double openArea = std::sqrt(s.vectorArea[0] * s.vectorArea[0] +
+      s.vectorArea[1] * s.vectorArea[1] + s.vectorArea[2] * s.vectorArea[2]);
+    // Small holes: a closed surface's vector area is zero, and moving the volume's
+    // reference point within the bounds changes it by at most radius x |vector area|.
+    const bool closed = s.boundary * s.boundary <= 3.0 * s.area;
+    const double decisive = std::max(1e-3 * s.area * radius, 2.0 * radius * openArea);
+    if (closed && s.volume < -decisive)
+    {
+      inwardOf[i] = Index(report.inward.size());
+      report.inward.emplace_back();
+      report.inward.back().lo = Vec3f(float(s.lo[0]), float(s.lo[1]), float(s.lo[2]));
+      report.inward.back().hi = Vec3f(float(s.hi[0]), float(s.hi[1]), float(s.hi[2]));
+    }
+  }
+  if (!report.inward.empty())
+  {
+    for (std::size_t v = 0; v < nv; ++v)
+    {
+      const Index k = inwardOf[surfaceOf(point[v])];
+      if (k != kInvalidIndex)
+      {
+        report.inward[k].vertices.push_back(Index(v));
+      }
+    }
+    for (std::size_t t = 0; t < nt; ++t)
+    {
+      const Index k = inwardOf[surfaceOf(point[scene.triangles[t].v[0]])];
+      if (k != kInvalidIndex)
+      {
+        report.inward[k].triangles.push_back(Index(t));
+      }
+    }
+  }
+  return report;
+}
+
+namespace
+{
+/// The winding number of the front sides of `surface`'s triangles around p: the sum of
+/// their signed solid angles (Van Oosterom and Strackee) over 4 pi; -1 inside an inward
+/// closed surface, 0 outside.
+double windingNumber(const Scene& scene, const InwardSurface& surface, const Vec3f& p)
+{
+  double sum = 0.0;
+  for (const Index t : surface.triangles)
+  {
+    const Triangle& tri = scene.triangles[t];
+    double r[3][3], len[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      const Vec3f& x = scene.positions[tri.v[k]];
+      r[k][0] = double(x.x) - p.x;
+      r[k][1] = double(x.y) - p.y;
+      r[k][2] = double(x.z) - p.z;
+      len[k] = std::sqrt(r[k][0] * r[k][0] + r[k][1] * r[k][1] + r[k][2] * r[k][2]);
+    }
+    const auto dot3 = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+    const double c[3] = { r[1][1] * r[2][2] - r[1][2] * r[2][1], r[1][2] * r[2][0] - r[1][0] * r[2][2],
+      r[1][0] * r[2][1] - r[1][1] * r[2][0] };
+    const double det = dot3(r[0], c);
+    const double den = len[0] * len[1] * len[2] + dot3(r[0], r[1]) * len[2] +
+      dot3(r[0], r[2]) * len[1] + dot3(r[1], r[2]) * len[0];
+    const double e1[3] = { r[1][0] - r[0][0], r[1][1] - r[0][1], r[1][2] - r[0][2] };
+    const double e2[3] = { r[2][0] - r[0][0], r[2][1] - r[0][1], r[2][2] - r[0][2] };
+    const double w[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+      e1[0] * e2[1] - e1[1] * e2[0] };
+    const Vec3f n = scene.normals[tri.v[0]] + scene.normals[tri.v[1]] + scene.normals[tri.v[2]];
+    const double front = w[0] * n.x + w[1] * n.y + w[2] * n.z < 0.0 ? -1.0 : 1.0;
+    sum += front * 2.0 * std::atan2(det, den);
+  }
+  return sum / (4.0 * 3.14159265358979323846);
+}
+}
+
+bool hasLightInside(const Scene& scene, const InwardSurface& surface)
+{
+  const auto inside = [&](const Vec3f& p) {
+    const bool inBounds = p.x >= surface.lo.x && p.y >= surface.lo.y && p.z >= surface.lo.z &&
+      p.x <= surface.hi.x && p.y <= surface.hi.y && p.z <= surface.hi.z;
+    return inBounds && std::abs(windingNumber(scene, surface, p)) >= 0.5;
+  };
+  for (const Light& light : scene.lights)
+  {
+    if (light.type != LightType::Directional && maxComponent(light.intensity) > 0.f && inside(light.position))
+    {
+      return true;
+    }
+  }
+  if (scene.emission.empty())
+  {
+    return false;
+  }
+  // Emitters: the surface's own emission shines into its front; others count where they
+  // are (at most 64 of them tested, evenly spread, so that a glowing mesh costs little).
+  std::vector<unsigned char> own(scene.vertexCount(), 0);
+  for (const Index v : surface.vertices)
+  {
+    own[v] = 1;
+    if (maxComponent(scene.emission[v]) > 0.f)
+    {
+      return true;
+    }
+  }
+  std::vector<Index> emitters;
+  for (std::size_t v = 0; v < scene.vertexCount(); ++v)
+  {
+    if (!own[v] && maxComponent(scene.emission[v]) > 0.f)
+    {
+      emitters.push_back(Index(v));
+    }
+  }
+  const std::size_t step = std::max<std::size_t>(1, emitters.size() / 64);
+  for (std::size_t i = 0; i < emitters.size(); i += step)
+  {
+    if (inside(scene.positions[emitters[i]]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+void flipNormals(Scene& scene, const InwardSurface& surface)
+{
+  for (const Index v : surface.vertices)
+  {
+    scene.normals[v] = -scene.normals[v];
+  }
+}
+
+bool litOnlyFromBehind(const Scene& scene)
+{
+  bool back = false;
+  for (const Light& light : scene.lights)
+  {
+    if (!(maxComponent(light.intensity) > 0.f))
+    {
+      continue;
+    }
+    for (std::size_t v = 0; v < scene.vertexCount(); ++v)
+    {
+      Vec3f toLight;
+      const Vec3f& p = scene.positions[v];
+      const Vec3f& n = scene.normals[v];
+      if (maxComponent(unshadowedIrradiance(light, p, n, toLight)) > 0.f)
+      {
+        return false; // a correctly facing scene leaves here at its first lit vertex
+      }
+      back = back || maxComponent(unshadowedIrradiance(light, p, -n, toLight)) > 0.f;
+    }
+  }
+  return back;
+}
+}
