@@ -121,7 +121,7 @@ TEST(IrCuda, DeviceProxyIsTheHostProxy)
     for (std::uint32_t resolution : { 4u, 16u, 64u })
     {
       const ir::Proxy host = ir::buildProxy(s, resolution);
-      const ir::ProxyGrid grid = ir::proxyGrid(ir::sceneExtent(s), resolution);
+      const ir::ProxyGrid grid = ir::proxyGrid(sceneExtent(s), resolution);
       ASSERT_TRUE(ir::gpu::DeviceProxy::fits(grid, s.vertexCount()));
       ir::gpu::DeviceProxy device;
       device.build(grid, positions.data(), Index(s.vertexCount()), triangles.data(), Index(s.triangleCount()), nullptr);

@@ -2,6 +2,7 @@
 #include "linkgi/Error.h"
 #include "shared/Metrics.h"
 #include "methods/reference/Reference.h"
+#include "shared/DirectLight.h"
 #include "linkgi/Solver.h"
 
 #include <gtest/gtest.h>

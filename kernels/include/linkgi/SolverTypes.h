@@ -214,8 +214,15 @@ struct SolverOptions
   std::shared_ptr<const Partition> partition;
 };
 
-/// The method called `name` ("links", "instant-radiosity": SolverStats::method); throws
-/// linkgi::Error naming the valid names.
+/// Every method this build has, in the order of the Method enum: what a user interface
+/// offers and what tests iterate.
+std::vector<Method> methods();
+
+/// The name of `method` ("links", "instant-radiosity": SolverStats::method); throws
+/// linkgi::Error for a value no registered method has.
+const char* methodName(Method method);
+
+/// The method called `name`; throws linkgi::Error naming the valid names.
 Method methodByName(const std::string& name);
 
 /// Every field equal (a request for the same solve).

@@ -1,7 +1,7 @@
 #include "cpu/CpuGeometry.h"
 
 #include "shared/Bounce.h"
-#include "methods/links/Links.h"
+#include "shared/Surface.h"
 
 #include <chrono>
 #include <cmath>

@@ -1,10 +1,6 @@
-// The CUDA entry points of builds without the CUDA backend (LINKGI_ENABLE_CUDA=OFF).
+// The CUDA plumbing's entry points in builds without it (LINKGI_ENABLE_CUDA=OFF). The methods
+// need nothing here: without CUDA they do not override MethodSpec::createCuda.
 #include "cuda/Cuda.h"
-
-#include "methods/ir/IrBackends.h"
-#include "methods/iv/IvBackends.h"
-#include "methods/pm/PmBackends.h"
-#include "methods/links/LinksBackends.h"
 
 namespace linkgi::cuda
 {
@@ -23,48 +19,6 @@ std::vector<DeviceInfo> devices(std::string* why)
 }
 
 std::unique_ptr<RayTracer> createRayTracer(int)
-{
-  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
-}
-}
-
-namespace linkgi::links
-{
-std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
-{
-  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
-}
-}
-
-namespace linkgi::ir
-{
-std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
-{
-  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
-}
-
-std::vector<Vec3f> gatherCuda(const Scene&, const VplSet&, const GatherParams&, bool)
-{
-  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
-}
-}
-
-namespace linkgi::iv
-{
-std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
-{
-  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
-}
-}
-
-namespace linkgi::pm
-{
-std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions&)
-{
-  throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
-}
-
-void buildTreeOnDevice(const std::vector<Vec3f>&, std::vector<Index>&, std::vector<std::uint8_t>&)
 {
   throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
 }

@@ -4,7 +4,7 @@
 #include "cuda/Primitives.h"
 
 #include "linkgi/Error.h"
-#include "methods/links/Links.h"
+#include "shared/Surface.h"
 
 #include <string>
 

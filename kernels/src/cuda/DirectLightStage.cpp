@@ -1,6 +1,6 @@
 #include "cuda/DirectLightStage.h"
 
-#include "methods/links/Links.h"
+#include "shared/Surface.h"
 
 #include <algorithm>
 

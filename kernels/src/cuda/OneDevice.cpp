@@ -1,6 +1,7 @@
 #include "cuda/OneDevice.h"
 
 #include "cuda/DirectLightStage.h"
+#include "shared/Surface.h"
 
 #include "cuda/Cuda.h"
 
@@ -26,7 +27,7 @@ void DeviceMesh::update(const Scene& s, Changes changes, cudaStream_t stream, So
   if (positionsChanged)
   {
     staging.upload(positions, s.positions, stream);
-    extent = ir::sceneExtent(s);
+    extent = sceneExtent(s);
   }
   if (normalsChanged)
   {

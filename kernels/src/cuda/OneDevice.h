@@ -11,7 +11,7 @@
 #include "cuda/PinnedStaging.h"
 
 #include "engine/Pipeline.h"
-#include "methods/ir/IrHost.h"
+#include "shared/RayOrigin.h"
 
 #include <initializer_list>
 #include <string>
@@ -27,7 +27,7 @@ struct DeviceMesh
   DeviceTopology topology;
   DeviceBvh bvh;
   Index vertexCount = 0, triangleCount = 0;
-  ir::SceneExtent extent; ///< of the positions uploaded
+  SceneExtent extent; ///< of the positions uploaded
   PinnedStaging staging;
 
   /// Uploads what `changes` touched (through pinned memory) and queues the rest on `stream`

@@ -1,66 +1,53 @@
-// The method registry: the one place that maps linkgi::Method to its MethodSpec. A new method
-// adds its enum value (SolverTypes.h) and one case here.
-#include "engine/Pipeline.h"
+// The method registry: linkgi::Method to its MethodSpec, over the generated table.
+#include "engine/Methods.h"
 
 #include "linkgi/Error.h"
 
+#include <algorithm>
+
 namespace linkgi
 {
-namespace links
-{
-const engine::MethodSpec& linksMethod();
-}
-namespace ir
-{
-const engine::MethodSpec& instantRadiosityMethod();
-}
-namespace iv
-{
-const engine::MethodSpec& implicitVisibilityMethod();
-}
-namespace pm
-{
-const engine::MethodSpec& photonMappingMethod();
-}
-
 namespace engine
 {
 const MethodSpec& methodSpec(Method method)
 {
-  switch (method)
+  for (const MethodEntry& entry : methodTable())
   {
-    case Method::Links:
-      return links::linksMethod();
-    case Method::InstantRadiosity:
-      return ir::instantRadiosityMethod();
-    case Method::ImplicitVisibility:
-      return iv::implicitVisibilityMethod();
-    case Method::PhotonMapping:
-      return pm::photonMappingMethod();
+    if (entry.method == method)
+    {
+      return entry.spec();
+    }
   }
   throw Error("Unknown solution method " + std::to_string(int(method)) + ".");
 }
 }
 
+std::vector<Method> methods()
+{
+  std::vector<Method> all;
+  for (const engine::MethodEntry& entry : engine::methodTable())
+  {
+    all.push_back(entry.method);
+  }
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+const char* methodName(Method method)
+{
+  return engine::methodSpec(method).name();
+}
+
 Method methodByName(const std::string& name)
 {
   std::string names;
-  for (int m = 0;; ++m)
+  for (Method m : methods())
   {
-    const engine::MethodSpec* spec = nullptr;
-    try
+    if (name == methodName(m))
     {
-      spec = &engine::methodSpec(Method(m));
+      return m;
     }
-    catch (const Error&)
-    {
-      break; // past the last method
-    }
-    if (name == spec->name())
-    {
-      return Method(m);
-    }
-    names += std::string(names.empty() ? "" : ", ") + spec->name();
+    names += std::string(names.empty() ? "" : ", ") + methodName(m);
   }
   throw Error("Unknown method '" + name + "'; use " + names + ".");
 }

@@ -1,5 +1,6 @@
 #include "engine/Pipeline.h"
 
+#include "cuda/Cuda.h"
 #include "linkgi/Error.h"
 #include "shared/Sampling.h"
 
@@ -208,6 +209,15 @@ void together(const Partition* partition, const std::function<void()>& work)
 
 namespace engine
 {
+std::unique_ptr<MethodBackend> MethodSpec::createCuda(const SolverOptions&) const
+{
+  if (!cuda::compiled())
+  {
+    throw CudaError("This build has no CUDA backend; reconfigure with LINKGI_ENABLE_CUDA=ON.", false);
+  }
+  throw CudaError(std::string("The method '") + name() + "' has no CUDA backend.", false);
+}
+
 const std::uint8_t* ownRows(const SolverOptions& o, std::size_t elements)
 {
   if (!o.partition)

@@ -161,9 +161,10 @@ public:
   virtual bool carriesSpecular() const { return false; }
   /// The CPU implementation; always exists.
   virtual std::unique_ptr<MethodBackend> createCpu(const SolverOptions& options) const = 0;
-  /// The CUDA implementation on up to options.cudaDevices GPUs. Throws CudaError when the
-  /// build has none or no device can be used.
-  virtual std::unique_ptr<MethodBackend> createCuda(const SolverOptions& options) const = 0;
+  /// The CUDA implementation on up to options.cudaDevices GPUs. Throws CudaError when no
+  /// device can be used. A method overrides it where its CUDA backend is built (its
+  /// Method.cmake's CUDA_SOURCES, LINKGI_HAVE_CUDA); this one says there is none.
+  virtual std::unique_ptr<MethodBackend> createCuda(const SolverOptions& options) const;
   /// Peak bytes that running the stages `stale` (bit i: stages()[i]) allocate on a mesh of
   /// `shape`, on the host and on the GPU(s), from the sizes alone: nothing has been traced
   /// yet. An upper bound rather than a guess: the orchestrator refuses an update whose host

@@ -8,9 +8,10 @@
 #include "engine/Pipeline.h"
 
 #include "linkgi/Error.h"
-#include "methods/links/Links.h"
+#include "cpu/Parallel.h"
+#include "shared/RayOrigin.h"
 #include "shared/Metrics.h"
-#include "methods/reference/Reference.h"
+#include "shared/DirectLight.h"
 #include "scene/Topology.h"
 
 #include <algorithm>

@@ -1,7 +1,12 @@
 // Light exchange over the link structure: Jacobi bounces and feature-aware smoothing.
 #pragma once
 
-#include "methods/links/Links.h"
+#include "cpu/Parallel.h"
+#include "scene/Topology.h"
+#include "shared/Csr.h"
+#include "shared/Surface.h"
+
+#include <functional>
 
 namespace linkgi
 {

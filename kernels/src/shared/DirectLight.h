@@ -125,4 +125,24 @@ struct DirectLightResult
 DirectLightResult computeDirectLight(const Scene& scene, const Topology& topology,
   const std::vector<RayOrigin>& origins, const RayTracer& tracer, bool twoSided, bool oversampling,
   const ProgressCallback& progress = {});
+
+/// Unshadowed irradiance of one light at (p, n) and the shadow ray from `origin` that
+/// decides visibility. Returns false when the light cannot contribute.
+bool lightSample(const Light& light, const Vec3f& p, const Vec3f& n, const Vec3f& origin,
+  Vec3f& irradiance, Ray& shadow);
+
+/// Exact irradiance that one light delivers at point p with unit normal n, shadowed:
+///   point:       V * I * max(0, cos) / r^2
+///   spot:        the same times cos(angle to axis)^spotExponent inside the cone of half
+///                angle coneAngleDegrees, 0 outside
+///   directional: V * intensity * max(0, dot(n, -direction))
+/// V comes from one shadow ray whose origin is p + eps * n + shift (for a vertex, its
+/// linkgi::rayOrigins offset and shift; zero shift elsewhere); for point and spot
+/// lights the ray stops just short of the light (linkgi::shadowRay).
+Vec3f lightIrradiance(const Light& light, const Vec3f& p, const Vec3f& n,
+  const RayTracer& tracer, float eps, const Vec3f& shift = {});
+
+/// Sum of lightIrradiance over all lights of the scene.
+Vec3f directIrradiance(const Scene& scene, const Vec3f& p, const Vec3f& n,
+  const RayTracer& tracer, float eps, const Vec3f& shift = {});
 }

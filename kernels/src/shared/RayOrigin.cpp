@@ -23,4 +23,13 @@ std::vector<RayOrigin> rayOrigins(const Scene& scene, const Topology& topology)
   });
   return origins;
 }
+
+SceneExtent sceneExtent(const Scene& s)
+{
+  SceneExtent e;
+  positionBounds(s.positions, e.lo, e.hi); // one pass: a deformation's geometry stage waits for it
+  e.diagonal = boxDiagonal(e.lo, e.hi);
+  e.eps = rayEpsilon(e.diagonal);
+  return e;
+}
 }

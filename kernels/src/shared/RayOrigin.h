@@ -115,4 +115,14 @@ inline float rayEpsilon(float diagonal)
 
 /// Every vertex's ray origin from its one-ring (rayOrigin with rayEpsilon as the bound).
 std::vector<RayOrigin> rayOrigins(const Scene& scene, const Topology& topology);
+
+/// What light paths and proxies read from the positions alone: their box, boundingDiagonal
+/// and rayEpsilon (the bound of the ray origins' offsets). A backend that keeps it from its
+/// geometry stage spares a light move the passes over the positions.
+struct SceneExtent
+{
+  Vec3f lo{ 0.f }, hi{ 0.f };
+  float diagonal = 0.f, eps = 0.f;
+};
+SceneExtent sceneExtent(const Scene& scene);
 }

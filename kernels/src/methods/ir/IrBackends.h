@@ -21,8 +21,10 @@ enum Stage : std::size_t
 
 /// Embree (or our BVH) and all cores (IrCpu.cpp).
 std::unique_ptr<engine::MethodBackend> createCpuBackend(const SolverOptions& options);
-/// The GPU (IrCuda.cpp); CudaUnavailable.cpp throws CudaError instead.
+#if LINKGI_HAVE_CUDA
+/// The GPU (IrCuda.cpp); built with CUDA only.
 std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions& options);
+#endif
 }
 
 #include "methods/ir/IrHost.h"
@@ -44,8 +46,10 @@ std::vector<Vec3f> gatherCpu(const Scene& scene, const std::vector<RayOrigin>& o
   const VplSet& vpls, const RayTracer* visibility, const GatherParams& params, bool twoSided,
   std::uint64_t* rays = nullptr, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 
+#if LINKGI_HAVE_CUDA
 /// The same gather on the first GPU (mesh, BVH and shifts built there; exact visibility):
 /// for comparing the backends on one VPL set. Throws CudaError without a device or CUDA.
 std::vector<Vec3f> gatherCuda(const Scene& scene, const VplSet& vpls, const GatherParams& params,
   bool twoSided);
+#endif
 }

@@ -37,15 +37,6 @@ std::uint32_t secondPassPaths(std::uint32_t paths, std::size_t found, std::uint3
   return more > paths ? more : 0;
 }
 
-SceneExtent sceneExtent(const Scene& s)
-{
-  SceneExtent e;
-  positionBounds(s.positions, e.lo, e.hi); // one pass: a deformation's geometry stage waits for it
-  e.diagonal = boxDiagonal(e.lo, e.hi);
-  e.eps = rayEpsilon(e.diagonal);
-  return e;
-}
-
 PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals,
   const std::vector<RayOrigin>& origins, const SolverOptions& o,
   const SceneExtent* known)

@@ -34,16 +34,6 @@ std::uint32_t pathCount(const SolverOptions& options);
 std::uint32_t secondPassPaths(std::uint32_t paths, std::size_t found, std::uint32_t target,
   std::uint32_t slotsPerPath);
 
-/// What the set-up reads from the positions alone: their box, boundingDiagonal and
-/// rayEpsilon (the bound of the ray origins' offsets). A backend that keeps it from its geometry stage spares a light move the passes
-/// over the positions.
-struct SceneExtent
-{
-  Vec3f lo{ 0.f }, hi{ 0.f };
-  float diagonal = 0.f, eps = 0.f;
-};
-SceneExtent sceneExtent(const Scene& scene);
-
 /// Sources of `scene` (validated) and the view over its arrays and `faceNormals`
 /// (frontFaceNormals). Lights start paths only when bounces > 0 (their direct light is the
 /// light-link stage's). A scene with no source gets an empty table and no VPLs. `extent`:

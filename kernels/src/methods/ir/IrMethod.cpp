@@ -72,7 +72,9 @@ public:
     return table;
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
+#if LINKGI_HAVE_CUDA
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+#endif
   double sampleWork(std::size_t elements, const SolverOptions& o) const override
   {
     // The gather: each element meets its subset of the VPLs.

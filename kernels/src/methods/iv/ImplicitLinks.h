@@ -7,6 +7,8 @@
 #include "methods/iv/IvShared.h"
 
 #include "shared/Bounce.h"
+#include "shared/RayOrigin.h"
+#include "shared/RayTracer.h"
 
 #include <cstdint>
 #include <functional>

@@ -16,8 +16,10 @@ enum Stage : std::size_t
 };
 
 std::unique_ptr<engine::MethodBackend> createCpuBackend(const SolverOptions& options);
-/// One GPU (IvCuda.cpp); CudaError where the build or the machine has none.
+#if LINKGI_HAVE_CUDA
+/// One GPU (cuda/IvCuda.cpp); built with CUDA only.
 std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions& options);
+#endif
 
 const engine::MethodSpec& implicitVisibilityMethod();
 }

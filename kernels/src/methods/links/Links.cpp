@@ -12,64 +12,6 @@
 
 namespace linkgi
 {
-bool isPerfectSquare(std::uint32_t n)
-{
-  const auto k = static_cast<std::uint32_t>(std::lround(std::sqrt(double(n))));
-  return n > 0 && k * k == n;
-}
-
-std::vector<Vec3f> makeDirectionSet(std::uint32_t n)
-{
-  if (!isPerfectSquare(n))
-  {
-    throw Error("The number of rays per vertex must be a perfect square (k*k, e.g. 64, 256, "
-                "1024); got " + std::to_string(n) + ".");
-  }
-  const auto k = static_cast<std::uint32_t>(std::lround(std::sqrt(double(n))));
-  std::vector<Vec3f> dirs;
-  dirs.reserve(n);
-  for (std::uint32_t by = 0; by < k; by += 4)
-  {
-    for (std::uint32_t bx = 0; bx < k; bx += 4)
-    {
-      for (std::uint32_t y = by; y < std::min(by + 4, k); ++y)
-      {
-        for (std::uint32_t x = bx; x < std::min(bx + 4, k); ++x)
-        {
-          dirs.push_back(cosineHemisphere((x + 0.5f) / k, (y + 0.5f) / k));
-        }
-      }
-    }
-  }
-  return dirs;
-}
-
-std::vector<Vec3f> environmentTexelRadiance(const Environment& env)
-{
-  if (!env.hasTexture())
-  {
-    return { env.color };
-  }
-  std::vector<Vec3f> radiance(env.texels.size());
-  for (std::size_t i = 0; i < radiance.size(); ++i)
-  {
-    radiance[i] = env.color * env.texels[i];
-  }
-  return radiance;
-}
-
-std::vector<Vec3f> frontFaceNormals(const Scene& scene)
-{
-  std::vector<Vec3f> normals(scene.triangleCount());
-  parallelRanges(normals.size(), 8192, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t t = begin; t < end; ++t)
-    {
-      normals[t] = frontFaceNormal(scene.positions.data(), scene.normals.data(), scene.triangles[t]);
-    }
-  });
-  return normals;
-}
-
 namespace
 {
 /// Traces element x's rays - the shared directions in its twisted frame, from its shifted
@@ -123,16 +65,6 @@ void traceLinkRays(const Scene& scene, const std::vector<RayOrigin>& origins,
       }
     },
     progress);
-}
-
-void exclusiveOffsets(const std::vector<Index>& counts, Offset first, std::vector<Offset>& offsets)
-{
-  offsets.resize(counts.size() + 1);
-  offsets[0] = first;
-  for (std::size_t i = 0; i < counts.size(); ++i)
-  {
-    offsets[i + 1] = offsets[i] + counts[i]; // Offset + Index: no 32-bit wrap
-  }
 }
 
 namespace

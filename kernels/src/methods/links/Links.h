@@ -1,12 +1,13 @@
 // Link generation and compression: the vertex-to-vertex transport matrix W.
 #pragma once
 
-#include "shared/NoFillVector.h"
 #include "cpu/Parallel.h"
-#include "shared/RayOrigin.h"
-#include "shared/RayTracer.h"
 #include "linkgi/Scene.h"
 #include "scene/Topology.h"
+#include "shared/Csr.h"
+#include "shared/RayOrigin.h"
+#include "shared/RayTracer.h"
+#include "shared/Surface.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -14,46 +15,6 @@
 
 namespace linkgi
 {
-/// Elements are the vertices (front sides) and, for two-sided scenes, their back sides:
-/// element vertexCount + i is the back of vertex i (normal -n_i).
-struct Elements
-{
-  std::size_t vertexCount = 0;
-  bool twoSided = false;
-  LINKGI_HOST_DEVICE std::size_t count() const { return twoSided ? 2 * vertexCount : vertexCount; }
-  LINKGI_HOST_DEVICE Index vertexOf(std::size_t e) const { return Index(e < vertexCount ? e : e - vertexCount); }
-  LINKGI_HOST_DEVICE float sideSign(std::size_t e) const { return e < vertexCount ? 1.f : -1.f; }
-};
-
-/// Rows of a CSR matrix as the gather reads them: row r is entries [rowOffsets[r],
-/// rowOffsets[r + 1]) counted from `firstEntry`, which columns[0] / weights[0] hold (0 for a
-/// whole matrix; a slice of a larger one starts further on).
-struct CsrRows
-{
-  const Offset* rowOffsets = nullptr; ///< rows + 1
-  const Index* columns = nullptr;
-  const float* weights = nullptr;
-  std::size_t rows = 0;
-  Offset firstEntry = 0;
-};
-
-/// Sparse matrix in CSR form; row = receiving element. Entry offsets are 64-bit (Offset).
-struct SparseMatrix
-{
-  std::vector<Offset> rowOffsets; ///< rows + 1
-  /// Not zero-filled on resize(): the link compression writes every entry, in parallel.
-  NoFillVector<Index> columns;
-  NoFillVector<float> weights;
-  std::size_t rows() const { return rowOffsets.empty() ? 0 : rowOffsets.size() - 1; }
-  std::size_t nonZeros() const { return columns.size(); }
-  std::size_t bytes() const
-  {
-    return rowOffsets.size() * sizeof(Offset) + columns.size() * sizeof(Index) +
-      weights.size() * sizeof(float);
-  }
-  CsrRows view() const { return { rowOffsets.data(), columns.data(), weights.data(), rows(), 0 }; }
-};
-
 /// Upper bound of the compressed links one element keeps in W and Wenv: every ray gives at
 /// most 3 (a hit, spread over its triangle's vertices) or 1 (a miss, one texel), and a row
 /// has no more columns than there are elements or texels. The compression reserves this much
@@ -66,10 +27,6 @@ struct LinksPerElement
     return { std::min(3 * raysPerVertex, elements), std::min(raysPerVertex, texels) };
   }
 };
-
-/// offsets[0] = first, offsets[i + 1] = offsets[i] + counts[i]: row offsets from per-row
-/// entry counts, in 64 bits (the sum passes 2^32 on large meshes). offsets gets counts + 1.
-void exclusiveOffsets(const std::vector<Index>& counts, Offset first, std::vector<Offset>& offsets);
 
 /// What link generation produces. With cosine-weighted directions the geometry term and the
 /// pdf cancel: E_ind(x) = sum_y W[x][y] L(y) + sum_j Wenv[x][j] Lenv(j), each hit adding
@@ -154,23 +111,6 @@ LINKGI_HOST_DEVICE inline RayLinks linksOfRay(const Hit& h, const Vec3f& directi
   }
   return r;
 }
-
-/// A triangle's front-side normal (see frontFaceNormals).
-LINKGI_HOST_DEVICE inline Vec3f frontFaceNormal(const Vec3f* positions, const Vec3f* normals, const Triangle& t)
-{
-  const Vec3f& a = positions[t.v[0]];
-  const Vec3f n = normalize(cross(positions[t.v[1]] - a, positions[t.v[2]] - a));
-  const Vec3f vertexSum = normals[t.v[0]] + normals[t.v[1]] + normals[t.v[2]];
-  return dot(n, vertexSum) < 0.f ? -n : n;
-}
-
-/// Lenv(j): the radiance of each environment texel the matrix Wenv gathers (one entry, the
-/// colour, for a constant environment; colour x texel for a lat-long map).
-std::vector<Vec3f> environmentTexelRadiance(const Environment& environment);
-
-/// Front-side normal of each triangle: the winding normal, flipped where it disagrees with
-/// the sum of its vertex normals (so inconsistent winding does not turn surfaces black).
-std::vector<Vec3f> frontFaceNormals(const Scene& scene);
 
 /// Stage 1: shoots raysPerVertex rays from every element.
 LinkHits traceLinkRays(const Scene& scene, const std::vector<RayOrigin>& origins,

@@ -23,6 +23,8 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
 
 /// Embree (or our BVH) and all cores.
 std::unique_ptr<engine::MethodBackend> createCpuBackend(const SolverOptions& options);
-/// The CUDA engine (cuda/LinksCuda.cpp); CudaUnavailable.cpp throws CudaError instead.
+#if LINKGI_HAVE_CUDA
+/// The CUDA engine (cuda/LinksCuda.cpp); built with CUDA only.
 std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions& options);
+#endif
 }

@@ -19,10 +19,14 @@ enum Stage : std::size_t
 
 /// Embree (or our BVH) and all cores (PmCpu.cpp).
 std::unique_ptr<engine::MethodBackend> createCpuBackend(const SolverOptions& options);
-/// The GPU (PmCuda.cpp); CudaUnavailable.cpp throws CudaError instead.
+#if LINKGI_HAVE_CUDA
+/// The GPU (PmCuda.cpp); built with CUDA only.
 std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions& options);
+#endif
 
+#if LINKGI_HAVE_CUDA
 /// The kd-tree the GPU builds over `points` (PointTreeView's order and axes, downloaded),
 /// for tests that search it on the host. Throws CudaError without a device or CUDA.
 void buildTreeOnDevice(const std::vector<Vec3f>& points, std::vector<Index>& order, std::vector<std::uint8_t>& axes);
+#endif
 }

@@ -62,19 +62,6 @@ Pcg32 pathRng(std::uint32_t seed, std::size_t element, std::uint32_t path)
   return Pcg32(splitMix64(key + path));
 }
 
-/// Unshadowed irradiance of one light at (p, n) and the shadow ray from `origin` that
-/// decides visibility. Returns false when the light cannot contribute.
-bool lightSample(const Light& light, const Vec3f& p, const Vec3f& n, const Vec3f& origin,
-  Vec3f& irradiance, Ray& shadow)
-{
-  Vec3f toLight;
-  irradiance = unshadowedIrradiance(light, p, n, toLight);
-  if (!(maxComponent(irradiance) > 0.f))
-    return false;
-  shadow = shadowRay(light, origin, directionToLight(light, origin));
-  return true;
-}
-
 /// Read-only data shared by all threads.
 struct Context
 {
@@ -276,27 +263,6 @@ void checkScene(const Scene& scene, const ReferenceOptions& options)
     throw Error("The reference solver needs at least one path per vertex.");
 }
 
-}
-
-Vec3f lightIrradiance(const Light& light, const Vec3f& p, const Vec3f& n,
-  const RayTracer& tracer, float eps, const Vec3f& shift)
-{
-  Vec3f irradiance;
-  Ray shadow;
-  if (!lightSample(light, p, n, p + n * eps + shift, irradiance, shadow))
-    return Vec3f(0.f);
-  std::uint8_t blocked = 0;
-  tracer.occluded(&shadow, &blocked, 1);
-  return blocked ? Vec3f(0.f) : irradiance;
-}
-
-Vec3f directIrradiance(const Scene& scene, const Vec3f& p, const Vec3f& n,
-  const RayTracer& tracer, float eps, const Vec3f& shift)
-{
-  Vec3f sum(0.f);
-  for (const Light& light : scene.lights)
-    sum += lightIrradiance(light, p, n, tracer, eps, shift);
-  return sum;
 }
 
 ReferenceSolution solveReference(const Scene& scene, const ReferenceOptions& options,

@@ -39,21 +39,6 @@ struct ReferenceSolution
   std::vector<Vec3f> indirect; ///< Monte Carlo estimate of bounced light, emission and environment
 };
 
-/// Exact irradiance that one light delivers at point p with unit normal n, shadowed:
-///   point:       V * I * max(0, cos) / r^2
-///   spot:        the same times cos(angle to axis)^spotExponent inside the cone of half
-///                angle coneAngleDegrees, 0 outside
-///   directional: V * intensity * max(0, dot(n, -direction))
-/// V comes from one shadow ray whose origin is p + eps * n + shift (for a vertex, its
-/// linkgi::rayOrigins offset and shift; zero shift elsewhere); for point and spot
-/// lights the ray stops just short of the light (linkgi::shadowRay).
-Vec3f lightIrradiance(const Light& light, const Vec3f& p, const Vec3f& n,
-  const RayTracer& tracer, float eps, const Vec3f& shift = {});
-
-/// Sum of lightIrradiance over all lights of the scene.
-Vec3f directIrradiance(const Scene& scene, const Vec3f& p, const Vec3f& n,
-  const RayTracer& tracer, float eps, const Vec3f& shift = {});
-
 /// Direct and indirect irradiance at every vertex (with options.twoSided also at every back
 /// side). With B = options.bounces, the indirect part is
 ///   E_ind(x) = pi/M * sum_k R_B(ray_k),    ray_k the k-th cosine-weighted ray from x,

@@ -1,0 +1,2 @@
+# The reference path tracer: per-vertex Monte Carlo ground truth.
+linkgi_method(SOURCES Reference.cpp)
