@@ -79,11 +79,14 @@ void vtkGlobalIlluminationSceneBuilder::AddStatistics(vtkFieldData* fd,
 {
   const std::pair<const char*, std::uint64_t> counters[] = { { "BvhBuilds", s.bvhBuilds },
     { "BvhRefits", s.bvhRefits }, { "Elements", s.elements }, { "Rays", s.rays },
-    { "LightRays", s.lightRays }, { "LinksRaw", s.linksRaw },
-    { "LinksCompressed", s.linksCompressed }, { "LinkBytes", s.linkBytes },
-    { "Vpls", s.vpls }, { "Photons", s.photons }, { "Clusters", s.clusters },
-    { "HostBytesEstimated", s.hostBytesEstimated }, { "MemoryBudget", s.memoryBudget } };
+    { "LightRays", s.lightRays }, { "HostBytesEstimated", s.hostBytesEstimated },
+    { "MemoryBudget", s.memoryBudget } };
   for (const auto& c : counters)
+  {
+    AddFieldValue(fd, c.first, c.second);
+  }
+  // The method's own sizes: LinkGI.LinksCompressed, LinkGI.Vpls, ...
+  for (const auto& c : s.counters)
   {
     AddFieldValue(fd, c.first, c.second);
   }

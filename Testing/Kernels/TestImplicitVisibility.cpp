@@ -381,12 +381,12 @@ TEST(TestImplicitVisibility, CpuAndCudaAgree)
       ASSERT_EQ(gpu.stats().backend, "cuda") << (gpu.stats().warnings.empty() ? "" : gpu.stats().warnings[0]);
       const float direct = test::relativeError(b.direct, a.direct), indirect = test::relativeError(b.indirect, a.indirect);
       std::printf("%s, N = %u: CPU/GPU relative RMSE direct %.2e, indirect %.2e; links %llu / %llu\n", name, n,
-        direct, indirect, (unsigned long long)cpu.stats().linksCompressed, (unsigned long long)gpu.stats().linksCompressed);
+        direct, indirect, (unsigned long long)cpu.stats().counter("LinksCompressed"), (unsigned long long)gpu.stats().counter("LinksCompressed"));
       EXPECT_LT(direct, 1e-3f) << name << " N = " << n;
       EXPECT_LT(indirect, 2e-3f) << name << " N = " << n;
       EXPECT_LT(test::relativeError(b.radiance, a.radiance), 2e-3f) << name << " N = " << n;
-      EXPECT_NEAR(double(gpu.stats().linksCompressed), double(cpu.stats().linksCompressed),
-        1e-3 * double(cpu.stats().linksCompressed)) << name << " N = " << n;
+      EXPECT_NEAR(double(gpu.stats().counter("LinksCompressed")), double(cpu.stats().counter("LinksCompressed")),
+        1e-3 * double(cpu.stats().counter("LinksCompressed"))) << name << " N = " << n;
     }
   }
 }

@@ -170,9 +170,9 @@ TEST(TestPartition, TwoProcessesGiveTheOneProcessResultBitForBit)
   {
     EXPECT_TRUE(sameBits(result[p].indirect, one.indirect)) << "process " << p;
     EXPECT_TRUE(sameBits(result[p].radiance, one.radiance)) << "process " << p;
-    EXPECT_LT(stats[p].linksCompressed, whole.stats().linksCompressed * 3 / 4) << "each links its rows only";
+    EXPECT_LT(stats[p].counter("LinksCompressed"), whole.stats().counter("LinksCompressed") * 3 / 4) << "each links its rows only";
   }
-  EXPECT_EQ(stats[0].linksCompressed + stats[1].linksCompressed, whole.stats().linksCompressed);
+  EXPECT_EQ(stats[0].counter("LinksCompressed") + stats[1].counter("LinksCompressed"), whole.stats().counter("LinksCompressed"));
 
   // A light move: no relinking, the same agreement.
   Scene lit = s;
@@ -230,10 +230,10 @@ TEST(TestPartition, ImplicitVisibilityPushesAndGathersOnlyItsRows)
   {
     EXPECT_TRUE(sameBits(two.result[p].indirect, one.indirect)) << "process " << p;
     EXPECT_TRUE(sameBits(two.result[p].radiance, one.radiance)) << "process " << p;
-    EXPECT_LT(two.stats[p].linksCompressed, whole.stats().linksCompressed * 3 / 4) << "each pushes to its rows only";
-    EXPECT_LT(two.stats[p].linksRaw, whole.stats().linksRaw) << "each links into its leaves' ancestors only";
+    EXPECT_LT(two.stats[p].counter("LinksCompressed"), whole.stats().counter("LinksCompressed") * 3 / 4) << "each pushes to its rows only";
+    EXPECT_LT(two.stats[p].counter("LinksRaw"), whole.stats().counter("LinksRaw")) << "each links into its leaves' ancestors only";
   }
-  EXPECT_EQ(two.stats[0].linksCompressed + two.stats[1].linksCompressed, whole.stats().linksCompressed);
+  EXPECT_EQ(two.stats[0].counter("LinksCompressed") + two.stats[1].counter("LinksCompressed"), whole.stats().counter("LinksCompressed"));
 }
 
 // Photon mapping splits its final gather by the clusters' samples and its caustics by rows:

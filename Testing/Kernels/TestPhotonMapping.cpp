@@ -192,8 +192,8 @@ TEST(TestPhotonMapping, StagesRerunOnlyWhatChanged)
   solver.update(s, o);
   const SolverStats& st = solver.stats();
   EXPECT_EQ(st.method, "photon-mapping");
-  EXPECT_GT(st.photons, 0u);
-  EXPECT_GT(st.clusters, 0u);
+  EXPECT_GT(st.counter("Photons"), 0u);
+  EXPECT_GT(st.counter("Clusters"), 0u);
   for (const char* stage : { "Geometry", "Photons", "Clusters", "LightLinks", "Gather", "Finish" })
   {
     EXPECT_TRUE(st.ran(stage)) << stage;
@@ -409,13 +409,13 @@ TEST(TestPhotonMapping, CpuAndCudaBackendsAgree)
       const Solution& a = cpu.update(now, test::onBackend(Backend::Cpu, o));
       const Solution& b = gpu.update(now, test::onBackend(Backend::Cuda, o));
       ASSERT_EQ(gpu.stats().backend, "cuda") << (gpu.stats().warnings.empty() ? "" : gpu.stats().warnings[0]);
-      const double photons = double(cpu.stats().photons);
-      EXPECT_NEAR(double(gpu.stats().photons) / photons, 1.0, 1e-3) << name << ", step " << step;
-      EXPECT_EQ(gpu.stats().clusters, cpu.stats().clusters) << name;
+      const double photons = double(cpu.stats().counter("Photons"));
+      EXPECT_NEAR(double(gpu.stats().counter("Photons")) / photons, 1.0, 1e-3) << name << ", step " << step;
+      EXPECT_EQ(gpu.stats().counter("Clusters"), cpu.stats().counter("Clusters")) << name;
       const float direct = test::relativeError(b.direct, a.direct);
       const float indirect = test::relativeError(b.indirect, a.indirect);
       std::printf("%s step %d: photons %zu / %zu, relative RMSE direct %.5f, indirect %.5f\n", name, step,
-        std::size_t(gpu.stats().photons), std::size_t(cpu.stats().photons), direct, indirect);
+        std::size_t(gpu.stats().counter("Photons")), std::size_t(cpu.stats().counter("Photons")), direct, indirect);
       EXPECT_LT(direct, 0.01f) << name << ", step " << step;
       EXPECT_LT(indirect, 0.03f) << name << ", step " << step;
       ASSERT_EQ(b.caustics.size(), a.caustics.size()) << name;

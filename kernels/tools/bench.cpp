@@ -404,13 +404,13 @@ void printRecord(const std::string& name, const Scene& scene, const UpdateRuns& 
     name.c_str(), full.method.c_str(), full.backend.c_str(), full.device.c_str(), full.devices,
     workerCount(), scene.vertexCount(), scene.triangleCount(), args.options.raysPerVertex,
     args.options.bounces, (unsigned long long)full.rays, raysPerSecond(full.rays, msLinks),
-    (unsigned long long)full.linksRaw, (unsigned long long)full.linksCompressed,
-    (unsigned long long)full.linkBytes, (unsigned long long)full.lightRays,
+    (unsigned long long)full.counter("LinksRaw"), (unsigned long long)full.counter("LinksCompressed"),
+    (unsigned long long)full.counter("LinkBytes"), (unsigned long long)full.lightRays,
     full.ms("Geometry") + full.ms("Topology"), msLinks, msCompress, msLinks + msCompress,
     full.ms("LightLinks"), full.ms("Bounces"), full.ms("Smoothing"), full.msTotal,
     runs.cold.msTotal, runs.light.msTotal, (unsigned long long)full.gpuBytesAllocated,
-    peakHostMb(), (unsigned long long)full.vpls, (unsigned long long)full.photons,
-    (unsigned long long)full.clusters, perDevice.str().c_str(), stagesJson(full).c_str(), extra.c_str(),
+    peakHostMb(), (unsigned long long)full.counter("Vpls"), (unsigned long long)full.counter("Photons"),
+    (unsigned long long)full.counter("Clusters"), perDevice.str().c_str(), stagesJson(full).c_str(), extra.c_str(),
     full.backendNote.c_str());
   for (const std::string& w : full.warnings)
   {

@@ -187,7 +187,7 @@ void validateScene(const std::string& name, const Args& args)
                 "\"rel_rmse_b\":%.4f,\"rel_rmse_luminance\":%.4f,\"indirect_rel_rmse_luminance\":%.4f,"
                 "\"ms_solver\":%.1f,\"ms_reference\":%.1f%s}\n",
       name.c_str(), solver.stats().method.c_str(), scene.vertexCount(), options.raysPerVertex,
-      (unsigned long long)solver.stats().vpls, options.bounces, int(options.smoothing), int(options.lightOversampling), ro.pathsPerVertex, e.relRmse.x, e.relRmse.y, e.relRmse.z, e.relRmseLuminance,
+      (unsigned long long)solver.stats().counter("Vpls"), options.bounces, int(options.smoothing), int(options.lightOversampling), ro.pathsPerVertex, e.relRmse.x, e.relRmse.y, e.relRmse.z, e.relRmseLuminance,
       ei.relRmseLuminance, solver.stats().msTotal, msReference, methodJson(options).c_str());
     std::fflush(stdout);
   }
@@ -290,7 +290,7 @@ void validateCaustics(const std::string& name, const Args& args)
                 "\"photons\":%llu,\"caustic_peak_offset_spacings\":%.3f,\"caustic_power_ratio\":%.4f,"
                 "\"reference_caustic_power\":%.5g,\"ms_solver\":%.1f,\"ms_reference\":%.1f%s}\n",
       name.c_str(), solver.stats().method.c_str(), checked.vertexCount(), args.causticPaths,
-      (unsigned long long)solver.stats().photons, offset, refPower > 0.0 ? power / refPower : 0.0, refPower,
+      (unsigned long long)solver.stats().counter("Photons"), offset, refPower > 0.0 ? power / refPower : 0.0, refPower,
       solver.stats().msTotal, msReference, methodJson(options).c_str());
     std::fflush(stdout);
   }
@@ -317,7 +317,7 @@ void validateFurnace(const Args& args)
                 "\"vpls\":%llu,\"bounces\":%u,\"max_rel_error\":%.5f,\"mean_rel_error\":%.5f,"
                 "\"ms_solver\":%.1f}\n",
       solver.stats().method.c_str(), scene.vertexCount(), o.raysPerVertex,
-      (unsigned long long)solver.stats().vpls, o.bounces, worst, std::abs(mean / total - 1.0),
+      (unsigned long long)solver.stats().counter("Vpls"), o.bounces, worst, std::abs(mean / total - 1.0),
       solver.stats().msTotal);
   }
 }

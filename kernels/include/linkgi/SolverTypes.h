@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace linkgi
@@ -278,14 +279,17 @@ struct SolverStats
   // geometry change, and lifetime totals.
   bool builtBvh = false, refitBvh = false;
   std::uint64_t bvhBuilds = 0, bvhRefits = 0;
-  // Sizes of the current structure (0 where a method has none).
-  std::uint64_t elements = 0, rays = 0, linksRaw = 0, linksCompressed = 0, linkBytes = 0,
-                lightRays = 0;
-  /// Virtual point lights of the last VPL set (Method::InstantRadiosity; 0 for the others).
-  std::uint64_t vpls = 0;
-  /// Method::PhotonMapping: photons in the photon map, and vertex clusters (sample vertices).
-  std::uint64_t photons = 0;
-  std::uint64_t clusters = 0;
+  /// Receiving elements, rays of the indirect light's stage (link rays, gather or shadow
+  /// rays to VPLs) and shadow rays to the lights, in the current solution.
+  std::uint64_t elements = 0, rays = 0, lightRays = 0;
+  /// Sizes the method that ran reports of its own structures, by name (field data
+  /// LinkGI.<name>): "LinksRaw", "LinksCompressed", "LinkBytes" (the link methods), "Vpls"
+  /// (instant radiosity), "Photons", "Clusters" (photon mapping). Only the method's own.
+  std::vector<std::pair<std::string, std::uint64_t>> counters;
+  /// The counter called `name`, 0 when the method reports none.
+  std::uint64_t counter(const std::string& name) const;
+  /// Sets (or adds) the counter `name`.
+  void setCounter(const std::string& name, std::uint64_t value);
   /// The whole last update in milliseconds.
   double msTotal = 0;
   /// Of msTotal: copying and validating the scene and finding what changed (host).

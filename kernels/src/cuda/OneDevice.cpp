@@ -109,7 +109,6 @@ void DeviceContext::describe(SolverStats& st) const
   st.msCompressPerDevice.clear();
   st.msWallPerDevice.clear();
   st.gpuBytesAllocated = MemoryLedger::takePeak();
-  st.linksRaw = st.linksCompressed = st.linkBytes = 0;
 }
 
 void DeviceDirectLight::queue(const Scene& scene, const SolverOptions& options, const DeviceMesh& mesh,

@@ -119,6 +119,31 @@ void validateOptions(const SolverOptions& options)
   }
 }
 
+std::uint64_t SolverStats::counter(const std::string& name) const
+{
+  for (const auto& c : counters)
+  {
+    if (c.first == name)
+    {
+      return c.second;
+    }
+  }
+  return 0;
+}
+
+void SolverStats::setCounter(const std::string& name, std::uint64_t value)
+{
+  for (auto& c : counters)
+  {
+    if (c.first == name)
+    {
+      c.second = value;
+      return;
+    }
+  }
+  counters.emplace_back(name, value);
+}
+
 const StageStats* SolverStats::stage(const std::string& name) const
 {
   for (const StageStats& s : stages)

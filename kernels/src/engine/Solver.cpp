@@ -407,6 +407,7 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
     stats = std::move(st);
     return;
   }
+  st.counters.clear(); // the backend that runs reports its method's own
 
   // New results go into `sol` and the backend's staging, and replace the cached ones only
   // when the whole update succeeded, so an abort or error leaves the previous solution.

@@ -181,9 +181,8 @@ public:
   {
     geometry.describe(st);
     st.rays = gathered.committed().rays;
-    st.linksRaw = st.linksCompressed = st.linkBytes = 0;
     st.lightRays = direct.committed().shadowRays;
-    st.vpls = vpls.committed().count();
+    st.setCounter("Vpls", vpls.committed().count());
   }
 
 private:

@@ -61,9 +61,9 @@ public:
     geometry.describe(st);
     st.rays = 0; // visibility is implied: no link rays
     const Links& l = links.committed();
-    st.linksRaw = l.nodeLinks;
-    st.linksCompressed = l.leaves.transport.nonZeros();
-    st.linkBytes = l.leaves.transport.bytes() + l.leaves.environment.bytes();
+    st.setCounter("LinksRaw", l.nodeLinks);
+    st.setCounter("LinksCompressed", l.leaves.transport.nonZeros());
+    st.setCounter("LinkBytes", l.leaves.transport.bytes() + l.leaves.environment.bytes());
     st.lightRays = direct.committed().shadowRays;
   }
 

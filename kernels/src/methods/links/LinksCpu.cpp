@@ -65,9 +65,9 @@ public:
   {
     geometry.describe(st);
     st.rays = links.rays;
-    st.linksRaw = links.rawLinks;
-    st.linksCompressed = links.transport.nonZeros();
-    st.linkBytes = links.transport.bytes() + links.environment.bytes();
+    st.setCounter("LinksRaw", links.rawLinks);
+    st.setCounter("LinksCompressed", links.transport.nonZeros());
+    st.setCounter("LinkBytes", links.transport.bytes() + links.environment.bytes());
     st.lightRays = direct.shadowRays;
   }
 

@@ -71,10 +71,9 @@ public:
   {
     geometry.describe(st);
     st.rays = gathered.committed().rays;
-    st.linksRaw = st.linksCompressed = st.linkBytes = 0;
     st.lightRays = direct.committed().shadowRays;
-    st.photons = map.committed().count();
-    st.clusters = clusters.committed().count();
+    st.setCounter("Photons", map.committed().count());
+    st.setCounter("Clusters", clusters.committed().count());
   }
 
 private:

@@ -107,7 +107,7 @@ public:
     device.describe(st);
     st.rays = gatherRays;
     st.lightRays = lightRays;
-    st.vpls = vpls.count;
+    st.setCounter("Vpls", vpls.count);
   }
 
 private:

@@ -50,9 +50,9 @@ public:
   {
     device.describe(st);
     st.rays = 0; // visibility is implied: no link rays
-    st.linksRaw = nodeLinks;
-    st.linksCompressed = transportEntries;
-    st.linkBytes = (transportEntries + environmentEntries) * (sizeof(Index) + sizeof(float));
+    st.setCounter("LinksRaw", nodeLinks);
+    st.setCounter("LinksCompressed", transportEntries);
+    st.setCounter("LinkBytes", (transportEntries + environmentEntries) * (sizeof(Index) + sizeof(float)));
     st.lightRays = lightRays;
   }
 

@@ -282,17 +282,18 @@ void Engine::describe(SolverStats& stats) const
   // over its GPUs of GPUBuffer allocations, not the devices' used memory.
   stats.gpuBytesAllocated = MemoryLedger::takePeak();
   stats.rays = rays;
-  stats.linksRaw = rawLinks;
-  stats.linksCompressed = 0;
-  stats.linkBytes = 0;
+  std::uint64_t compressed = 0, bytes = 0;
   for (const auto& d : devices)
   {
     for (const MatrixBlock& b : d->blocks)
     {
-      stats.linksCompressed += b.transport.nonZeros;
-      stats.linkBytes += b.transport.usedBytes() + b.environment.usedBytes();
+      compressed += b.transport.nonZeros;
+      bytes += b.transport.usedBytes() + b.environment.usedBytes();
     }
   }
+  stats.setCounter("LinksRaw", rawLinks);
+  stats.setCounter("LinksCompressed", compressed);
+  stats.setCounter("LinkBytes", bytes);
   stats.lightRays = *devices[0]->tracedLightRays; // the bounce stage has synchronized
 }
 

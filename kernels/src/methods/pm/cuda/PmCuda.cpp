@@ -56,8 +56,8 @@ public:
     device.describe(st);
     st.rays = gatherRays;
     st.lightRays = lightRays;
-    st.photons = photonCount;
-    st.clusters = clusterCount;
+    st.setCounter("Photons", photonCount);
+    st.setCounter("Clusters", clusterCount);
   }
 
 private:
