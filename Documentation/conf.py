@@ -12,7 +12,7 @@ extensions = ["myst_parser"]
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 master_doc = "index"
 myst_heading_anchors = 4
-# The records behind the measurements are data, linked from their READMEs, not pages.
+# Scripts and data files are linked from the pages, not pages themselves.
 exclude_patterns = ["_build", "**/*.json", "**/*.jsonl", "**/*.log", "**/*.txt", "**/*.sh",
                     "**/*.py"]
 
@@ -24,15 +24,27 @@ html_theme_options = {
 }
 html_static_path = []
 
+# Documentation/ in the source tree: the site is built from a copy (scripts/docs.py), and the
+# pages link to files beside it that the copy does not hold (the measurement records in
+# records/, at the repository's top).
+SOURCE = os.environ.get("LINKGI_DOCUMENTATION_SOURCE", os.path.dirname(os.path.abspath(__file__)))
 
-def _link_into_the_records(app, domain, node):
-    """Links to a folder or a record file of the source tree (not a page) are kept as text,
-    without a warning; a link to a missing page still warns."""
-    target = node.get("reftarget", "")
-    base = os.path.dirname(app.env.doc2path(node.get("refdoc", "index")))
-    path = os.path.normpath(os.path.join(base, target.split("#")[0]))
-    return True if target and os.path.exists(path) and not path.endswith(".md") else None
+
+def _link_into_the_source_tree(app, domain, node):
+    """Links to a folder or a file of the source tree that is not a page (a script, the
+    records in records/) are kept as text, without a warning; a link to a missing page or
+    file still warns."""
+    target = node.get("reftarget", "").split("#")[0]
+    if not target:
+        return None
+    folder = os.path.dirname(node.get("refdoc", "index"))
+    for top in (app.srcdir, SOURCE):
+        path = os.path.normpath(os.path.join(top, folder, target))
+        inside = path.startswith(os.path.normpath(top) + os.sep)
+        if os.path.exists(path) and not (inside and path.endswith(".md")):
+            return True
+    return None
 
 
 def setup(app):
-    app.connect("warn-missing-reference", _link_into_the_records)
+    app.connect("warn-missing-reference", _link_into_the_source_tree)

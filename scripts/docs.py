@@ -242,6 +242,8 @@ def main():
     shutil.rmtree(src, ignore_errors=True)
     shutil.copytree(os.path.join(TOP, "Documentation"), src)
     environment = dict(os.environ)
+    # conf.py resolves the pages' links to files outside Documentation/ (records/) here.
+    environment["LINKGI_DOCUMENTATION_SOURCE"] = os.path.join(TOP, "Documentation")
     python_path = [os.path.join(build, "lib", "python3.11", "dist-packages"),
                    os.path.join(build, "python3-paraview", "usr", "lib", "python3",
                                 "dist-packages")]
