@@ -1,13 +1,18 @@
 """Prints Engine.md's progressive-stage tables from the linkgi-bench --progressive records
-of this folder (median over the runs; the error of a coarse stage against its final one).
+(median over the runs; the error of a coarse stage against its final one).
 
-    python3 Documentation/measurements/progressive-2026-11-27/table.py
+    python3 Documentation/scripts/progressive-tables.py
 """
 import json
 import os
 import statistics
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+RECORDS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "records")
+# The records, in the order of Engine.md's tables: the 2-core VM, one H200, the same H200
+# bench at 033b104 (where a GPU update with nothing measured still got a coarse stage).
+BENCHES = ("2026-11-27_2core-xeon-vm_de1579e_progressive-stages/bench-cpu-2core-vm.jsonl",
+           "2026-11-27_h200_05b5582_progressive-stages/bench-cuda-h200.jsonl",
+           "2026-11-27_h200_033b104_progressive-stages/bench-cuda-h200-033b104.jsonl")
 METHODS = {"photons": "photon mapping", "VPLs": "instant radiosity", "bins": "implicit visibility",
            "rays": "links"}  # photon mapping's sampling names gather rays too: it goes first
 
@@ -31,11 +36,11 @@ def cell(runs):
         len(coarse), len(runs), final)
 
 
-for name in ("bench-cpu-2core-vm.jsonl", "bench-cuda-h200.jsonl", "bench-cuda-h200-033b104.jsonl"):
-    print("\n" + name)
+for name in BENCHES:
+    print("\nrecords/" + name)
     print("| scene | method | apply | plain | deformation | plain | light move | plain |")
     print("|---|---|---|---|---|---|---|---|")
-    for line in open(os.path.join(HERE, name)):
+    for line in open(os.path.join(RECORDS, name)):
         r = json.loads(line)
         row = [r["scene"], method(r["final_sampling"])]
         for kind in ("apply", "deform", "light"):
