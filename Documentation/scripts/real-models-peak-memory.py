@@ -3,7 +3,7 @@ filter, in a process of its own (a process's peak resident set only grows).
 
     for m in 0 1 2 3; do for model in "bunny-inward.vtp 1" "lucy.vtp 2"; do
       PYTHONPATH=build/lib/python3.11/dist-packages /usr/bin/python3 \\
-        Documentation/measurements/real-models/peak_memory.py $model $m; done; done
+        Documentation/scripts/real-models-peak-memory.py $model $m; done; done
 
 Arguments: the model's file in Testing/Data/Models, its vertical axis (0, 1, 2) and the
 method (the filter's numbering: 0 links, 1 instant radiosity, 2 implicit visibility, 3 photon
@@ -21,7 +21,7 @@ from vtkmodules.vtkFiltersSources import vtkPlaneSource
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from vtkmodules.vtkRenderingCore import vtkLight
 
-MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "Testing", "Data", "Models")
+MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Testing", "Data", "Models")
 
 
 def resident(key):
