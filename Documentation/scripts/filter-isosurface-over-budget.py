@@ -1,5 +1,11 @@
 """A ~4M-point isosurface through vtkGlobalIlluminationFilter with default settings:
-the memory budget must light it through a proxy instead of the process being killed."""
+the memory budget must light it through a proxy instead of the process being killed.
+
+    /usr/bin/time -v env PYTHONPATH=build/lib/python3.11/dist-packages /usr/bin/python3 \
+      Documentation/scripts/filter-isosurface-over-budget.py 350
+
+The argument is the extent E of vtkRTAnalyticSource (-E..E, contoured at 160; 350: 4.1M
+points). Record: records/2026-11-23_2core-epyc-vm_28b2fde_filter-isosurface4m."""
 import sys, time
 import linkgi
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
