@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Helper G: durations of the link method's light-update kernels on conference (ncu, caches and clocks as they are).
+# Durations of the link method's light-update kernels on conference (ncu, caches and clocks as they are).
+# From the repository root of a GPU machine, GoogleTest's sources in .gtest/googletest:
+#   OUT=out bash Documentation/scripts/cuda-light-kernels-ncu.sh
 set -u
 export LINKGI_GPU_BUILD=/tmp/b
 B=/tmp/b/bin

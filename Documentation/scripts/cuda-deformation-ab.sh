@@ -5,10 +5,10 @@
 #
 #   mkdir -p /tmp/base && git archive 56b462b kernels cmake | tar -x -C /tmp/base
 #   BASE_SRC=/tmp/base OUT=out GTEST=$PWD/.gtest/googletest ROUNDS=4 \
-#     bash Documentation/measurements/cuda-h200/I-deformation-ab.sh
+#     bash Documentation/scripts/cuda-deformation-ab.sh
 set -u
 top=$PWD
-here=$top/Documentation/measurements/cuda-h200
+here=$top/Documentation/scripts
 ROUNDS=${ROUNDS:-3}
 mkdir -p "$OUT"
 { nvidia-smi --query-gpu=name,uuid,memory.total,driver_version,clocks.max.sm --format=csv; nproc
@@ -32,10 +32,10 @@ for r in $(seq 1 "$ROUNDS"); do
     done
   done
 done
-# The preparation of a deformation alone (I-preparation.cpp, both builds), and its pieces.
+# The preparation of a deformation alone (deformation-preparation.cpp, both builds), and its pieces.
 LIBS="-L/usr/local/cuda/lib64 -lcudart_static -lcudadevrt -ldl -lrt -lpthread"
-g++ -O2 -std=c++17 -I"$BASE_SRC/kernels/include" "$here/I-preparation.cpp" $B0/liblinkgi_kernels.a $LIBS -o /tmp/prep-base
-g++ -O2 -std=c++17 -I"$top/kernels/include" "$here/I-preparation.cpp" $B1/liblinkgi_kernels.a $LIBS -o /tmp/prep-new
-g++ -O2 -std=c++17 -I"$top/kernels/include" "$here/I-preparation-pieces.cpp" $B1/liblinkgi_kernels.a $LIBS -o /tmp/prep-pieces
+g++ -O2 -std=c++17 -I"$BASE_SRC/kernels/include" "$here/deformation-preparation.cpp" $B0/liblinkgi_kernels.a $LIBS -o /tmp/prep-base
+g++ -O2 -std=c++17 -I"$top/kernels/include" "$here/deformation-preparation.cpp" $B1/liblinkgi_kernels.a $LIBS -o /tmp/prep-new
+g++ -O2 -std=c++17 -I"$top/kernels/include" "$here/deformation-preparation-pieces.cpp" $B1/liblinkgi_kernels.a $LIBS -o /tmp/prep-pieces
 { for i in 1 2; do /tmp/prep-base 60 cuda; /tmp/prep-new 60 cuda; done; /tmp/prep-pieces; } > "$OUT/preparation.txt"
 timeout 240 $B1/bin/linkgi_kernel_tests > "$OUT/tests.log" 2>&1; echo "suite exit $?"

@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
-# Helper G: build, whole suite, memcheck on the CUDA tests changed, IR + links benches on conference.
+# Build, whole suite, memcheck on instant radiosity's GPU tests and the small CUDA tests, IR + links
+# benches on conference.
+# From the repository root of a GPU machine, GoogleTest's sources in .gtest/googletest:
+#   OUT=out bash Documentation/scripts/cuda-instant-radiosity-session.sh
 set -u
 top=$PWD
 export LINKGI_GPU_BUILD=/tmp/b

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # One call on a multi-GPU machine: build, whole suite, conference/iphi on 1, 2 and all GPUs
 # interleaved, isosurfaces (1M and 8M on one GPU, 16M on all), sanitizers on two GPUs.
+# From the repository root, GoogleTest's sources in .gtest/googletest, e.g.
+#   OUT=out TAG=m SCALE=16000000 SAN=1 bash Documentation/scripts/cuda-multi-gpu.sh
 set -uo pipefail
 export LINKGI_GPU_BUILD=/tmp/b
 O=$OUT/${TAG:-m}; mkdir -p $O
