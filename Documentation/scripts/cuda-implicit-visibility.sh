@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
 # Implicit visibility on one GPU: build, its tests (and the whole suite), sanitizers, benchmarks.
+# From the repository root of a GPU machine, GoogleTest's sources in .gtest/googletest:
+#   OUT=out TAG=m1 bash Documentation/scripts/cuda-implicit-visibility.sh   (SUITE=1 SAN=1: also the
+#   whole kernel suite and compute-sanitizer)
 set -uo pipefail
 export LINKGI_GPU_BUILD=/tmp/b
 O=$OUT/${TAG:-iv}; mkdir -p $O
