@@ -352,19 +352,31 @@ void vtkGlobalIlluminationFilter::SetRaysPerVertex(int rays)
 }
 
 //------------------------------------------------------------------------------
+void vtkGlobalIlluminationFilter::SetMethod(int method)
+{
+  if (method == this->Method)
+  {
+    return;
+  }
+  std::string known;
+  for (const linkgi::Method m : linkgi::methods())
+  {
+    if (int(m) == method)
+    {
+      this->Method = method;
+      this->Modified();
+      return;
+    }
+    known += (known.empty() ? "" : ", ") + std::to_string(int(m)) + " (" + linkgi::methodName(m) + ")";
+  }
+  vtkErrorMacro(<< "No method " << method << "; this build has " << known << ". The method stays "
+                << this->GetMethodAsString() << ".");
+}
+
+//------------------------------------------------------------------------------
 const char* vtkGlobalIlluminationFilter::GetMethodAsString()
 {
-  switch (this->Method)
-  {
-    case INSTANT_RADIOSITY:
-      return "InstantRadiosity";
-    case IMPLICIT_VISIBILITY:
-      return "ImplicitVisibility";
-    case PHOTON_MAPPING:
-      return "PhotonMapping";
-    default:
-      return "Links";
-  }
+  return linkgi::methodName(static_cast<linkgi::Method>(this->Method));
 }
 
 //------------------------------------------------------------------------------

@@ -107,7 +107,8 @@ public:
     CUDA = 2  ///< the GPU(s); without a device (or out of GPU memory) the CPU, with a warning
   };
 
-  /// How the indirect light is computed.
+  /// How the indirect light is computed: the values of linkgi::Method, the engine's
+  /// registered methods (SetMethod refuses a value none of them has).
   enum MethodType
   {
     LINKS = 0,             ///< the link structure (Schmitz, Tavenrath & Kobbelt 2008)
@@ -133,9 +134,11 @@ public:
    * the clusters).
    * RaysPerVertex applies to LINKS, the VPL properties below to INSTANT_RADIOSITY,
    * ImplicitVisibilityBins to IMPLICIT_VISIBILITY, the photon properties to PHOTON_MAPPING.
-   * The default value is LINKS.
+   * The default value is LINKS. A value no registered method has is an error and changes
+   * nothing. GetMethodAsString() gives the method's name as the output's LinkGI.Method
+   * says it ("links", "instant-radiosity", ...).
    */
-  vtkSetClampMacro(Method, int, LINKS, PHOTON_MAPPING);
+  virtual void SetMethod(int method);
   vtkGetMacro(Method, int);
   void SetMethodToLinks() { this->SetMethod(LINKS); }
   void SetMethodToInstantRadiosity() { this->SetMethod(INSTANT_RADIOSITY); }

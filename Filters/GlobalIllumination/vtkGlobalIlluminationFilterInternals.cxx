@@ -273,13 +273,7 @@ linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
   options.backend = ToEngineBackend(self->Backend);
   options.raysPerVertex = static_cast<std::uint32_t>(self->RaysPerVertex);
   options.bounces = static_cast<std::uint32_t>(self->NumberOfBounces);
-  options.method = self->Method == vtkGlobalIlluminationFilter::INSTANT_RADIOSITY
-    ? linkgi::Method::InstantRadiosity
-    : self->Method == vtkGlobalIlluminationFilter::IMPLICIT_VISIBILITY
-    ? linkgi::Method::ImplicitVisibility
-    : self->Method == vtkGlobalIlluminationFilter::PHOTON_MAPPING
-    ? linkgi::Method::PhotonMapping
-    : linkgi::Method::Links;
+  options.method = static_cast<linkgi::Method>(self->Method); // SetMethod checked it
   options.partition = this->ActivePartition;
   options.photonMapping.photons = static_cast<std::uint32_t>(self->NumberOfPhotons);
   options.photonMapping.clusters = static_cast<std::uint32_t>(self->NumberOfClusters);

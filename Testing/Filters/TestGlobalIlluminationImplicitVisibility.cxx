@@ -14,7 +14,7 @@ TEST(TestGlobalIlluminationImplicitVisibility, PropertiesAndTheirLimits)
   EXPECT_EQ(filter->GetImplicitVisibilityBins(), 12);
   filter->SetMethodToImplicitVisibility();
   EXPECT_EQ(filter->GetMethod(), vtkGlobalIlluminationFilter::IMPLICIT_VISIBILITY);
-  EXPECT_STREQ(filter->GetMethodAsString(), "ImplicitVisibility");
+  EXPECT_STREQ(filter->GetMethodAsString(), "implicit-visibility");
   filter->SetImplicitVisibilityBins(1);
   EXPECT_EQ(filter->GetImplicitVisibilityBins(), 2);
   filter->SetImplicitVisibilityBins(100);

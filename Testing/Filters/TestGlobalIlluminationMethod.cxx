@@ -10,6 +10,8 @@
 #include "vtkSphereSource.h"
 #include "vtkStringArray.h"
 
+#include "linkgi/SolverTypes.h"
+
 #include <gtest/gtest.h>
 
 using namespace linkgi_test;
@@ -59,12 +61,20 @@ TEST(TestGlobalIlluminationMethod, DefaultIsLinks)
 {
   vtkNew<vtkGlobalIlluminationFilter> filter;
   EXPECT_EQ(filter->GetMethod(), vtkGlobalIlluminationFilter::LINKS);
-  EXPECT_STREQ(filter->GetMethodAsString(), "Links");
+  EXPECT_STREQ(filter->GetMethodAsString(), "links");
   filter->SetMethodToInstantRadiosity();
-  EXPECT_STREQ(filter->GetMethodAsString(), "InstantRadiosity");
-  filter->SetMethod(7); // clamped to the last method
-  EXPECT_LE(filter->GetMethod(), 7);
-  EXPECT_GE(filter->GetMethod(), vtkGlobalIlluminationFilter::INSTANT_RADIOSITY);
+  EXPECT_STREQ(filter->GetMethodAsString(), "instant-radiosity");
+  {
+    MessageCapture capture(filter);
+    filter->SetMethod(77); // no such method: an error that names the ones there are
+    EXPECT_TRUE(capture.HasError("No method 77; this build has 0 (links), 1 (instant-radiosity)"));
+  }
+  EXPECT_STREQ(filter->GetMethodAsString(), "instant-radiosity") << "unchanged";
+  for (const linkgi::Method m : linkgi::methods())
+  {
+    filter->SetMethod(int(m));
+    EXPECT_STREQ(filter->GetMethodAsString(), linkgi::methodName(m)) << "every registered method";
+  }
   EXPECT_EQ(filter->GetNumberOfVPLs(), 1024);
   EXPECT_DOUBLE_EQ(filter->GetVPLClampDistance(), 0.01);
 }
@@ -148,7 +158,7 @@ TEST(TestGlobalIlluminationMethod, PhotonMappingLightsLikeTheLinksAndKeepsItsClu
   links->DeepCopy(filter->GetOutput());
 
   filter->SetMethodToPhotonMapping();
-  EXPECT_STREQ(filter->GetMethodAsString(), "PhotonMapping");
+  EXPECT_STREQ(filter->GetMethodAsString(), "photon-mapping");
   filter->SetNumberOfPhotons(65536);
   filter->SetNumberOfClusters(512);
   filter->Update();

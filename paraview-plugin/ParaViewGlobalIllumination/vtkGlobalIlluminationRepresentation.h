@@ -74,7 +74,7 @@ public:
    */
   void SetRaysPerVertex(int rays);
   void SetNumberOfBounces(int bounces);
-  /// vtkGlobalIlluminationFilter::SetMethod (LINKS, INSTANT_RADIOSITY, IMPLICIT_VISIBILITY).
+  /// vtkGlobalIlluminationFilter::SetMethod: a linkgi::Method value.
   void SetMethod(int method);
   void SetSmoothing(int smoothing);
   void SetEnvironmentColor(double r, double g, double b);

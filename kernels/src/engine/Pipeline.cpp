@@ -1,4 +1,5 @@
 #include "engine/Pipeline.h"
+#include "engine/Methods.h"
 
 #include "cuda/Cuda.h"
 #include "linkgi/Error.h"
@@ -9,6 +10,22 @@
 
 namespace linkgi
 {
+namespace
+{
+/// Whether any method's own options differ (MethodSpec::optionsDiffer).
+bool methodOptionsDiffer(const SolverOptions& a, const SolverOptions& b)
+{
+  for (const engine::MethodEntry& entry : engine::methodTable())
+  {
+    if (entry.spec().optionsDiffer(a, b))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+}
+
 bool operator==(const SolverOptions& a, const SolverOptions& b)
 {
   return a.method == b.method && a.raysPerVertex == b.raysPerVertex && a.bounces == b.bounces &&
@@ -17,26 +34,7 @@ bool operator==(const SolverOptions& a, const SolverOptions& b)
     a.lightOversampling == b.lightOversampling && a.albedoPolicy == b.albedoPolicy &&
     a.backend == b.backend && a.cudaDevices == b.cudaDevices &&
     a.cudaBvhUpdate == b.cudaBvhUpdate && a.cudaBvhBuild == b.cudaBvhBuild &&
-    a.instantRadiosity == b.instantRadiosity && a.implicitVisibility == b.implicitVisibility &&
-    a.photonMapping == b.photonMapping && a.memoryBudget == b.memoryBudget && a.partition == b.partition;
-}
-
-bool operator==(const PhotonMappingOptions& a, const PhotonMappingOptions& b)
-{
-  return a.photons == b.photons && a.clusters == b.clusters && a.gatherRays == b.gatherRays &&
-    a.estimatePhotons == b.estimatePhotons && a.alpha == b.alpha;
-}
-
-bool operator==(const ImplicitVisibilityOptions& a, const ImplicitVisibilityOptions& b)
-{
-  return a.binsPerSide == b.binsPerSide;
-}
-
-bool operator==(const InstantRadiosityOptions& a, const InstantRadiosityOptions& b)
-{
-  return a.vplCount == b.vplCount && a.clampDistance == b.clampDistance &&
-    a.interleave == b.interleave && a.proxyVisibility == b.proxyVisibility &&
-    a.proxyResolution == b.proxyResolution && a.russianRoulette == b.russianRoulette;
+    a.memoryBudget == b.memoryBudget && a.partition == b.partition && !methodOptionsDiffer(a, b);
 }
 
 void validateOptions(const SolverOptions& options)
@@ -59,64 +57,13 @@ void validateOptions(const SolverOptions& options)
     throw Error("The number of CUDA devices must be 0 (all) or more; got " +
       std::to_string(options.cudaDevices) + ".");
   }
-  const InstantRadiosityOptions& ir = options.instantRadiosity;
-  if (ir.vplCount < 1 || ir.vplCount > (1u << 20))
+  // Every method's own options, not only the chosen one's: a bad value is refused where it
+  // is set, not when the method is switched to later.
+  for (const engine::MethodEntry& entry : engine::methodTable())
   {
-    throw Error("The number of virtual point lights must be between 1 and 1048576; got " +
-      std::to_string(ir.vplCount) + ".");
+    entry.spec().validateOptions(options);
   }
-  if (!(ir.clampDistance >= 0.f && ir.clampDistance <= 1.f))
-  {
-    throw Error("The VPL clamp distance must be a fraction of the scene size in [0, 1]; got " +
-      std::to_string(ir.clampDistance) + ".");
-  }
-  if (ir.interleave < 1 || ir.interleave > 64)
-  {
-    throw Error("The VPL interleaving must be between 1 (off) and 64 subsets; got " +
-      std::to_string(ir.interleave) + ".");
-  }
-  if (ir.proxyResolution < 2 || ir.proxyResolution > 4096)
-  {
-    throw Error("The proxy resolution must be between 2 and 4096 cells; got " +
-      std::to_string(ir.proxyResolution) + ".");
-  }
-  if (options.implicitVisibility.binsPerSide < 2 || options.implicitVisibility.binsPerSide > 32)
-  {
-    throw Error("Implicit visibility: the bins per side of a cube-map face must be between 2 "
-                "and 32 (the paper uses 8, 12, 16); got " +
-      std::to_string(options.implicitVisibility.binsPerSide) + ".");
-  }
-  const PhotonMappingOptions& pm = options.photonMapping;
-  if (pm.photons < 1 || pm.photons > (1u << 24))
-  {
-    throw Error("Photon mapping: the number of photons must be between 1 and 16777216; got " +
-      std::to_string(pm.photons) + ".");
-  }
-  if (pm.clusters < 1 || pm.clusters > (1u << 20))
-  {
-    throw Error("Photon mapping: the number of clusters must be between 1 and 1048576; got " +
-      std::to_string(pm.clusters) + ".");
-  }
-  if (!isPerfectSquare(pm.gatherRays) || pm.gatherRays > 65536)
-  {
-    throw Error("Photon mapping: the final-gather rays per sample must be a perfect square up to "
-                "65536 (e.g. 64, 256, 1024); got " + std::to_string(pm.gatherRays) + ".");
-  }
-  if (pm.estimatePhotons < 2 || pm.estimatePhotons > 1024)
-  {
-    throw Error("Photon mapping: the photons per radiance estimate must be between 2 and 1024; got " +
-      std::to_string(pm.estimatePhotons) + ".");
-  }
-  if (!(pm.alpha >= 0.f && pm.alpha <= 1000.f))
-  {
-    throw Error("Photon mapping: the clustering's distance weight alpha must be in [0, 1000]; got " +
-      std::to_string(pm.alpha) + ".");
-  }
-  if (options.method == Method::ImplicitVisibility && options.twoSided)
-  {
-    throw Error("The implicit-visibility method has one-sided elements only; turn two-sided "
-                "elements off or choose another method.");
-  }
+  engine::methodSpec(options.method).checkCombination(options);
 }
 
 std::uint64_t SolverStats::counter(const std::string& name) const
@@ -301,8 +248,7 @@ Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& be
   differs(kFiltering, o.smoothing != b.smoothing || o.featureAngleDegrees != b.featureAngleDegrees);
   differs(kBackendSetup, o.cudaBvhBuild != b.cudaBvhBuild);
   differs(kPlacement, o.backend != b.backend || o.cudaDevices != b.cudaDevices);
-  differs(kMethodOptions, o.instantRadiosity != b.instantRadiosity ||
-    o.implicitVisibility != b.implicitVisibility || o.photonMapping != b.photonMapping);
+  differs(kMethodOptions, methodOptionsDiffer(o, b));
   if (o.method != b.method)
   {
     c = kEverything;

@@ -156,6 +156,16 @@ public:
   virtual ~MethodSpec() = default;
   virtual const char* name() const = 0; ///< "links"
   virtual const std::vector<StageSpec>& stages() const = 0;
+  /// Checks the method's own options (its field of SolverOptions) against their limits;
+  /// throws Error naming the option. validateOptions() asks every registered method, so a
+  /// bad value is refused whichever method is chosen.
+  virtual void validateOptions(const SolverOptions& /*options*/) const {}
+  /// Refuses, with an Error that says what to change, shared options the method cannot take
+  /// (implicit visibility: two-sided elements). Asked only when the method is the chosen one.
+  virtual void checkCombination(const SolverOptions& /*options*/) const {}
+  /// Whether the method's own options differ between `a` and `b`: for SolverOptions'
+  /// equality and the change bit kMethodOptions.
+  virtual bool optionsDiffer(const SolverOptions& /*a*/, const SolverOptions& /*b*/) const { return false; }
   /// Whether it carries light through mirror and glass triangles (else they are diffuse,
   /// and the orchestrator says so).
   virtual bool carriesSpecular() const { return false; }

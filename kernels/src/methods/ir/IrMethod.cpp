@@ -3,10 +3,22 @@
 // stages and what makes each stale; the formulas live in ir/IrMath.h, the backends in
 // IrCpu.cpp and IrCuda.cpp.
 #include "methods/ir/IrBackends.h"
+
+#include "linkgi/Error.h"
 #include "engine/Progression.h"
 
 #include "cpu/CpuGeometry.h"
 #include "methods/ir/IrMath.h"
+
+namespace linkgi
+{
+bool operator==(const InstantRadiosityOptions& a, const InstantRadiosityOptions& b)
+{
+  return a.vplCount == b.vplCount && a.clampDistance == b.clampDistance &&
+    a.interleave == b.interleave && a.proxyVisibility == b.proxyVisibility &&
+    a.proxyResolution == b.proxyResolution && a.russianRoulette == b.russianRoulette;
+}
+}
 
 namespace linkgi::ir
 {
@@ -70,6 +82,34 @@ public:
       { "Finish", "", kEverything, geometry | (1u << kGatherStage) | (1u << kLightLinkStage), 1.0 },
     };
     return table;
+  }
+  void validateOptions(const SolverOptions& o) const override
+  {
+    const InstantRadiosityOptions& ir = o.instantRadiosity;
+    if (ir.vplCount < 1 || ir.vplCount > (1u << 20))
+    {
+      throw Error("The number of virtual point lights must be between 1 and 1048576; got " +
+        std::to_string(ir.vplCount) + ".");
+    }
+    if (!(ir.clampDistance >= 0.f && ir.clampDistance <= 1.f))
+    {
+      throw Error("The VPL clamp distance must be a fraction of the scene size in [0, 1]; got " +
+        std::to_string(ir.clampDistance) + ".");
+    }
+    if (ir.interleave < 1 || ir.interleave > 64)
+    {
+      throw Error("The VPL interleaving must be between 1 (off) and 64 subsets; got " +
+        std::to_string(ir.interleave) + ".");
+    }
+    if (ir.proxyResolution < 2 || ir.proxyResolution > 4096)
+    {
+      throw Error("The proxy resolution must be between 2 and 4096 cells; got " +
+        std::to_string(ir.proxyResolution) + ".");
+    }
+  }
+  bool optionsDiffer(const SolverOptions& a, const SolverOptions& b) const override
+  {
+    return a.instantRadiosity != b.instantRadiosity;
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
 #if LINKGI_HAVE_CUDA

@@ -8,6 +8,14 @@
 
 #include "cpu/Parallel.h"
 
+namespace linkgi
+{
+bool operator==(const ImplicitVisibilityOptions& a, const ImplicitVisibilityOptions& b)
+{
+  return a.binsPerSide == b.binsPerSide;
+}
+}
+
 namespace linkgi::iv
 {
 namespace
@@ -65,6 +73,27 @@ public:
       { "Bounces", "BounceRuns", kEverything, (1u << kElementStage) | (1u << kLinkStage) | (1u << kLightLinkStage), 5.0 },
     };
     return table;
+  }
+  void validateOptions(const SolverOptions& o) const override
+  {
+    if (o.implicitVisibility.binsPerSide < 2 || o.implicitVisibility.binsPerSide > 32)
+    {
+      throw Error("Implicit visibility: the bins per side of a cube-map face must be between 2 "
+                  "and 32 (the paper uses 8, 12, 16); got " +
+        std::to_string(o.implicitVisibility.binsPerSide) + ".");
+    }
+  }
+  void checkCombination(const SolverOptions& o) const override
+  {
+    if (o.twoSided)
+    {
+      throw Error("The implicit-visibility method has one-sided elements only; turn two-sided "
+                  "elements off or choose another method.");
+    }
+  }
+  bool optionsDiffer(const SolverOptions& a, const SolverOptions& b) const override
+  {
+    return a.implicitVisibility != b.implicitVisibility;
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
 #if LINKGI_HAVE_CUDA

@@ -8,6 +8,15 @@
 #include "methods/ir/IrHost.h"
 #include "methods/pm/PhotonMapping.h"
 
+namespace linkgi
+{
+bool operator==(const PhotonMappingOptions& a, const PhotonMappingOptions& b)
+{
+  return a.photons == b.photons && a.clusters == b.clusters && a.gatherRays == b.gatherRays &&
+    a.estimatePhotons == b.estimatePhotons && a.alpha == b.alpha;
+}
+}
+
 namespace linkgi::pm
 {
 namespace
@@ -68,6 +77,39 @@ public:
       { "Finish", "", kEverything, geometry | (1u << kGatherStage) | (1u << kLightLinkStage), 1.0 },
     };
     return table;
+  }
+  void validateOptions(const SolverOptions& o) const override
+  {
+    const PhotonMappingOptions& pm = o.photonMapping;
+    if (pm.photons < 1 || pm.photons > (1u << 24))
+    {
+      throw Error("Photon mapping: the number of photons must be between 1 and 16777216; got " +
+        std::to_string(pm.photons) + ".");
+    }
+    if (pm.clusters < 1 || pm.clusters > (1u << 20))
+    {
+      throw Error("Photon mapping: the number of clusters must be between 1 and 1048576; got " +
+        std::to_string(pm.clusters) + ".");
+    }
+    if (!isPerfectSquare(pm.gatherRays) || pm.gatherRays > 65536)
+    {
+      throw Error("Photon mapping: the final-gather rays per sample must be a perfect square up to "
+                  "65536 (e.g. 64, 256, 1024); got " + std::to_string(pm.gatherRays) + ".");
+    }
+    if (pm.estimatePhotons < 2 || pm.estimatePhotons > 1024)
+    {
+      throw Error("Photon mapping: the photons per radiance estimate must be between 2 and 1024; got " +
+        std::to_string(pm.estimatePhotons) + ".");
+    }
+    if (!(pm.alpha >= 0.f && pm.alpha <= 1000.f))
+    {
+      throw Error("Photon mapping: the clustering's distance weight alpha must be in [0, 1000]; got " +
+        std::to_string(pm.alpha) + ".");
+    }
+  }
+  bool optionsDiffer(const SolverOptions& a, const SolverOptions& b) const override
+  {
+    return a.photonMapping != b.photonMapping;
   }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
 #if LINKGI_HAVE_CUDA
