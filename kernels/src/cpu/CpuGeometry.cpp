@@ -88,6 +88,13 @@ void finishSolution(const StageContext& c, const Topology& topology, std::vector
     indirect = smoothFeatureAware(indirect, topology, s.normals, elements, cosFeature);
     c.part("Smoothing", msSince(t));
   }
+  writeSolution(c, std::move(indirect), direct);
+}
+
+void writeSolution(const StageContext& c, std::vector<Vec3f> indirect, const std::vector<Vec3f>& direct)
+{
+  const Scene& s = c.scene;
+  const Elements elements{ s.vertexCount(), c.options.twoSided };
   Solution& sol = c.solution;
   sol.direct = direct;
   sol.radiance.resize(elements.count());

@@ -42,7 +42,11 @@ std::uint64_t cpuSolutionBytes(const MemoryShape& shape, const SolverOptions& op
 
 /// The last stage of the CPU methods that gather E_ind per element (instant radiosity,
 /// photon mapping): feature-aware smoothing when the options ask for it (the part
-/// "Smoothing"), then the solution: E_d, E_ind and the outgoing radiance.
+/// "Smoothing"), then writeSolution.
 void finishSolution(const StageContext& context, const Topology& topology, std::vector<Vec3f> indirect,
   const std::vector<Vec3f>& direct);
+
+/// The solution from E_ind and E_d per element: both, and the outgoing radiance
+/// L = Le + rho/pi (E_d + E_ind) (emission on front sides only).
+void writeSolution(const StageContext& context, std::vector<Vec3f> indirect, const std::vector<Vec3f>& direct);
 }

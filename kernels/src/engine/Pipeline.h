@@ -175,6 +175,9 @@ public:
   /// device can be used. A method overrides it where its CUDA backend is built (its
   /// Method.cmake's CUDA_SOURCES, LINKGI_HAVE_CUDA); this one says there is none.
   virtual std::unique_ptr<MethodBackend> createCuda(const SolverOptions& options) const;
+  /// Whether createCuda makes a backend in this build (overridden with it); a method without
+  /// one runs on the CPU under Backend::Auto without a warning.
+  virtual bool hasCudaBackend() const { return false; }
   /// Peak bytes that running the stages `stale` (bit i: stages()[i]) allocate on a mesh of
   /// `shape`, on the host and on the GPU(s), from the sizes alone: nothing has been traced
   /// yet. An upper bound rather than a guess: the orchestrator refuses an update whose host

@@ -217,7 +217,7 @@ struct Solver::Impl
   int cudaDevicesFound = 0; // GPUs the CUDA backend was made for
 
   void solve(const Scene& input, const SolverOptions& options, const ProgressCallback& progress);
-  bool chooseCuda(const SolverOptions& opt, SolverStats& st);
+  bool chooseCuda(const engine::MethodSpec& spec, const SolverOptions& opt, SolverStats& st);
   void runStages(BackendSlot& slot, bool onCuda, const engine::MethodSpec& spec,
     engine::Changes changes, const Scene& s, const SolverOptions& opt, Solution& sol,
     SolverStats& st, const ProgressCallback& progress);
@@ -249,11 +249,21 @@ const Solution& Solver::update(const Scene& scene, const SolverOptions& options,
   return impl->solution;
 }
 
-bool Solver::Impl::chooseCuda(const SolverOptions& opt, SolverStats& st)
+bool Solver::Impl::chooseCuda(const engine::MethodSpec& spec, const SolverOptions& opt, SolverStats& st)
 {
   if (opt.backend == Backend::Cpu)
   {
     st.backendNote = "CPU requested.";
+    return false;
+  }
+  if (!spec.hasCudaBackend())
+  {
+    const std::string why = std::string("the method '") + spec.name() + "' has no CUDA backend; using the CPU.";
+    if (opt.backend == Backend::Cuda)
+    {
+      st.warnings.push_back("CUDA requested, but " + why);
+    }
+    st.backendNote = "CPU only: " + why;
     return false;
   }
   if (opt.partition)
@@ -421,7 +431,7 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
   spare = Solution();
   sol.caustics.clear(); // only a method that makes caustics fills it
   bool ran = false;
-  if (chooseCuda(opt, st))
+  if (chooseCuda(spec, opt, st))
   {
     try
     {

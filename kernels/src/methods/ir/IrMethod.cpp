@@ -114,6 +114,7 @@ public:
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
 #if LINKGI_HAVE_CUDA
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }
+  bool hasCudaBackend() const override { return true; }
 #endif
   double sampleWork(std::size_t elements, const SolverOptions& o) const override
   {
