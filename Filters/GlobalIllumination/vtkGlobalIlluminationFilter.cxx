@@ -500,6 +500,7 @@ void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Number Of Photons: " << this->NumberOfPhotons << "\n";
   os << indent << "Number Of Clusters: " << this->NumberOfClusters << "\n";
   os << indent << "Final Gather Rays: " << this->FinalGatherRays << "\n";
+  os << indent << "Reference Paths Per Vertex: " << this->ReferencePathsPerVertex << "\n";
   os << indent << "Memory Budget: " << this->MemoryBudget << " MiB\n";
   os << indent << "Proxy Vertices: " << this->ProxyVertices << "\n";
   os << indent << "Refinement: " << (this->Refinement ? "On" : "Off") << "\n";

@@ -114,7 +114,8 @@ public:
     LINKS = 0,             ///< the link structure (Schmitz, Tavenrath & Kobbelt 2008)
     INSTANT_RADIOSITY = 1, ///< virtual point lights (Marques & Santos 2010)
     IMPLICIT_VISIBILITY = 2, ///< hierarchical links, visibility implied (Dong et al. 2007)
-    PHOTON_MAPPING = 3       ///< photons, clustered final gather (Wang et al. 2009)
+    PHOTON_MAPPING = 3,      ///< photons, clustered final gather (Wang et al. 2009)
+    REFERENCE = 4            ///< per-vertex path tracing: ground truth, slow on purpose
   };
 
   ///@{
@@ -144,6 +145,7 @@ public:
   void SetMethodToInstantRadiosity() { this->SetMethod(INSTANT_RADIOSITY); }
   void SetMethodToImplicitVisibility() { this->SetMethod(IMPLICIT_VISIBILITY); }
   void SetMethodToPhotonMapping() { this->SetMethod(PHOTON_MAPPING); }
+  void SetMethodToReference() { this->SetMethod(REFERENCE); }
   const char* GetMethodAsString();
   ///@}
 
@@ -217,6 +219,15 @@ public:
   vtkGetStringMacro(MaterialArrayName);
   vtkSetStringMacro(IndexOfRefractionArrayName);
   vtkGetStringMacro(IndexOfRefractionArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * REFERENCE: cosine-weighted paths traced from every vertex (the first floor(sqrt(M))^2
+   * stratified); the noise falls as 1/sqrt(M). From 1 to 1048576. The default value is 1024.
+   */
+  vtkSetClampMacro(ReferencePathsPerVertex, int, 1, 1048576);
+  vtkGetMacro(ReferencePathsPerVertex, int);
   ///@}
 
   ///@{
@@ -637,6 +648,7 @@ protected:
   char* MaterialArrayName;
   char* IndexOfRefractionArrayName;
   int NumberOfPhotons;
+  int ReferencePathsPerVertex = 1024;
   int NumberOfClusters;
   int FinalGatherRays;
   double MemoryBudget;

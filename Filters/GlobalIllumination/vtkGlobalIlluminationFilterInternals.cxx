@@ -278,6 +278,7 @@ linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
   options.photonMapping.photons = static_cast<std::uint32_t>(self->NumberOfPhotons);
   options.photonMapping.clusters = static_cast<std::uint32_t>(self->NumberOfClusters);
   options.photonMapping.gatherRays = static_cast<std::uint32_t>(self->FinalGatherRays);
+  options.reference.pathsPerVertex = static_cast<std::uint32_t>(self->ReferencePathsPerVertex);
   options.implicitVisibility.binsPerSide = static_cast<std::uint32_t>(self->ImplicitVisibilityBins);
   options.memoryBudget = static_cast<std::uint64_t>(self->MemoryBudget * 1024.0 * 1024.0);
   options.instantRadiosity.vplCount = static_cast<std::uint32_t>(self->NumberOfVPLs);

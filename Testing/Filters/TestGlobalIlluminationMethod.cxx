@@ -150,6 +150,27 @@ TEST(TestGlobalIlluminationMethod, EveryMethodBouncesALightAsItFallsOff)
   }
 }
 
+TEST(TestGlobalIlluminationMethod, ReferenceIsGroundTruthForTheOthers)
+{
+  // The reference path tracer as a method: the same arrays, its paths counted, and the link
+  // method's indirect light within 10% of it on average; its direct light is exact (one
+  // shadow ray per vertex, no light oversampling), so equal to the links' without it.
+  auto filter = SphereOnFloorFilter();
+  filter->SetLightOversampling(false);
+  filter->Update();
+  vtkNew<vtkPolyData> links;
+  links->DeepCopy(filter->GetOutput());
+  filter->SetMethodToReference();
+  filter->SetReferencePathsPerVertex(256);
+  filter->Update();
+  vtkPolyData* reference = filter->GetOutput();
+  EXPECT_EQ(Method(reference), "reference");
+  EXPECT_EQ(Stat(reference, "Paths"), 256.0 * PointArray(reference, "IndirectIrradiance")->GetNumberOfTuples());
+  EXPECT_EQ(Stat(reference, "PathRuns"), 1.0);
+  EXPECT_NEAR(Mean(reference, "DirectIrradiance") / Mean(links, "DirectIrradiance"), 1.0, 1e-4);
+  EXPECT_NEAR(Mean(links, "IndirectIrradiance") / Mean(reference, "IndirectIrradiance"), 1.0, 0.10);
+}
+
 TEST(TestGlobalIlluminationMethod, PhotonMappingLightsLikeTheLinksAndKeepsItsClustersOnALightMove)
 {
   auto filter = SphereOnFloorFilter();

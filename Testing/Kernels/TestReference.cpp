@@ -401,6 +401,66 @@ TEST(Reference, AgreesWithLinkSolver)
   }
 }
 
+// Method::Reference runs the reference solver through the orchestrator: the same numbers
+// as calling it directly, its tracer kept over a light move, an abort that keeps the last
+// result, and no CUDA backend (said, never a failure).
+TEST(Reference, AsAMethodItIsTheReferenceSolver)
+{
+  Scene scene;
+  appendGrid(scene, { -1, -1, 0 }, { 2, 0, 0 }, { 0, 2, 0 }, 6, { 0, 0, 1 }, { 0.7f, 0.5f, 0.3f });
+  appendGrid(scene, { -1, -1, 1 }, { 2, 0, 0 }, { 0, 2, 0 }, 6, { 0, 0, -1 }, Vec3f(0.5f));
+  Light light;
+  light.position = { 0.3f, -0.2f, 0.5f };
+  scene.lights.push_back(light);
+  scene.environment.color = { 0.2f, 0.3f, 0.5f };
+  SolverOptions so;
+  so.method = Method::Reference;
+  so.reference.pathsPerVertex = 64;
+  so.bounces = 2;
+  so.seed = 3;
+  ReferenceOptions ro;
+  ro.pathsPerVertex = 64;
+  ro.bounces = 2;
+  ro.seed = 3;
+  for (bool twoSided : { false, true })
+  {
+    so.twoSided = ro.twoSided = twoSided;
+    Solver solver;
+    const Solution first = solver.update(scene, so);
+    const ReferenceSolution ref = solveReference(scene, ro);
+    EXPECT_EQ(first.direct, ref.direct) << "two-sided " << twoSided;
+    EXPECT_EQ(first.indirect, ref.indirect) << "two-sided " << twoSided << ": no smoothing";
+    ASSERT_EQ(first.radiance.size(), ref.direct.size());
+    const Vec3f expected = scene.albedo[5] * (ref.direct[5] + ref.indirect[5]) * (1.f / kPi);
+    EXPECT_FLOAT_EQ(first.radiance[5].x, expected.x);
+    const SolverStats& st = solver.stats();
+    EXPECT_EQ(st.method, "reference");
+    EXPECT_EQ(st.counter("Paths"), ref.direct.size() * 64u);
+    EXPECT_TRUE(st.ran("Geometry") && st.ran("Paths"));
+    EXPECT_TRUE(st.warnings.empty()) << st.warnings.front();
+    EXPECT_NE(st.backendNote.find("no CUDA backend"), std::string::npos) << st.backendNote;
+
+    Scene moved = scene;
+    moved.lights[0].position.x += 0.2f;
+    solver.update(moved, so);
+    EXPECT_FALSE(solver.stats().ran("Geometry")) << "a light move keeps the tracer";
+    EXPECT_EQ(solver.solution().indirect, solveReference(moved, ro).indirect);
+
+    Scene again = scene;
+    again.lights[0].position.y += 0.2f;
+    EXPECT_THROW(solver.update(again, so, [](const char*, double) { return false; }), Aborted);
+    EXPECT_EQ(solver.solution().indirect, solveReference(moved, ro).indirect) << "the last result stays";
+  }
+  so.twoSided = false;
+  so.backend = Backend::Cuda;
+  Solver solver;
+  solver.update(scene, so);
+  ASSERT_EQ(solver.stats().warnings.size(), 1u);
+  EXPECT_NE(solver.stats().warnings[0].find("'reference' has no CUDA backend"), std::string::npos);
+  so.reference.pathsPerVertex = 0;
+  EXPECT_THROW(solver.update(scene, so), Error) << "its option is checked";
+}
+
 // Same seed, same answer (per-path random streams do not depend on scheduling); another
 // seed gives another estimate of a noisy quantity.
 TEST(Reference, DeterministicForSeed)

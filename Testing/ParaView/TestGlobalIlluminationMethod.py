@@ -3,7 +3,8 @@
 1. The Global Illumination filter on a sphere over a plane, lit by a point light: Links by
    default; Instant Radiosity gives the same three point arrays, reports itself and its
    stages in the field data (LinkGI.Method, LinkGI.VplBuilds, no link stage), the same
-   direct light and an indirect light within 15% of the links' on average.
+   direct light and an indirect light within 15% of the links' on average; so does photon
+   mapping, and the links' indirect light is within 15% of the Reference path tracer's.
 2. The Global Illumination representation of the Cornell box: its Method drop-down runs
    instant radiosity (no links built, indirect light on the walls); back to Links builds
    the links.
@@ -70,6 +71,17 @@ t.check(pm.GetFieldData().GetArray("LinkGI.PhotonTraces") is not None
         "its photon and cluster stages are in the field data")
 ratio = mean(pm, "IndirectIrradiance") / mean(links, "IndirectIrradiance")
 t.check(abs(ratio - 1) < 0.15, "photon mapping's indirect light within 15%% of the links': ratio %.3f" % ratio)
+
+gi.Method = "Reference"
+gi.ReferencePathsPerVertex = 256
+gi.UpdatePipeline()
+reference = t.fetch(gi)
+t.check(text_field(reference, "LinkGI.Method") == "reference", "Reference ran the path tracer")
+paths = reference.GetFieldData().GetArray("LinkGI.Paths")
+t.check(paths is not None and paths.GetValue(0) == 256 * reference.GetNumberOfPoints(),
+        "its paths are counted: 256 per vertex")
+ratio = mean(links, "IndirectIrradiance") / mean(reference, "IndirectIrradiance")
+t.check(abs(ratio - 1) < 0.15, "the links' indirect light within 15%% of the reference: ratio %.3f" % ratio)
 
 # 2. The representation.
 view = CreateView("RenderView")

@@ -68,8 +68,18 @@ enum class Method
   InstantRadiosity, ///< virtual point lights (Marques & Santos 2010): nothing precomputed
   ImplicitVisibility, ///< hierarchical links, visibility implied by the shortest link per
                       ///< direction bin (Dong, Kautz, Theobalt & Seidel 2007): no link rays
-  PhotonMapping ///< photons from the lights, final gather at clustered sample vertices
-                ///< (Wang, Wang, Zhou & Guo 2009)
+  PhotonMapping, ///< photons from the lights, final gather at clustered sample vertices
+                 ///< (Wang, Wang, Zhou & Guo 2009)
+  Reference ///< per-vertex Monte Carlo path tracing: the ground truth the others are
+            ///< validated against (slow on purpose; SolverOptions::reference)
+};
+
+/// Options of Method::Reference; the other methods ignore them.
+struct ReferenceMethodOptions
+{
+  /// Cosine-weighted paths per vertex (and back side): the first floor(sqrt(M))^2
+  /// stratified. The noise of E_ind falls as 1/sqrt(M). 1 to 2^20. Default 1024.
+  std::uint32_t pathsPerVertex = 1024;
 };
 
 /// Options of Method::PhotonMapping; the other methods ignore them.
@@ -206,6 +216,8 @@ struct SolverOptions
   ImplicitVisibilityOptions implicitVisibility;
   /// Method::PhotonMapping's own options.
   PhotonMappingOptions photonMapping;
+  /// Method::Reference's own options.
+  ReferenceMethodOptions reference;
   /// Host memory an update may use, in bytes; an update estimated to need more is refused
   /// with an error that says what would fit, before anything is allocated. 0 (default):
   /// what the machine has available, less a margin (linkgi/Memory.h).
