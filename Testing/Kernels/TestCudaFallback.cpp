@@ -27,6 +27,7 @@ SolverOptions onCuda(Method method)
   o.photonMapping.photons = 16384; // small: every stage fails in turn, each an update
   o.photonMapping.clusters = 256;
   o.photonMapping.gatherRays = 64;
+  o.reference.pathsPerVertex = 16;
   return o;
 }
 
@@ -76,8 +77,8 @@ void expectSameBits(const Solution& a, const Solution& b)
   EXPECT_EQ(std::memcmp(a.direct.data(), b.direct.data(), a.direct.size() * sizeof(Vec3f)), 0);
 }
 
-const Method kMethods[] = { Method::Links, Method::InstantRadiosity, Method::ImplicitVisibility,
-  Method::PhotonMapping };
+// Every registered method: the test's factories make a "CUDA" backend for each.
+const std::vector<Method> kMethods = linkgi::methods();
 }
 
 TEST(CudaFallback, ABackendThatCannotBeMadeFallsBackToTheCpu)

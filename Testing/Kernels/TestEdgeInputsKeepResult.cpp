@@ -59,8 +59,7 @@ TEST(EdgeInputs, EveryRejectedInputNamesItsProblemAndKeepsThePreviousSolution)
   };
   const Scene good = test::roomWithBlock();
   // Every method holds its previous solution the same way (validation comes before any stage).
-  for (const Method method :
-    { Method::Links, Method::InstantRadiosity, Method::ImplicitVisibility, Method::PhotonMapping })
+  for (const Method method : linkgi::methods())
   {
     SCOPED_TRACE(::testing::Message() << "method " << int(method));
     const auto options = [method]() {
@@ -68,6 +67,7 @@ TEST(EdgeInputs, EveryRejectedInputNamesItsProblemAndKeepsThePreviousSolution)
       o.method = method;
       o.photonMapping.photons = 16384;
       o.photonMapping.gatherRays = 64;
+      o.reference.pathsPerVertex = 16;
       return o;
     };
     Solver solver;

@@ -65,8 +65,7 @@ TEST(NearLight, TheIrradianceOfALightAtAVertexIsBounded)
 
 TEST(NearLight, ASolutionWithALightAtAVertexIsFinite)
 {
-  for (const Method method :
-    { Method::Links, Method::InstantRadiosity, Method::ImplicitVisibility, Method::PhotonMapping })
+  for (const Method method : linkgi::methods())
   {
     for (const float d : { 1e-19f, 1e-21f, 1e-22f })
     {
@@ -76,6 +75,7 @@ TEST(NearLight, ASolutionWithALightAtAVertexIsFinite)
       o.raysPerVertex = 16;
       o.photonMapping.photons = 16384;
       o.photonMapping.gatherRays = 64;
+      o.reference.pathsPerVertex = 16;
       o.bounces = 4;
       o.twoSided = method != Method::ImplicitVisibility; // its elements are one-sided
       Solver solver;

@@ -89,13 +89,13 @@ TEST(TestRayOrigins, MillimetreDetailInATenMetreRoomIsLitAsAlone)
   const float size = 1e-3f;
   const Vec3f at(2.f, 0.5f, 1.5f); // off the room's centre, where coordinates are large
   const Scene alone = detailScene(size, at, 0.f), inRoom = detailScene(size, at, 1e4f);
-  for (const Method method : { Method::Links, Method::InstantRadiosity, Method::ImplicitVisibility,
-         Method::PhotonMapping })
+  for (const Method method : linkgi::methods())
   {
     SolverOptions o;
     o.method = method;
     o.backend = Backend::Cpu;
     o.raysPerVertex = 64;
+    o.reference.pathsPerVertex = 64;
     Solver a, b;
     const Solution& lone = a.update(alone, o);
     const Solution& room = b.update(inRoom, o);

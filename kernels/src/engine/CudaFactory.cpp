@@ -10,7 +10,8 @@ CudaFactory& current()
 {
   static CudaFactory factory{
     [](std::string* why) { return cuda::devices(why).size(); },
-    [](const MethodSpec& spec, const SolverOptions& options) { return spec.createCuda(options); }
+    [](const MethodSpec& spec, const SolverOptions& options) { return spec.createCuda(options); },
+    [](const MethodSpec& spec) { return spec.hasCudaBackend(); }
   };
   return factory;
 }

@@ -18,6 +18,9 @@ struct CudaFactory
   std::function<std::size_t(std::string* why)> devices;
   /// The CUDA implementation of `spec`; throws CudaError when it cannot be made.
   std::function<std::unique_ptr<MethodBackend>(const MethodSpec& spec, const SolverOptions& options)> create;
+  /// Whether `spec` has a CUDA implementation at all (MethodSpec::hasCudaBackend); empty: it
+  /// has (a test's factory makes one for every method).
+  std::function<bool(const MethodSpec& spec)> has;
 };
 
 /// The factory in use.

@@ -176,7 +176,7 @@ public:
   /// Method.cmake's CUDA_SOURCES, LINKGI_HAVE_CUDA); this one says there is none.
   virtual std::unique_ptr<MethodBackend> createCuda(const SolverOptions& options) const;
   /// Whether createCuda makes a backend in this build (overridden with it); a method without
-  /// one runs on the CPU under Backend::Auto without a warning.
+  /// one runs on the CPU under Backend::Auto without a warning (engine/CudaFactory.h asks).
   virtual bool hasCudaBackend() const { return false; }
   /// Peak bytes that running the stages `stale` (bit i: stages()[i]) allocate on a mesh of
   /// `shape`, on the host and on the GPU(s), from the sizes alone: nothing has been traced

@@ -256,7 +256,8 @@ bool Solver::Impl::chooseCuda(const engine::MethodSpec& spec, const SolverOption
     st.backendNote = "CPU requested.";
     return false;
   }
-  if (!spec.hasCudaBackend())
+  const engine::CudaFactory& factory = engine::cudaFactory();
+  if (factory.has && !factory.has(spec))
   {
     const std::string why = std::string("the method '") + spec.name() + "' has no CUDA backend; using the CPU.";
     if (opt.backend == Backend::Cuda)
@@ -281,7 +282,7 @@ bool Solver::Impl::chooseCuda(const engine::MethodSpec& spec, const SolverOption
     return true;
   }
   std::string why;
-  const std::size_t found = engine::cudaFactory().devices(&why);
+  const std::size_t found = factory.devices(&why);
   if (found == 0)
   {
     if (opt.backend == Backend::Cuda)
