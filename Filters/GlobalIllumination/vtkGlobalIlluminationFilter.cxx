@@ -266,7 +266,6 @@ int vtkGlobalIlluminationFilter::RequestData(vtkInformation* vtkNotUsed(request)
     else
     {
       internals.Async.reset();
-      internals.CheckDistributed(this);
       vtkPolyData* target = distributed ? internals.GlobalLit.Get() : lit;
       // Under MPI all processes leave a failed update together (the failure anywhere in it,
       // an abort included), so none waits for another in an exchange.

@@ -186,81 +186,33 @@ vtkPolyData* vtkGlobalIlluminationFilter::vtkInternals::Surface(
 }
 
 //------------------------------------------------------------------------------
-namespace
-{
-// Below this, a proxy chosen by the memory budget would light nothing worth seeing: the
-// budget's error is reported instead.
-constexpr std::size_t kSmallestAutomaticProxy = 1000;
-}
-
-void vtkGlobalIlluminationFilter::vtkInternals::Update(
-  vtkGlobalIlluminationFilter* self, const linkgi::Scene& scene)
+linkgi::ResolutionOptions vtkGlobalIlluminationFilter::vtkInternals::Resolution(
+  vtkGlobalIlluminationFilter* self) const
 {
   if (self->ProxyVertices < 0)
   {
     throw linkgi::Error("ProxyVertices must be 0 (no proxy) or a vertex count smaller than the "
                         "input's; got " + std::to_string(self->ProxyVertices) + ".");
   }
-  std::size_t proxy = static_cast<std::size_t>(self->ProxyVertices);
-  if (self->Refinement)
+  if (self->RefinementMaxVertices < 0)
   {
-    if (proxy != 0)
-    {
-      throw linkgi::Error("Refinement and ProxyVertices exclude each other (one adds points "
-                          "where the light needs them, the other lights fewer); set one.");
-    }
-    linkgi::RefinementOptions refinement;
-    refinement.tolerance = static_cast<float>(self->RefinementTolerance);
-    refinement.rounds = static_cast<std::uint32_t>(std::max(self->RefinementRounds, 0));
-    if (self->RefinementMaxVertices < 0)
-    {
-      throw linkgi::Error("RefinementMaxVertices must be 0 (four times the input) or a vertex "
-                          "count; got " + std::to_string(self->RefinementMaxVertices) + ".");
-    }
-    refinement.maxVertices = static_cast<std::size_t>(self->RefinementMaxVertices);
-    this->Refining.update(scene, this->Options(self), refinement, this->Progress(self));
-    this->RefinedUsed = true;
-    this->ProxyUsed = false;
-    return;
+    throw linkgi::Error("RefinementMaxVertices must be 0 (four times the input) or a vertex "
+                        "count; got " + std::to_string(self->RefinementMaxVertices) + ".");
   }
-  this->RefinedUsed = false;
-  if (proxy == 0)
-  {
-    // The budget's verdict holds until the surface or the settings change: the memory
-    // available moves between updates, and a light move must not pick another proxy.
-    const linkgi::SolverOptions options = this->Options(self);
-    AutomaticProxy& automatic = this->Automatic;
-    if (automatic.Vertices == 0 || automatic.MeshVersion != this->MeshVersion || !(automatic.Options == options))
-    {
-      try
-      {
-        automatic = AutomaticProxy();
-        this->Solver.update(scene, options, this->Progress(self));
-        this->ProxyUsed = false;
-        return;
-      }
-      catch (const linkgi::OutOfMemoryBudget& tooLarge)
-      {
-        // Over the budget: a proxy of half what would fit (the proxy itself, the input's
-        // shadow-ray structures and the decimation need the rest), if that is still a mesh.
-        const std::size_t half = static_cast<std::size_t>(tooLarge.verticesThatFit() / 2);
-        if (!linkgi::proxyAvailable() || half < kSmallestAutomaticProxy)
-        {
-          throw;
-        }
-        automatic = { half, this->MeshVersion, options, tooLarge.detail() };
-      }
-    }
-    proxy = automatic.Vertices;
-    this->Warnings.push_back("The surface is too large for the memory budget, so it is lit "
-                             "through a proxy of about " + std::to_string(proxy) +
-      " vertices, chosen when the surface or the settings last changed (ProxyVertices "
-      "chooses its size). " + automatic.Reason);
-  }
-  linkgi::SolverOptions options = this->Options(self);
-  options.partition = nullptr; // the proxy's rows are not the surface's: every process solves it
-  this->Proxy.update(scene, options, proxy, this->Progress(self));
-  this->ProxyUsed = true;
+  linkgi::ResolutionOptions resolution;
+  resolution.proxyVertices = static_cast<std::size_t>(self->ProxyVertices);
+  resolution.refine = self->Refinement != 0;
+  resolution.refinement.tolerance = static_cast<float>(self->RefinementTolerance);
+  resolution.refinement.rounds = static_cast<std::uint32_t>(std::max(self->RefinementRounds, 0));
+  resolution.refinement.maxVertices = static_cast<std::size_t>(self->RefinementMaxVertices);
+  return resolution;
+}
+
+void vtkGlobalIlluminationFilter::vtkInternals::Update(
+  vtkGlobalIlluminationFilter* self, const linkgi::Scene& scene)
+{
+  this->Solver.update(scene, this->Options(self), this->Resolution(self), this->Progress(self));
+  this->RefinedUsed = this->Solver.refined() != nullptr;
 }
 
 //------------------------------------------------------------------------------
@@ -409,16 +361,6 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   vtkGlobalIlluminationFilter* self, vtkPolyData* input, vtkPolyData* output)
 {
   const auto start = std::chrono::steady_clock::now();
-  if (self->ProxyVertices != 0)
-  {
-    this->Warnings.push_back("ProxyVertices applies to synchronous updates only; this "
-                             "asynchronous one lights the full surface.");
-  }
-  if (self->Refinement)
-  {
-    this->Warnings.push_back("Refinement applies to synchronous updates only; this "
-                             "asynchronous one lights the input's points.");
-  }
   this->RefinedUsed = false;
   if (!this->Async)
   {
@@ -428,7 +370,8 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   this->Async->setProgressive(self->Progressive != 0);
   this->Async->setFirstStageSeconds(self->ProgressiveFirstStageSeconds);
   // Returns at once; repeating the request of the scene already solved starts nothing.
-  this->LastRequest = this->Async->request(this->UpdateScene(self, input), this->Options(self));
+  this->LastRequest =
+    this->Async->request(this->UpdateScene(self, input), this->Options(self), this->Resolution(self));
   output->ShallowCopy(input);
   const std::string error = this->Async->lastError();
   if (!error.empty())
@@ -503,7 +446,7 @@ void vtkGlobalIlluminationFilter::vtkInternals::ShapeOutput(vtkPolyData* input, 
   }
   // One output point per element of the refined scene: the input's elements first (their
   // input points' data), then the midpoints in order (their two parents' mean).
-  const linkgi::RefinedScene& refined = this->Refining.refined();
+  const linkgi::RefinedScene& refined = *this->Solver.refined();
   const linkgi::Scene& scene = refined.scene;
   const vtkIdType n = static_cast<vtkIdType>(scene.vertexCount());
   vtkNew<vtkPoints> points;
@@ -565,19 +508,4 @@ void vtkGlobalIlluminationFilter::vtkInternals::ShapeOutput(vtkPolyData* input, 
   this->RefinedMesh.ElementPoint.resize(static_cast<std::size_t>(n));
   std::iota(this->RefinedMesh.ElementPoint.begin(), this->RefinedMesh.ElementPoint.end(), vtkIdType(0));
   this->RefinedMesh.InputPointCount = n;
-}
-
-//------------------------------------------------------------------------------
-void vtkGlobalIlluminationFilter::vtkInternals::CheckDistributed(vtkGlobalIlluminationFilter* self)
-{
-  if (!this->Partitions.Distributed())
-  {
-    return;
-  }
-  if (self->GetRefinement())
-  {
-    // A refined global surface has new points that no process owns.
-    throw linkgi::Error("Refinement is not available when the surface is partitioned among " +
-      std::to_string(this->Partitions.ProcessCount()) + " processes (MPI); turn it off or run on one process.");
-  }
 }

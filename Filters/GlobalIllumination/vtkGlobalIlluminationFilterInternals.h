@@ -16,9 +16,7 @@
 #include "vtkSmartPointer.h"
 
 #include "linkgi/AsyncSolver.h"
-#include "linkgi/Proxy.h"
-#include "linkgi/Refine.h"
-#include "linkgi/Solver.h"
+#include "linkgi/Resolution.h"
 
 #include <memory>
 #include <string>
@@ -26,43 +24,23 @@
 
 struct vtkGlobalIlluminationFilter::vtkInternals
 {
-  linkgi::Solver Solver;
-  linkgi::ProxySolver Proxy; // ProxyVertices > 0
-  bool ProxyUsed = false;    // the last synchronous update went through Proxy
-  linkgi::RefiningSolver Refining; // Refinement on
-  bool RefinedUsed = false;        // the last synchronous update refined the surface
+  /// Synchronous updates, at the resolution the properties ask for (the engine decides the
+  /// proxy the memory budget needs, and refuses what does not combine).
+  linkgi::ResolvedSolver Solver;
+  bool RefinedUsed = false; // the output shows the refined surface of the last synchronous update
   /// The refined surface's points are its elements: the identity mapping for AttachResults.
   vtkGlobalIlluminationSceneBuilder::Mesh RefinedMesh;
-  /// A synchronous update: refined when Refinement is on, through the proxy when
-  /// ProxyVertices > 0, else the Solver.
+  /// ProxyVertices and the Refinement properties as the engine takes them.
+  linkgi::ResolutionOptions Resolution(vtkGlobalIlluminationFilter* self) const;
   void Update(vtkGlobalIlluminationFilter* self, const linkgi::Scene& scene);
-  const linkgi::Solution& Solution() const
-  {
-    return this->RefinedUsed ? this->Refining.solution()
-      : this->ProxyUsed      ? this->Proxy.solution()
-                             : this->Solver.solution();
-  }
-  const linkgi::SolverStats& Stats() const
-  {
-    return this->RefinedUsed ? this->Refining.stats()
-      : this->ProxyUsed      ? this->Proxy.stats()
-                             : this->Solver.stats();
-  }
+  const linkgi::Solution& Solution() const { return this->Solver.solution(); }
+  const linkgi::SolverStats& Stats() const { return this->Solver.stats(); }
   /// The synchronous output's geometry: `input` itself, or after refinement the refined
   /// surface with the input's point arrays interpolated and its cell arrays inherited.
   void ShapeOutput(vtkPolyData* input, vtkPolyData* output);
   std::vector<vtkSmartPointer<vtkLight>> Lights;
   vtkSmartPointer<vtkDataObject> LastOutput; // the last good output, handed out after errors
   std::vector<std::string> Warnings;         // the filter's own, for this update
-  // The proxy the memory budget chose for this mesh at these options (none: 0 vertices).
-  struct AutomaticProxy
-  {
-    std::size_t Vertices = 0;
-    std::uint64_t MeshVersion = 0;
-    linkgi::SolverOptions Options;
-    std::string Reason; // the budget's estimate and what would fit
-  };
-  AutomaticProxy Automatic;
   std::string RaysRounded; // why SetRaysPerVertex changed the value asked for, or empty
 
   // Input that is no vtkPolyData (composite, or another dataset) is merged into one
@@ -77,8 +55,6 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   vtkNew<vtkPolyData> GlobalLit;
   /// This process's rows of the global surface for the engine (Options), null alone.
   std::shared_ptr<const linkgi::Partition> ActivePartition;
-  /// Under MPI: refuses Refinement (a refined global surface has points no process owns).
-  void CheckDistributed(vtkGlobalIlluminationFilter* self);
 
   // The triangle mesh and what it was built from; rebuilt only when one of these changes,
   // so a light-only update costs no triangulation.

@@ -5,7 +5,7 @@
 
 #include "vtkGlobalIlluminationFilter.h"
 
-#include "linkgi/Proxy.h"
+#include "linkgi/Resolution.h"
 
 #include <gtest/gtest.h>
 

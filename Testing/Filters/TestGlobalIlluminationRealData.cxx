@@ -13,7 +13,7 @@
 #include "vtkXMLPolyDataReader.h"
 
 #include "linkgi/Memory.h"
-#include "linkgi/Proxy.h"
+#include "linkgi/Resolution.h"
 
 #include <gtest/gtest.h>
 

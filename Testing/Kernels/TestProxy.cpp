@@ -4,7 +4,8 @@
 
 #include "linkgi/Error.h"
 #include "shared/Metrics.h"
-#include "linkgi/Proxy.h"
+#include "linkgi/Resolution.h"
+#include "resolution/Decimate.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 

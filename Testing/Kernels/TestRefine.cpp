@@ -7,9 +7,10 @@
 
 #include "linkgi/Error.h"
 #include "shared/Metrics.h"
-#include "linkgi/Proxy.h"
+#include "linkgi/Resolution.h"
+#include "resolution/Decimate.h"
+#include "resolution/Refinement.h"
 #include "methods/reference/Reference.h"
-#include "linkgi/Refine.h"
 
 #include <gtest/gtest.h>
 

@@ -3,6 +3,9 @@
 The defaults (automatic budget, no proxy); a proxy of 1000 vertices lights every point, with
 the direct light of the full surface (bit for bit) and bounced light that differs from the
 full solve's but not by much; over the budget with no proxy asked for, a proxy that fits.
+The Global Illumination representation, which solves in the background, does the same
+with its Memory Budget: a render does not wait for it, and the solution drawn once it is
+ready was solved on a proxy.
 """
 from paraview.simple import *  # noqa: F401,F403 (the pvpython way)
 
@@ -73,3 +76,35 @@ t.check(9 < refined.GetNumberOfPoints() <= 300,
         "refined from 9 to %d points (budget 300)" % refined.GetNumberOfPoints())
 t.check(refined.GetPointData().GetArray("DirectIrradiance").GetNumberOfTuples() == refined.GetNumberOfPoints(),
         "light on every refined point")
+
+# The representation over the budget: a finer surface (40k points, whose decimation alone
+# takes longer than a render) solved in the background (Wait = Never: the render returns at
+# once), then drawn lit through a proxy.
+fine = AppendGeometry(Input=[Sphere(Center=[0, 0.8, 0], Radius=0.5, ThetaResolution=200, PhiResolution=200),
+                             plane])
+fine.UpdatePipeline()
+n = fine.GetDataInformation().GetNumberOfPoints()
+view = CreateView("RenderView")
+view.ViewSize = [200, 200]
+shown = Show(fine, view)
+shown.Representation = "Global Illumination"
+shown.GlobalIlluminationRays = 256
+shown.GlobalIlluminationMemoryBudget = 20.0
+shown.GlobalIlluminationWait = "Never"
+Render(view)
+
+
+def information(name):
+    shown.SMProxy.UpdatePropertyInformation()
+    return shown.SMProxy.GetProperty("GlobalIllumination" + name).GetElement(0)
+
+
+newest, drawn = information("NewestRequest"), information("ShownRequest")
+t.check(newest > drawn, "the render returned before the solution (request %d, drawn %d)" % (newest, drawn))
+shown.GlobalIlluminationWait = "Always"
+Render(view)
+solved = information("SolvedElements")
+t.check(information("ShownRequest") == information("NewestRequest") and information("LastError") == "",
+        "the solution drawn, without error: %s" % information("LastError"))
+t.check(0 < solved < n, "solved on a proxy of %d of the %d points" % (solved, n))
+t.check(information("MeanIndirect") > 0.0, "with bounced light on the surface")

@@ -12,8 +12,7 @@
 #include "linkgi/Memory.h"
 #include "shared/Metrics.h"
 #include "cpu/Parallel.h"
-#include "linkgi/Proxy.h"
-#include "linkgi/Refine.h"
+#include "linkgi/Resolution.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 

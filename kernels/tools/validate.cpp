@@ -6,9 +6,9 @@
 // the published box's fine grid against the reference there.
 #include "linkgi/Error.h"
 #include "shared/Metrics.h"
-#include "linkgi/Proxy.h"
+#include "linkgi/Resolution.h"
+#include "resolution/Decimate.h"
 #include "methods/reference/Reference.h"
-#include "linkgi/Refine.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
 

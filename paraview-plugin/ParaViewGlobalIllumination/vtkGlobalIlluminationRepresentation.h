@@ -136,6 +136,16 @@ public:
   double GetFirstStageSeconds();
   ///@}
 
+  ///@{
+  /**
+   * The filter's MemoryBudget (MiB; 0: what the machine has) and ProxyVertices (0: the
+   * surface as given, or, when the budget refuses it, a proxy the budget chooses). A surface
+   * beyond the budget is lit through a proxy in the background like any other.
+   */
+  void SetMemoryBudget(double mebibytes);
+  void SetProxyVertices(int vertices);
+  ///@}
+
   /// When renders wait for the pending solution.
   enum WaitModes
   {
@@ -200,6 +210,9 @@ public:
   int GetNumberOfUpdates() { return this->NumberOfUpdates; }
   int GetNumberOfLights();
   double GetMeanIndirectIrradiance();
+  /// The elements the drawn solution solved (LinkGI.Elements): the surface's, or fewer when
+  /// it was lit through a proxy.
+  int GetSolvedElements();
   int GetNewestRequest();
   int GetShownRequest();
   int GetSolvingRequest();

@@ -99,6 +99,16 @@ void vtkGlobalIlluminationRepresentation::SetFirstStageSeconds(double seconds)
   this->Internals->Filter->SetProgressiveFirstStageSeconds(seconds);
 }
 
+void vtkGlobalIlluminationRepresentation::SetMemoryBudget(double mebibytes)
+{
+  this->Internals->Filter->SetMemoryBudget(mebibytes);
+}
+
+void vtkGlobalIlluminationRepresentation::SetProxyVertices(int vertices)
+{
+  this->Internals->Filter->SetProxyVertices(vertices);
+}
+
 double vtkGlobalIlluminationRepresentation::GetFirstStageSeconds()
 {
   return this->Internals->Filter->GetProgressiveFirstStageSeconds();
@@ -205,6 +215,11 @@ double vtkGlobalIlluminationRepresentation::GetMeanIndirectIrradiance()
     values += indirect ? indirect->GetNumberOfValues() : 0;
   }
   return values > 0 ? sum / values : 0.0;
+}
+
+int vtkGlobalIlluminationRepresentation::GetSolvedElements()
+{
+  return FieldInt(this->Internals->Filter->GetOutputDataObject(0), "LinkGI.Elements");
 }
 
 vtkGlobalIlluminationFilter* vtkGlobalIlluminationRepresentation::GetFilter()

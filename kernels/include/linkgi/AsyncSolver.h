@@ -1,6 +1,7 @@
 // Background updates: a worker thread solves while the caller keeps drawing the last result.
 #pragma once
 
+#include "linkgi/Resolution.h"
 #include "linkgi/Solver.h"
 
 #include <functional>
@@ -26,7 +27,7 @@ struct AsyncStage
   std::uint32_t stage = 0, stages = 0; ///< 0 of 0 while idle
 };
 
-/// Owns a Solver and a worker thread. request() hands the worker a new scene and returns at
+/// Owns a ResolvedSolver and a worker thread. request() hands the worker a new scene and returns at
 /// once; the worker publishes each finished solution as a new immutable AsyncResult, swapped
 /// in atomically, so latest() never waits for a computation and never sees a mix of two
 /// requests. Requests never queue up: a new request replaces the one waiting, so the worker
@@ -80,11 +81,15 @@ public:
   AsyncSolver(const AsyncSolver&) = delete;
   AsyncSolver& operator=(const AsyncSolver&) = delete;
 
-  /// Asks for `scene` to be solved; returns the request's id (1, 2, ...). Asking again for
-  /// the same scene and options as the last request, while that one is pending, running or
+  /// Asks for `scene` to be solved at `resolution` (as given, through a proxy, or through a
+  /// proxy the memory budget chooses for a surface it refuses; refinement is refused here,
+  /// checkResolution); returns the request's id (1, 2, ...). Asking again for the same
+  /// scene and options as the last request, while that one is pending, running or
   /// published, returns its id and starts nothing (and copies nothing: a render loop asks
-  /// at every frame). A new scene is copied once.
-  std::uint64_t request(const Scene& scene, const SolverOptions& options = {});
+  /// at every frame). A new scene is copied once. Through a proxy no coarse stages are
+  /// solved: the proxy is the coarse solution.
+  std::uint64_t request(const Scene& scene, const SolverOptions& options = {},
+    const ResolutionOptions& resolution = {});
   /// The newest published result, or null before the first one. Never blocks on the worker.
   std::shared_ptr<const AsyncResult> latest() const;
   /// Aborts the running update and drops a pending request; latest() is unchanged.

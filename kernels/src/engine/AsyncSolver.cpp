@@ -117,9 +117,10 @@ struct AsyncSolver::Impl
     std::uint64_t id;
     std::shared_ptr<const Scene> scene; // shared by lastAccepted and pending
     SolverOptions options;
+    ResolutionOptions resolution;
   };
 
-  Solver solver; // touched by the worker only
+  ResolvedSolver solver; // touched by the worker only
   int threads = 1;
   // Progressive updates, touched by the worker only: the solver of the coarse stages (reset
   // after each, so its caches never sit beside the final's), what the final stages took and
@@ -161,7 +162,8 @@ struct AsyncSolver::Impl
   std::vector<SolverOptions> plan(const Request& request);
   /// Publishes stage `stage` of `stages` of `request`; the final one also leaves the worker
   /// idle with it.
-  void publish(const Request& request, std::uint32_t index, std::uint32_t stages, const Solver& from);
+  void publish(const Request& request, std::uint32_t index, std::uint32_t stages, const Solution& solution,
+    const SolverStats& stats, bool throughProxy);
   /// The result to publish: `s` itself, or for a final solution after a final one, blended.
   std::shared_ptr<AsyncResult> blended(const Request& request, bool final, const Solution& s, const SolverStats& st);
 };
@@ -185,15 +187,17 @@ AsyncSolver::~AsyncSolver()
   impl->worker.join();
 }
 
-std::uint64_t AsyncSolver::request(const Scene& scene, const SolverOptions& options)
+std::uint64_t AsyncSolver::request(const Scene& scene, const SolverOptions& options,
+  const ResolutionOptions& resolution)
 {
+  checkResolution(options, resolution, true);
   std::uint64_t id;
   {
     std::lock_guard<std::mutex> lock(impl->mutex);
     // Asking again for what is already pending, running or published is not new work: a
     // render loop may re-request the same scene every frame.
     const auto& last = impl->lastAccepted;
-    if (last && last->options == options && sameScene(*last->scene, scene) &&
+    if (last && last->options == options && last->resolution == resolution && sameScene(*last->scene, scene) &&
       (impl->pending || impl->running == last->id ||
         (impl->published && impl->published->request == last->id)))
     {
@@ -203,7 +207,7 @@ std::uint64_t AsyncSolver::request(const Scene& scene, const SolverOptions& opti
     const Clock::time_point now = Clock::now();
     impl->continuous = id > 1 && now - impl->lastRequestAt < kContinuous;
     impl->lastRequestAt = now;
-    impl->lastAccepted = Impl::Request{ id, std::make_shared<const Scene>(scene), options };
+    impl->lastAccepted = Impl::Request{ id, std::make_shared<const Scene>(scene), options, resolution };
     impl->pending = impl->lastAccepted;
   }
   impl->changed.notify_all();
@@ -427,6 +431,13 @@ std::vector<SolverOptions> AsyncSolver::Impl::plan(const Request& request)
     {
       return {};
     }
+  }
+  if (request.resolution.proxyVertices != 0 || solver.proxyVertices() != 0)
+  {
+    return {}; // the proxy is the coarse solution (and the surface may not fit the budget)
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex);
     settings.budgetSeconds = firstStageSeconds;
   }
   const SolverOptions& options = request.options;
@@ -487,20 +498,32 @@ void AsyncSolver::Impl::solve(Request& request)
       }
       if (s == stages)
       {
-        runWithConcurrency(threads, [&] { solver.update(*request.scene, request.options, stillWanted); });
-        publish(request, s, stages, solver);
+        runWithConcurrency(threads,
+          [&] { solver.update(*request.scene, request.options, request.resolution, stillWanted); });
+        publish(request, s, stages, solver.solution(), solver.stats(), solver.proxyVertices() != 0);
         return;
       }
       const SolverOptions& coarse = previews[s - 1];
       const auto start = Clock::now();
-      runWithConcurrency(threads, [&] { previewSolver.update(*request.scene, coarse, stillWanted); });
+      try
+      {
+        runWithConcurrency(threads, [&] { previewSolver.update(*request.scene, coarse, stillWanted); });
+      }
+      catch (const OutOfMemoryBudget&)
+      {
+        // The surface is over the budget even coarsely: the final stage goes through the
+        // proxy the budget chooses (ResolvedSolver), with no coarse stage before it.
+        previewSolver.reset();
+        s = stages - 1;
+        continue;
+      }
       if (s == 1)
       {
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
         const double work = engine::methodSpec(coarse.method).sampleWork(engine::elementCount(*request.scene, coarse), coarse);
         engine::recordRate(engine::RateOf::FirstCoarseStage, coarse, seconds / work);
       }
-      publish(request, s, stages, previewSolver);
+      publish(request, s, stages, previewSolver.solution(), previewSolver.stats(), false);
       previewSolver.reset(); // its caches never sit beside the final stage's
     }
   }
@@ -517,23 +540,24 @@ void AsyncSolver::Impl::solve(Request& request)
   }
 }
 
-void AsyncSolver::Impl::publish(const Request& request, std::uint32_t index, std::uint32_t stages, const Solver& from)
+void AsyncSolver::Impl::publish(const Request& request, std::uint32_t index, std::uint32_t stages,
+  const Solution& solution, const SolverStats& stats, bool throughProxy)
 {
-  std::shared_ptr<AsyncResult> result = blended(request, index == stages, from.solution(), from.stats());
+  std::shared_ptr<AsyncResult> result = blended(request, index == stages, solution, stats);
   result->stage = index;
   result->stages = stages;
-  if (result->final())
+  if (result->final() && !throughProxy) // a proxy's times are not the surface's
   {
     const SolverOptions& o = request.options;
     const engine::MethodSpec& spec = engine::methodSpec(o.method);
     const std::size_t elements = engine::elementCount(*request.scene, o);
-    history.record(spec, from.stats(), engine::historyWork(spec, elements, o));
+    history.record(spec, stats, engine::historyWork(spec, elements, o));
     const bool full = std::all_of(spec.stages().begin(), spec.stages().end(),
-      [&](const engine::StageSpec& st) { return from.stats().ran(st.name); });
+      [&](const engine::StageSpec& st) { return stats.ran(st.name); });
     const double work = spec.sampleWork(elements, o);
     if (full && work > 0.0)
     {
-      engine::recordRate(engine::RateOf::FullUpdate, o, 1e-3 * from.stats().msTotal / work);
+      engine::recordRate(engine::RateOf::FullUpdate, o, 1e-3 * stats.msTotal / work);
     }
     finalScene = request.scene;
     finalOptions = o;

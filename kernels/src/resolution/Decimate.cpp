@@ -1,6 +1,6 @@
 // The proxy's decimation, with OpenMesh: the only file of the engine that includes it (with
 // proxy/CollapseMesh.h, its mesh).
-#include "linkgi/Proxy.h"
+#include "resolution/Decimate.h"
 
 #include "linkgi/Error.h"
 #include "resolution/CollapseMesh.h"

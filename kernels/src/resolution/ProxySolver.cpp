@@ -1,7 +1,8 @@
 // Lighting through a decimated proxy: decimate once per geometry, solve the proxy with the
 // ordinary Solver, direct light on the input with the shared light-link code, and carry the
 // proxy's indirect light to the input.
-#include "linkgi/Proxy.h"
+#include "linkgi/Resolution.h"
+#include "resolution/Decimate.h"
 
 #include "engine/Pipeline.h"
 

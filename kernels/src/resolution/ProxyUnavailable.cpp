@@ -1,5 +1,6 @@
 // Builds without OpenMesh: no decimation, and a message that says what is missing.
-#include "linkgi/Proxy.h"
+#include "linkgi/Resolution.h"
+#include "resolution/Decimate.h"
 
 #include "linkgi/Error.h"
 

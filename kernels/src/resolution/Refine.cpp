@@ -3,7 +3,8 @@
 // The split works on the triangle list itself rather than on a halfedge structure: it needs
 // no manifold input (OpenMesh drops non-manifold faces on import), and a midpoint split is
 // conforming with an edge map alone.
-#include "linkgi/Refine.h"
+#include "linkgi/Resolution.h"
+#include "resolution/Refinement.h"
 
 #include "engine/Pipeline.h"
 

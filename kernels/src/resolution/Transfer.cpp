@@ -1,6 +1,7 @@
 // Carrying the proxy's light to the input: the nearest proxy triangle that faces the same
 // way, found in a uniform grid of the proxy's triangles, and barycentric weights.
-#include "linkgi/Proxy.h"
+#include "linkgi/Resolution.h"
+#include "resolution/Decimate.h"
 
 #include "linkgi/Error.h"
 #include "cpu/Parallel.h"
