@@ -1,5 +1,5 @@
 // The decimation's own construction, halfedge collapse and topology test
-// (proxy/CollapseMesh.h) against OpenMesh's: the same triangles refused, the same
+// (resolution/CollapseMesh.h) against OpenMesh's: the same triangles refused, the same
 // answer for every edge asked, and the same connectivity, down to every handle and deleted
 // flag, after every triangle and every collapse.
 #include "SceneFixtures.h"
