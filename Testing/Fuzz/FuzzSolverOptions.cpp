@@ -64,14 +64,15 @@ Scene box()
 
 /// The methods' own options, read after the scene so that inputs written before these were
 /// fuzzed still decode to the same options and scene. An input that ends before them gets 16
-/// VPLs, 512 photons and 16 clusters, not the product's 1024, 262144 and 4096: the same code
-/// paths, at a fraction of the cost per execution.
+/// VPLs, 512 photons, 16 clusters and 16 reference paths, not the product's 1024, 262144,
+/// 4096 and 1024: the same code paths, at a fraction of the cost per execution.
 void methodOptions(linkgi_fuzz::Input& in, SolverOptions& o)
 {
   InstantRadiosityOptions& ir = o.instantRadiosity;
   ir.vplCount = 16;
   o.photonMapping.photons = 512;
   o.photonMapping.clusters = 16;
+  o.reference.pathsPerVertex = 16;
   if (!in.boolean())
   {
     return;
@@ -92,13 +93,18 @@ void methodOptions(linkgi_fuzz::Input& in, SolverOptions& o)
   pm.alpha = in.number();
   // 0 = no budget; a small one is an error naming it, a large one changes nothing.
   o.memoryBudget = in.boolean() ? in.integer<std::uint64_t>() : 0;
+  if (in.boolean())
+  {
+    o.reference.pathsPerVertex = in.count(7) ? std::uint32_t(in.count(64)) : in.integer<std::uint32_t>();
+  }
 }
 
 bool cheap(const SolverOptions& o)
 {
   return o.raysPerVertex <= 1024 && o.bounces <= 64 && o.instantRadiosity.vplCount <= 4096 &&
     o.instantRadiosity.proxyResolution <= 64 && o.implicitVisibility.binsPerSide <= 16 &&
-    o.photonMapping.photons <= 4096 && o.photonMapping.gatherRays <= 1024;
+    o.photonMapping.photons <= 4096 && o.photonMapping.gatherRays <= 1024 &&
+    o.reference.pathsPerVertex <= 256;
 }
 
 /// Solves; false when the update throws linkgi::Error (options or scene rejected).
