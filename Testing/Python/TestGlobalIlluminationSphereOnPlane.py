@@ -1,7 +1,8 @@
 """vtkGlobalIlluminationFilter from Python: a sphere floating just above a floor under a
 point light casts a shadow, the floor under it still gets bounced light, the arrays
-survive a round trip through a .vtp file, and the floor and the sphere as two blocks of a
-vtkMultiBlockDataSet are the same scene.
+survive a round trip through a .vtp file, the floor and the sphere as two blocks of a
+vtkMultiBlockDataSet are the same scene, and the reference path tracer finds the floor's
+shadow and bounced light too.
 
 Usage: TestGlobalIlluminationSphereOnPlane.py <output directory>
 """
@@ -10,7 +11,7 @@ import os
 import sys
 
 import linkgi
-from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet
+from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkAppendPolyData
 from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter
@@ -35,6 +36,36 @@ def sphere_over_floor():
     append.AddInputConnection(sphere.GetOutputPort())
     append.Update()
     return append.GetOutput(), floor.GetOutput().GetNumberOfPoints(), append
+
+
+def check_reference(scene, light, floor_points):
+    """SetMethodToReference from Python: the path tracer's direct light equals the links'
+    (both exact, one shadow ray per vertex) and the links' mean indirect light on the floor
+    is within 10% of it."""
+    gi = linkgi.vtkGlobalIlluminationFilter()
+    gi.SetInputData(scene)
+    gi.SetLightOversampling(False)
+    gi.AddLight(light)
+    gi.Update()
+    links = vtkPolyData()
+    links.DeepCopy(gi.GetOutput())
+    gi.SetMethodToReference()
+    gi.SetReferencePathsPerVertex(256)
+    gi.Update()
+    out = gi.GetOutput()
+    assert gi.GetMethodAsString() == "reference"
+    assert out.GetFieldData().GetAbstractArray("LinkGI.Method").GetValue(0) == "reference"
+    assert out.GetFieldData().GetArray("LinkGI.Paths").GetValue(0) == 256 * scene.GetNumberOfPoints()
+
+    def mean(data, name, first=0, last=None):
+        a = data.GetPointData().GetArray(name)
+        last = a.GetNumberOfTuples() if last is None else last
+        return sum(a.GetComponent(i, 0) for i in range(first, last)) / (last - first)
+
+    ratio = mean(links, "IndirectIrradiance", 0, floor_points) / mean(out, "IndirectIrradiance", 0, floor_points)
+    print(f"reference: the links' indirect light on the floor / the reference's {ratio:.3f}")
+    assert abs(mean(out, "DirectIrradiance") / mean(links, "DirectIrradiance") - 1) < 1e-4
+    assert abs(ratio - 1) < 0.10
 
 
 def check_blocks(append, light, appended):
@@ -121,6 +152,7 @@ def main(outdir):
     elements = back.GetFieldData().GetArray("LinkGI.Elements")
     assert elements is not None and elements.GetValue(0) == scene.GetNumberOfPoints()
     check_blocks(append, light, out)
+    check_reference(scene, light, floor_points)
     assert linkgi.vtkGlobalIlluminationAsyncWatcher().GetInterval() == 30
     print("ok")
 
