@@ -40,18 +40,6 @@ linkgi::Vec3f ToVec3f(const double v[3])
   return { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
 }
 
-linkgi::Backend ToEngineBackend(int backend)
-{
-  switch (backend)
-  {
-    case vtkGlobalIlluminationFilter::CPU:
-      return linkgi::Backend::Cpu;
-    case vtkGlobalIlluminationFilter::CUDA:
-      return linkgi::Backend::Cuda;
-    default:
-      return linkgi::Backend::Auto;
-  }
-}
 }
 
 //------------------------------------------------------------------------------
@@ -213,43 +201,6 @@ void vtkGlobalIlluminationFilter::vtkInternals::Update(
 {
   this->Solver.update(scene, this->Options(self), this->Resolution(self), this->Progress(self));
   this->RefinedUsed = this->Solver.refined() != nullptr;
-}
-
-//------------------------------------------------------------------------------
-linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
-  vtkGlobalIlluminationFilter* self)
-{
-  // The engine decides CPU or GPU (Auto: the GPU when a CUDA device exists) and reports the
-  // choice in its stats; a CUDA request it cannot honour comes back as a warning.
-  linkgi::SolverOptions options;
-  options.backend = ToEngineBackend(self->Backend);
-  options.raysPerVertex = static_cast<std::uint32_t>(self->RaysPerVertex);
-  options.bounces = static_cast<std::uint32_t>(self->NumberOfBounces);
-  options.method = static_cast<linkgi::Method>(self->Method); // SetMethod checked it
-  options.partition = this->ActivePartition;
-  options.photonMapping.photons = static_cast<std::uint32_t>(self->NumberOfPhotons);
-  options.photonMapping.clusters = static_cast<std::uint32_t>(self->NumberOfClusters);
-  options.photonMapping.gatherRays = static_cast<std::uint32_t>(self->FinalGatherRays);
-  options.reference.pathsPerVertex = static_cast<std::uint32_t>(self->ReferencePathsPerVertex);
-  options.implicitVisibility.binsPerSide = static_cast<std::uint32_t>(self->ImplicitVisibilityBins);
-  options.memoryBudget = static_cast<std::uint64_t>(self->MemoryBudget * 1024.0 * 1024.0);
-  options.instantRadiosity.vplCount = static_cast<std::uint32_t>(self->NumberOfVPLs);
-  options.instantRadiosity.clampDistance = static_cast<float>(self->VPLClampDistance);
-  options.instantRadiosity.interleave = static_cast<std::uint32_t>(self->VPLInterleaving);
-  options.instantRadiosity.proxyVisibility = self->ProxyVisibility != 0;
-  options.instantRadiosity.proxyResolution = static_cast<std::uint32_t>(self->ProxyResolution);
-  options.smoothing = self->Smoothing != 0;
-  options.featureAngleDegrees = static_cast<float>(self->FeatureAngle);
-  options.twoSided = self->TwoSided != 0;
-  options.twist = self->Twist != 0;
-  options.seed = static_cast<std::uint32_t>(self->Seed);
-  options.lightOversampling = self->LightOversampling != 0;
-  options.albedoPolicy = self->ClampAlbedo ? linkgi::AlbedoPolicy::Clamp : linkgi::AlbedoPolicy::Reject;
-  if (!this->RaysRounded.empty())
-  {
-    this->Warnings.push_back(this->RaysRounded); // in LinkGI.Warnings with the others
-  }
-  return options;
 }
 
 //------------------------------------------------------------------------------
@@ -434,7 +385,6 @@ bool vtkGlobalIlluminationFilter::vtkInternals::SolveAsynchronously(
   Builder::AddFieldValue(output->GetFieldData(), "Stages", std::uint64_t(latest ? latest->stages : 0));
   return true;
 }
-
 
 //------------------------------------------------------------------------------
 void vtkGlobalIlluminationFilter::vtkInternals::ShapeOutput(vtkPolyData* input, vtkPolyData* output)
