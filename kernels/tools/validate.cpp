@@ -8,6 +8,7 @@
 #include "shared/Metrics.h"
 #include "linkgi/Resolution.h"
 #include "resolution/Decimate.h"
+#include "methods/pm/PhotonMapping.h"
 #include "methods/reference/Reference.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"

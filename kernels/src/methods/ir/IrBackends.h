@@ -31,13 +31,6 @@ std::unique_ptr<engine::MethodBackend> createCudaBackend(const SolverOptions& op
 
 namespace linkgi::ir
 {
-/// Every light path of `setup` traced against `tracer` (the mesh), split into `subsets`.
-/// A scene whose paths mostly leave it gets a second pass of more paths (secondPassPaths);
-/// when that pass's slots would take more than `secondPassBytes`, OutOfMemoryBudget says so
-/// before they are allocated (the update's estimate counts the first pass only).
-VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32_t subsets,
-  const ProgressCallback& progress = {}, std::uint64_t secondPassBytes = UINT64_MAX);
-
 /// E_ind per element (both sides when twoSided): each gathers its VPL subset, shadow rays
 /// against `visibility` (the mesh, or the proxy when params.proxyMargin > 0). `rays` gets
 /// the shadow rays traced. With `rows` (one flag per element), only those elements gather;

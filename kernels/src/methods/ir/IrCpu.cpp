@@ -15,54 +15,6 @@
 
 namespace linkgi::ir
 {
-VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32_t subsets,
-  const ProgressCallback& progress, std::uint64_t secondPassBytes)
-{
-  PathScene view = setup.view;
-  const std::uint32_t slotsPerPath = view.bounces + 1;
-  std::vector<Vpl> slots;
-  std::vector<int> counts;
-  const auto trace = [&tracer](const Ray& ray) {
-    Hit h;
-    tracer.trace(&ray, &h, 1);
-    return h;
-  };
-  const std::uint32_t target = setup.targetVpls;
-  for (int pass = 0; pass < 2; ++pass)
-  {
-    slots.resize(std::size_t(view.paths) * slotsPerPath);
-    counts.assign(view.paths, 0);
-    parallelFor("VPLs", view.paths, 64, [&](std::size_t first, std::size_t last) {
-      for (std::size_t p = first; p < last; ++p)
-      {
-        counts[p] = traceLightPath(view, std::uint32_t(p), slots.data() + p * slotsPerPath, trace);
-      }
-    }, progress);
-    std::size_t found = 0;
-    for (int n : counts)
-    {
-      found += std::size_t(n);
-    }
-    const std::uint32_t more = pass == 0 ? secondPassPaths(view.paths, found, target, slotsPerPath) : 0;
-    if (!more)
-    {
-      break;
-    }
-    const std::uint64_t bytes = std::uint64_t(more) * (slotsPerPath * sizeof(Vpl) + sizeof(int));
-    if (bytes > secondPassBytes)
-    {
-      throw OutOfMemoryBudget("Not enough memory: light paths mostly leave this scene (" + std::to_string(found) +
-          " of the " + std::to_string(target) + " virtual lights or photons asked for were found), and the second pass of " +
-          std::to_string(more) + " paths that would find the rest needs about " + formatBytes(bytes) +
-          ", more than the memory budget leaves (" + formatBytes(secondPassBytes) +
-          "). Ask for fewer (NumberOfVPLs, NumberOfPhotons), or a larger MemoryBudget.",
-        0);
-    }
-    view.paths = more;
-  }
-  return packVpls(slots, counts, slotsPerPath, subsets);
-}
-
 std::vector<Vec3f> gatherCpu(const Scene& s, const std::vector<RayOrigin>& origins, const VplSet& set,
   const RayTracer* visibility, const GatherParams& gp, bool twoSided, std::uint64_t* rays,
   const ProgressCallback& progress, const std::uint8_t* rows)

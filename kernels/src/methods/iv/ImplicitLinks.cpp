@@ -1,7 +1,7 @@
 #include "methods/iv/ImplicitLinks.h"
 
 #include "linkgi/Error.h"
-#include "methods/links/Links.h"
+#include "shared/Csr.h"
 
 #include <algorithm>
 #include <cmath>

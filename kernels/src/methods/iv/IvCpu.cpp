@@ -8,7 +8,7 @@
 
 #include "shared/DirectLight.h"
 #include "linkgi/Error.h"
-#include "methods/links/Links.h"
+#include "shared/Surface.h"
 #include "shared/Metrics.h"
 
 #include <chrono>

@@ -1,10 +1,9 @@
 #include "methods/pm/PhotonMapping.h"
 
-#include "methods/ir/IrBackends.h"
+#include "shared/LightPaths.h"
 
-#include "methods/links/Links.h"
+#include "shared/Surface.h"
 #include "shared/Metrics.h"
-#include "methods/reference/Reference.h"
 #include "shared/Sampling.h"
 
 #include <algorithm>
@@ -49,10 +48,10 @@ Vec3f unitOr(const Vec3f& v, const Vec3f& fallback)
 }
 }
 
-ir::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals,
+paths::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals,
   const std::vector<RayOrigin>& origins, const SolverOptions& options)
 {
-  ir::PathSetup setup = ir::buildPathSetup(scene, faceNormals, origins, options);
+  paths::PathSetup setup = paths::buildPathSetup(scene, faceNormals, origins, options);
   if (scene.hasSpecular())
   {
     setup.view.materials = reinterpret_cast<const std::uint8_t*>(scene.triangleMaterials.data());
@@ -86,13 +85,13 @@ void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals,
   SolverOptions paths = options;
   paths.instantRadiosity.vplCount = options.photonMapping.photons;
   paths.instantRadiosity.russianRoulette = true;
-  const ir::PathSetup setup = pathSetup(scene, faceNormals, origins, paths);
-  const ir::VplSet hits = ir::traceVplsCpu(setup, tracer, 1, progress, secondPassBytes);
+  const paths::PathSetup setup = pathSetup(scene, faceNormals, origins, paths);
+  const paths::VplSet hits = paths::traceVplsCpu(setup, tracer, 1, progress, secondPassBytes);
   for (auto* a : { &map.positions, &map.normals, &map.flux, &map.causticPositions, &map.causticNormals, &map.causticFlux })
   {
     a->clear();
   }
-  for (const ir::Vpl& vpl : hits.vpls)
+  for (const paths::Vpl& vpl : hits.vpls)
   {
     if (vpl.sky)
     {
@@ -117,7 +116,7 @@ std::vector<Vec3f> causticReference(const Scene& s, const std::vector<Vec3f>& fa
   o.bounces = 1; // to the first diffuse hit
   o.seed = seed;
   o.instantRadiosity.vplCount = paths;
-  const ir::PathSetup setup = pathSetup(s, faceNormals, origins, o);
+  const paths::PathSetup setup = pathSetup(s, faceNormals, origins, o);
   const std::size_t nv = s.vertexCount();
   std::vector<Vec3f> out(nv, Vec3f(0.f));
   if (!s.hasSpecular() || setup.view.paths == 0)
@@ -129,11 +128,11 @@ std::vector<Vec3f> causticReference(const Scene& s, const std::vector<Vec3f>& fa
   std::vector<double> total(3 * nv, 0.0);
   parallelFor("Caustics", setup.view.paths, 16384, [&](std::size_t begin, std::size_t end) {
     std::vector<double> local(3 * nv, 0.0);
-    ir::Vpl slots[2];
+    paths::Vpl slots[2];
     for (std::size_t p = begin; p < end; ++p)
     {
       Hit last;
-      const int count = ir::traceLightPath(setup.view, std::uint32_t(p), slots, [&](const Ray& ray) {
+      const int count = paths::traceLightPath(setup.view, std::uint32_t(p), slots, [&](const Ray& ray) {
         tracer.trace(&ray, &last, 1);
         return last;
       });
@@ -421,8 +420,8 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<RayOrigin>& origi
   bool twoSided, const ProgressCallback& progress, const std::uint8_t* rows)
 {
   const std::size_t nc = clusters.count(), n = directions.size();
-  const ir::PathSetup setup = pathSetup(s, faceNormals, origins, SolverOptions());
-  const ir::PathScene& view = setup.view;
+  const paths::PathSetup setup = pathSetup(s, faceNormals, origins, SolverOptions());
+  const paths::PathScene& view = setup.view;
   const RadianceSitesView sites = map.sitesView();
   const float diagonal = boundingDiagonal(s.positions);
   SampleIrradiance out;

@@ -10,7 +10,8 @@
 #include "methods/pm/PmMath.h"
 #include "methods/pm/PointTree.h"
 
-#include "methods/ir/IrHost.h"
+#include "shared/LightPaths.h"
+#include "shared/Surface.h"
 
 #include "cpu/Parallel.h"
 #include "shared/RayTracer.h"
@@ -65,7 +66,7 @@ struct PhotonMap
 
 /// Instant radiosity's light-path set-up (sources, the scene's view) with the scene's
 /// mirrors and glass: what photons and the final gather trace through, on either backend.
-ir::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals,
+paths::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNormals,
   const std::vector<RayOrigin>& origins, const SolverOptions& options);
 
 /// The photons of `options` (PhotonMappingOptions::photons, bounces, seed, sides): instant
@@ -142,4 +143,14 @@ std::vector<Vec3f> causticReference(const Scene& scene, const std::vector<Vec3f>
 /// Every vertex's irradiance from its neighbours' samples, weighted as in irradiance
 /// caching: w = 1 / (|x - s| / R + sqrt(2 - 2 n.n_s)) over samples facing the same way.
 std::vector<Vec3f> interpolate(const Scene& scene, const Clusters& clusters, const SampleIrradiance& samples);
+}
+
+namespace linkgi
+{
+/// The caustics' reference (Solution::caustics), photon mapping's own ground truth (the
+/// path tracer cannot reach a point light through glass): `paths` light paths
+/// from the lights through mirrors and glass to their first diffuse hit, the incident flux
+/// splatted into the vertices' hat functions (W/m^2 per vertex; zero without specular
+/// triangles). Validates a copy of `scene` (as the solver does, so the vertices match).
+std::vector<Vec3f> solveCausticReference(const Scene& scene, std::uint32_t paths, std::uint32_t seed = 0);
 }

@@ -6,7 +6,7 @@
 
 #include "methods/pm/PmTypes.h"
 
-#include "methods/ir/IrMath.h"
+#include "shared/LightPaths.h"
 
 namespace linkgi::pm
 {
@@ -104,10 +104,10 @@ struct GatherHit
 /// diffuse hit (the back of a one-sided surface is black; a back of a two-sided one was lit
 /// by photons stored with the back's normal), or the sky. `trace(ray)` returns the closest Hit.
 template <typename Trace>
-LINKGI_HOST_DEVICE inline GatherHit shadeGatherRay(const ir::PathScene& s, const RadianceSitesView& sites,
+LINKGI_HOST_DEVICE inline GatherHit shadeGatherRay(const paths::PathScene& s, const RadianceSitesView& sites,
   Ray ray, Hit h, std::uint32_t cluster, std::uint32_t r, bool twoSided, const Trace& trace)
 {
-  for (std::uint32_t turn = 1; turn <= ir::kMaxSpecularBounces; ++turn)
+  for (std::uint32_t turn = 1; turn <= paths::kMaxSpecularBounces; ++turn)
   {
     const std::uint8_t material = h.triangle != kInvalidIndex && s.materials ? s.materials[h.triangle] : 0u;
     if (material == std::uint8_t(MaterialType::Diffuse))
@@ -128,8 +128,8 @@ LINKGI_HOST_DEVICE inline GatherHit shadeGatherRay(const ir::PathScene& s, const
     const Vec3f facing = back ? -n : n;
     const float ior = s.ior ? s.ior[h.triangle] : 1.5f;
     const Vec3f next = material == std::uint8_t(MaterialType::Mirror)
-      ? ir::reflect(d, facing)
-      : ir::dielectricDirection(d, facing, back ? ior : 1.f / ior, hashToUnit(hash32(cluster) ^ r, turn));
+      ? paths::reflect(d, facing)
+      : paths::dielectricDirection(d, facing, back ? ior : 1.f / ior, hashToUnit(hash32(cluster) ^ r, turn));
     ray.origin = p + (dot(next, fn) > 0.f ? fn : -fn) * triangleOffset(s.origins, t);
     ray.direction = next;
     ray.tnear = 0.f;
@@ -139,7 +139,7 @@ LINKGI_HOST_DEVICE inline GatherHit shadeGatherRay(const ir::PathScene& s, const
   GatherHit out;
   if (h.triangle == kInvalidIndex)
   {
-    out.radiance = ir::skyRadiance(s, normalize(ray.direction));
+    out.radiance = paths::skyRadiance(s, normalize(ray.direction));
     return out;
   }
   out.hit = true;

@@ -5,7 +5,7 @@
 #include "engine/Progression.h"
 
 #include "cpu/CpuGeometry.h"
-#include "methods/ir/IrHost.h"
+#include "shared/LightPaths.h"
 #include "methods/pm/PhotonMapping.h"
 
 namespace linkgi
@@ -43,7 +43,7 @@ MemoryEstimate estimatePmMemory(const MemoryShape& shape, const SolverOptions& o
     SolverOptions paths = o;
     paths.instantRadiosity.vplCount = o.photonMapping.photons;
     const std::uint64_t sites = std::min<std::uint64_t>(kMaxSites, photons / siteStride(photons) + 1);
-    m.hostBytes += (cuda ? 0 : std::uint64_t(ir::pathCount(paths)) * (o.bounces + 1) * (sizeof(ir::Vpl) + sizeof(int))) +
+    m.hostBytes += (cuda ? 0 : std::uint64_t(paths::pathCount(paths)) * (o.bounces + 1) * (sizeof(paths::Vpl) + sizeof(int))) +
       photons * (3 * sizeof(Vec3f) + sizeof(Index)) + sites * (3 * sizeof(Vec3f) + sizeof(Index));
   }
   if (stale & (1u << kClusterStage))

@@ -4,7 +4,7 @@
 #include "methods/reference/Reference.h"
 
 #include "shared/DirectLight.h"
-#include "methods/links/Links.h"
+#include "shared/Surface.h"
 #include "shared/Sampling.h"
 
 #include "linkgi/Error.h"

@@ -60,10 +60,4 @@ ReferenceSolution solveReference(const Scene& scene, const ReferenceOptions& opt
 /// The same on a tracer the caller has already built over scene.positions/triangles.
 ReferenceSolution solveReference(const Scene& scene, const RayTracer& tracer,
   const ReferenceOptions& options = {}, const ProgressCallback& progress = {});
-
-/// The caustics' reference (Method::PhotonMapping's Solution::caustics): `paths` light paths
-/// from the lights through mirrors and glass to their first diffuse hit, the incident flux
-/// splatted into the vertices' hat functions (W/m^2 per vertex; zero without specular
-/// triangles). Validates a copy of `scene` (as the solver does, so the vertices match).
-std::vector<Vec3f> solveCausticReference(const Scene& scene, std::uint32_t paths, std::uint32_t seed = 0);
 }

@@ -9,7 +9,7 @@
 #include "methods/pm/cuda/PmKernels.h"
 #include "methods/pm/PhotonMapping.h"
 
-#include "methods/ir/cuda/IrKernels.h"
+#include "cuda/LightPathKernels.h"
 
 #include "cuda/OneDevice.h"
 
@@ -76,16 +76,16 @@ private:
     SolverOptions o = c.options;
     o.instantRadiosity.vplCount = o.photonMapping.photons;
     o.instantRadiosity.russianRoulette = true;
-    const ir::PathSetup setup = ir::buildPathSetup(s, {}, {}, o, &mesh.extent);
+    const paths::PathSetup setup = paths::buildPathSetup(s, {}, {}, o, &mesh.extent);
     pathView = pathScene.upload(s, setup, c.changes, mesh, true, stream);
-    ir::PathScene view = pathView;
-    const std::size_t found = ir::gpu::traceAllPaths(view, mesh.bvh.view(), setup.targetVpls, paths,
+    paths::PathScene view = pathView;
+    const std::size_t found = paths::gpu::traceAllPaths(view, mesh.bvh.view(), setup.targetVpls, paths,
       device.counters + kFoundSlot, stream);
     // The hits in path order (one subset), then split into photons and caustic photons.
     hits.resize(std::max<std::size_t>(found, 1));
     subsetOffsets.resize(2);
     subsetScale.resize(1);
-    ir::gpu::packVpls(paths.slots.data(), paths.counts.data(), paths.pathOffsets.data(), view.paths,
+    paths::gpu::packVpls(paths.slots.data(), paths.counts.data(), paths.pathOffsets.data(), view.paths,
       view.bounces + 1, 1, hits.data(), subsetOffsets.data(), subsetScale.data(), stream);
     static_assert(sizeof(Offset) == sizeof(unsigned long long), "photon totals land in counter slots");
     gpu::splitPhotons(hits.data(), found, photons, flags, scan, temp,
@@ -234,10 +234,10 @@ private:
   cuda::DeviceDirectLight direct;
   cuda::DeviceFinish done;
   GPUBuffer<float> areas;
-  ir::gpu::DevicePathScene pathScene;
-  ir::PathScene pathView; ///< the photon stage's, over the device's arrays
-  ir::gpu::DevicePaths paths;
-  GPUBuffer<ir::Vpl> hits;
+  paths::gpu::DevicePathScene pathScene;
+  paths::PathScene pathView; ///< the photon stage's, over the device's arrays
+  paths::gpu::DevicePaths paths;
+  GPUBuffer<paths::Vpl> hits;
   GPUBuffer<std::uint32_t> subsetOffsets;
   GPUBuffer<float> subsetScale;
   gpu::DevicePhotons photons;

@@ -155,7 +155,7 @@ __global__ void globalKeysKernel(const Vec3f* points, const Index* order, const 
   keys[i] = (std::uint64_t(begins[r]) << 32) | sortable;
 }
 
-__global__ void flagKernel(const ir::Vpl* hits, std::size_t count, Index* photon, Index* caustic)
+__global__ void flagKernel(const paths::Vpl* hits, std::size_t count, Index* photon, Index* caustic)
 {
   const std::size_t i = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
   if (i < count)
@@ -165,7 +165,7 @@ __global__ void flagKernel(const ir::Vpl* hits, std::size_t count, Index* photon
   }
 }
 
-__global__ void scatterKernel(const ir::Vpl* hits, std::size_t count, const Offset* photonAt,
+__global__ void scatterKernel(const paths::Vpl* hits, std::size_t count, const Offset* photonAt,
   const Offset* causticAt, Vec3f* positions, Vec3f* normals, Vec3f* flux, Vec3f* causticPositions,
   Vec3f* causticNormals, Vec3f* causticFlux)
 {
@@ -174,7 +174,7 @@ __global__ void scatterKernel(const ir::Vpl* hits, std::size_t count, const Offs
   {
     return;
   }
-  const ir::Vpl& h = hits[i];
+  const paths::Vpl& h = hits[i];
   const Offset p = photonAt[i];
   positions[p] = h.position;
   normals[p] = h.normal;
@@ -466,7 +466,7 @@ PointTreeView DevicePointTree::inTreeOrder(std::initializer_list<std::pair<const
   return { points, nullptr, axes.data(), count };
 }
 
-void splitPhotons(const ir::Vpl* hits, std::size_t count, DevicePhotons& out, cuda::GPUBuffer<Index>& flags,
+void splitPhotons(const paths::Vpl* hits, std::size_t count, DevicePhotons& out, cuda::GPUBuffer<Index>& flags,
   cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, Offset* totals, cudaStream_t stream)
 {
   for (auto* a : { &out.positions, &out.normals, &out.flux, &out.causticPositions, &out.causticNormals,

@@ -53,7 +53,7 @@ struct DevicePhotons
 /// caustic photons (those with the caustic flag), into `out`, sized for all `count`.
 /// `flags`, `scan`, `temp`: scratch. `totals` (pinned host memory, 2 entries) gets how many
 /// of each: the caller reads them after a wait.
-void splitPhotons(const ir::Vpl* hits, std::size_t count, DevicePhotons& out, cuda::GPUBuffer<Index>& flags,
+void splitPhotons(const paths::Vpl* hits, std::size_t count, DevicePhotons& out, cuda::GPUBuffer<Index>& flags,
   cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, Offset* totals, cudaStream_t stream);
 
 /// Radiance estimates (siteRadiance) at every `stride`-th photon, with k (2 to 1024) photons
@@ -68,7 +68,7 @@ void estimateSites(const PhotonsView& photons, const Index* order, std::uint32_t
 /// What the final gather reads on the device.
 struct GatherLaunch
 {
-  ir::PathScene scene; ///< device pointers: positions, normals, triangles, face normals, materials, sky
+  paths::PathScene scene; ///< device pointers: positions, normals, triangles, face normals, materials, sky
   BvhView bvh;
   RadianceSitesView sites;
   const Index* samples = nullptr; ///< per cluster: its sample vertex
