@@ -5,6 +5,7 @@
 #include "linkgi/Error.h"
 #include "shared/Metrics.h"
 #include "cpu/Parallel.h"
+#include "engine/Pipeline.h"
 
 #include <algorithm>
 #include <chrono>
@@ -21,23 +22,7 @@ using Clock = std::chrono::steady_clock;
 /// The sampling the stage's method used, in its own words.
 std::string samplingOf(const SolverOptions& o)
 {
-  std::ostringstream out;
-  switch (o.method)
-  {
-    case Method::Links:
-      out << o.raysPerVertex << " rays";
-      break;
-    case Method::InstantRadiosity:
-      out << o.instantRadiosity.vplCount << " VPLs";
-      break;
-    case Method::ImplicitVisibility:
-      out << o.implicitVisibility.binsPerSide << " bins per side";
-      break;
-    case Method::PhotonMapping:
-      out << o.photonMapping.photons << " photons, " << o.photonMapping.gatherRays << " gather rays";
-      break;
-  }
-  return out.str();
+  return engine::methodSpec(o.method).sampling(o);
 }
 
 struct Published

@@ -150,7 +150,7 @@ Args parse(int argc, char** argv)
       a.progressive = true;
     else
     {
-      throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method links|instant-radiosity|implicit-visibility|photon-mapping] "
+      throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method " + methodNames("|") + "] "
                   "[--vpls 1024] [--interleave 1] [--proxy 0|N] [--bins 12] [--photons 262144] [--clusters 4096] [--gather-rays 256] [--proxy-vertices N [--proxy-only]] [--refine-vertices N] [--memory-budget BYTES] [--rays 256] [--bounces 3] [--repeat 3] "
                   "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] [--bvh-build gpu|sah] "
                   "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather] [--progressive]; unknown argument " +

@@ -238,6 +238,9 @@ const char* methodName(Method method);
 /// The method called `name`; throws linkgi::Error naming the valid names.
 Method methodByName(const std::string& name);
 
+/// Every method's name, joined by `separator` ("links|instant-radiosity|...").
+std::string methodNames(const std::string& separator = ", ");
+
 /// Every field equal (a request for the same solve).
 bool operator==(const SolverOptions& a, const SolverOptions& b);
 inline bool operator!=(const SolverOptions& a, const SolverOptions& b)

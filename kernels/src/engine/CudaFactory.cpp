@@ -11,7 +11,8 @@ CudaFactory& current()
   static CudaFactory factory{
     [](std::string* why) { return cuda::devices(why).size(); },
     [](const MethodSpec& spec, const SolverOptions& options) { return spec.createCuda(options); },
-    [](const MethodSpec& spec) { return spec.hasCudaBackend(); }
+    // Without CUDA in the build no method has a backend, and devices() says the build's why.
+    [](const MethodSpec& spec) { return !cuda::compiled() || spec.hasCudaBackend(); }
   };
   return factory;
 }

@@ -38,17 +38,25 @@ const char* methodName(Method method)
   return engine::methodSpec(method).name();
 }
 
-Method methodByName(const std::string& name)
+std::string methodNames(const std::string& separator)
 {
   std::string names;
+  for (Method m : methods())
+  {
+    names += (names.empty() ? "" : separator) + methodName(m);
+  }
+  return names;
+}
+
+Method methodByName(const std::string& name)
+{
   for (Method m : methods())
   {
     if (name == methodName(m))
     {
       return m;
     }
-    names += std::string(names.empty() ? "" : ", ") + methodName(m);
   }
-  throw Error("Unknown method '" + name + "'; use " + names + ".");
+  throw Error("Unknown method '" + name + "'; use " + methodNames() + ".");
 }
 }

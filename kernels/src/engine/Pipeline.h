@@ -166,6 +166,9 @@ public:
   /// Whether the method's own options differ between `a` and `b`: for SolverOptions'
   /// equality and the change bit kMethodOptions.
   virtual bool optionsDiffer(const SolverOptions& /*a*/, const SolverOptions& /*b*/) const { return false; }
+  /// The sampling `options` ask of it, in its own words ("256 rays"): what a progressive
+  /// stage or a benchmark reports.
+  virtual std::string sampling(const SolverOptions& /*options*/) const { return {}; }
   /// Whether it carries light through mirror and glass triangles (else they are diffuse,
   /// and the orchestrator says so).
   virtual bool carriesSpecular() const { return false; }

@@ -264,7 +264,7 @@ bool Solver::Impl::chooseCuda(const engine::MethodSpec& spec, const SolverOption
     {
       st.warnings.push_back("CUDA requested, but " + why);
     }
-    st.backendNote = "CPU only: " + why;
+    st.backendNote = std::string(opt.backend == Backend::Auto ? "Auto" : "CUDA requested") + ": " + why;
     return false;
   }
   if (opt.partition)

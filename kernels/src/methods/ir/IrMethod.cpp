@@ -111,6 +111,10 @@ public:
   {
     return a.instantRadiosity != b.instantRadiosity;
   }
+  std::string sampling(const SolverOptions& o) const override
+  {
+    return std::to_string(o.instantRadiosity.vplCount) + " VPLs";
+  }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
 #if LINKGI_HAVE_CUDA
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }

@@ -95,6 +95,10 @@ public:
   {
     return a.implicitVisibility != b.implicitVisibility;
   }
+  std::string sampling(const SolverOptions& o) const override
+  {
+    return std::to_string(o.implicitVisibility.binsPerSide) + " bins per side";
+  }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
 #if LINKGI_HAVE_CUDA
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }

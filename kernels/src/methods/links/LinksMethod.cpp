@@ -25,6 +25,10 @@ public:
     };
     return table;
   }
+  std::string sampling(const SolverOptions& o) const override
+  {
+    return std::to_string(o.raysPerVertex) + " rays";
+  }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
 #if LINKGI_HAVE_CUDA
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }

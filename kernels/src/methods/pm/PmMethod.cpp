@@ -111,6 +111,11 @@ public:
   {
     return a.photonMapping != b.photonMapping;
   }
+  std::string sampling(const SolverOptions& o) const override
+  {
+    return std::to_string(o.photonMapping.photons) + " photons, " + std::to_string(o.photonMapping.gatherRays) +
+      " gather rays";
+  }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions& o) const override { return createCpuBackend(o); }
 #if LINKGI_HAVE_CUDA
   std::unique_ptr<MethodBackend> createCuda(const SolverOptions& o) const override { return createCudaBackend(o); }

@@ -85,6 +85,10 @@ public:
   {
     return a.reference.pathsPerVertex != b.reference.pathsPerVertex;
   }
+  std::string sampling(const SolverOptions& o) const override
+  {
+    return std::to_string(o.reference.pathsPerVertex) + " paths per vertex";
+  }
   std::unique_ptr<MethodBackend> createCpu(const SolverOptions&) const override
   {
     return std::make_unique<CpuBackend>();
