@@ -239,11 +239,14 @@ void vtkGlobalIlluminationRepresentation::WaitForSolutionNow()
   vtkGlobalIlluminationFilter* filter = this->Internals->Filter;
   for (;;)
   {
+    // Idle is read before the poll: a worker that publishes and goes idle after the poll
+    // looked would otherwise end the wait with the previous solution drawn.
+    const bool idle = !filter->GetAsynchronousBusy();
     if (filter->WaitForAsynchronousResult(0.05))
     {
       filter->Update(); // draws the new solution
     }
-    if (ShowsFinal(filter) || !filter->GetAsynchronousBusy())
+    if (ShowsFinal(filter) || idle)
     {
       return;
     }
