@@ -357,15 +357,16 @@ void vtkGlobalIlluminationFilter::SetMethod(int method)
   {
     return;
   }
-  std::string known;
-  for (const linkgi::Method m : linkgi::methods())
+  const std::vector<linkgi::Method> methods = linkgi::methods();
+  if (std::find(methods.begin(), methods.end(), static_cast<linkgi::Method>(method)) != methods.end())
   {
-    if (int(m) == method)
-    {
-      this->Method = method;
-      this->Modified();
-      return;
-    }
+    this->Method = method;
+    this->Modified();
+    return;
+  }
+  std::string known;
+  for (const linkgi::Method m : methods)
+  {
     known += (known.empty() ? "" : ", ") + std::to_string(int(m)) + " (" + linkgi::methodName(m) + ")";
   }
   vtkErrorMacro(<< "No method " << method << "; this build has " << known << ". The method stays "

@@ -58,6 +58,13 @@ struct CsrView
   int lanes = 8;
 };
 
+/// Threads per block of the element-wise kernels, and the blocks that cover `n` items.
+constexpr int kBlockThreads = 128;
+inline unsigned gridBlocks(std::size_t n, int threads = kBlockThreads)
+{
+  return unsigned((n + std::size_t(threads) - 1) / std::size_t(threads));
+}
+
 /// The threads per row for a matrix of `rows` rows and `nonZeros` entries in all: a full
 /// warp for long rows.
 int lanesForRows(Offset nonZeros, std::uint64_t rows);

@@ -7,12 +7,9 @@ namespace linkgi::paths::gpu
 {
 namespace
 {
-constexpr int kThreads = 128;
+constexpr int kThreads = cuda::kBlockThreads;
 
-unsigned blocks(std::size_t n)
-{
-  return unsigned((n + kThreads - 1) / kThreads);
-}
+using cuda::gridBlocks;
 
 __global__ void pathKernel(PathScene scene, BvhView bvh, Vpl* slots, Index* counts)
 {
@@ -147,10 +144,10 @@ void packVpls(const Vpl* slots, const Index* counts, const Offset* pathOffsets, 
   const std::size_t n = std::size_t(paths) * slotsPerPath;
   if (n)
   {
-    packKernel<<<blocks(n), kThreads, 0, stream>>>(slots, counts, pathOffsets, paths, slotsPerPath, vpls);
+    packKernel<<<gridBlocks(n), kThreads, 0, stream>>>(slots, counts, pathOffsets, paths, slotsPerPath, vpls);
     LINKGI_CUDA_CHECK_LAUNCH("packKernel");
   }
-  subsetKernel<<<blocks(subsets + 1), kThreads, 0, stream>>>(pathOffsets, paths, subsets, subsetOffsets, subsetScale);
+  subsetKernel<<<gridBlocks(subsets + 1), kThreads, 0, stream>>>(pathOffsets, paths, subsets, subsetOffsets, subsetScale);
   LINKGI_CUDA_CHECK_LAUNCH("subsetKernel");
 }
 }

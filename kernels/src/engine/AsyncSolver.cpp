@@ -2,6 +2,7 @@
 
 #include "engine/Pipeline.h"
 #include "engine/Progression.h"
+#include "engine/WorkerThreads.h"
 
 #include "cuda/Cuda.h"
 #include "linkgi/Error.h"
@@ -15,14 +16,6 @@
 #include <system_error>
 #include <thread>
 
-#ifdef __linux__
-#include <pthread.h>
-#include <sched.h>
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-#endif
-
 namespace linkgi
 {
 namespace
@@ -33,81 +26,6 @@ using Clock = std::chrono::steady_clock;
 constexpr std::chrono::milliseconds kContinuous{ 1000 };
 /// How often the worker checks that an idle-class update is not starving.
 constexpr std::chrono::milliseconds kStarvationWindow{ 500 };
-
-/// The calling thread's kernel id (0 where there is none to tell).
-long threadId()
-{
-#ifdef __linux__
-  return static_cast<long>(syscall(SYS_gettid));
-#else
-  return 0;
-#endif
-}
-
-/// Lowers the calling thread's priority: the idle scheduling class where `idle` is asked
-/// for and allowed, nice 10 otherwise. Returns whether it is in the idle class.
-bool lowerPriority(bool idle)
-{
-#ifdef __linux__
-  if (idle)
-  {
-    sched_param none{};
-    if (pthread_setschedparam(pthread_self(), SCHED_IDLE, &none) == 0)
-    {
-      return true;
-    }
-  }
-  setpriority(PRIO_PROCESS, static_cast<id_t>(threadId()), 10);
-#else
-  (void)idle;
-#endif
-  return false;
-}
-
-/// Moves `thread` (whose kernel id is `tid`) from the idle scheduling class to nice 10, where
-/// the process may (root, CAP_SYS_NICE or an RLIMIT_NICE of 10 or more; an unprivileged
-/// thread cannot leave the idle class). Returns whether it did.
-bool raiseFromIdle(std::thread& thread, long tid)
-{
-#ifdef __linux__
-  sched_param none{};
-  if (tid <= 0 || pthread_setschedparam(thread.native_handle(), SCHED_OTHER, &none) != 0)
-  {
-    return false;
-  }
-  setpriority(PRIO_PROCESS, static_cast<id_t>(tid), 10);
-  return true;
-#else
-  (void)thread;
-  (void)tid;
-  return false;
-#endif
-}
-
-void nameThread(const char* name)
-{
-#ifdef __linux__
-  pthread_setname_np(pthread_self(), name); // so top, perf and gdb tell the threads apart
-#else
-  (void)name;
-#endif
-}
-
-/// CPU seconds `thread` has run, or a negative value where that is unknown.
-double cpuSeconds(std::thread& thread)
-{
-#ifdef __linux__
-  clockid_t clock;
-  timespec t;
-  if (pthread_getcpuclockid(thread.native_handle(), &clock) == 0 && clock_gettime(clock, &t) == 0)
-  {
-    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-  }
-#else
-  (void)thread;
-#endif
-  return -1.0;
-}
 }
 
 struct AsyncSolver::Impl
@@ -323,8 +241,8 @@ void AsyncSolver::Impl::run()
 {
   // This thread takes the requests and watches the update threads; each update runs on a
   // thread of its own (solveOnThread), at the priority of its own (see the class comment).
-  lowerPriority(false);
-  nameThread("linkgi-watch");
+  engine::lowerPriority(false);
+  engine::nameThread("linkgi-watch");
   for (;;)
   {
     Request request;
@@ -365,7 +283,7 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
     {
       std::lock_guard<std::mutex> lock(mutex);
       idleClass = inIdleClass;
-      updateTid = threadId();
+      updateTid = engine::threadId();
     }
     solve(request);
     {
@@ -379,8 +297,8 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
   try
   {
     thread = std::thread([&update, idle] {
-      const bool inIdleClass = lowerPriority(idle);
-      nameThread("linkgi-async");
+      const bool inIdleClass = engine::lowerPriority(idle);
+      engine::nameThread("linkgi-async");
       update(inIdleClass);
     });
   }
@@ -395,16 +313,16 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
   // progress check, which a thread that gets a few thousandths of a core may reach only
   // once the other load ends) and run again at nice 10.
   std::unique_lock<std::mutex> lock(mutex);
-  double cpuBefore = cpuSeconds(thread);
+  double cpuBefore = engine::cpuSeconds(thread);
   Clock::time_point before = Clock::now();
   while (!changed.wait_for(lock, kStarvationWindow, [this] { return solved; }))
   {
     const Clock::time_point now = Clock::now();
-    const double cpu = cpuSeconds(thread);
+    const double cpu = engine::cpuSeconds(thread);
     const double share = (cpu - cpuBefore) / std::chrono::duration<double>(now - before).count();
     if (idleClass && cpuBefore >= 0.0 && cpu >= 0.0 && now - lastRequestAt > kContinuous && share < 0.5)
     {
-      if (raiseFromIdle(thread, updateTid))
+      if (engine::raiseFromIdle(thread, updateTid))
       {
         idleClass = false;
       }
@@ -431,14 +349,11 @@ std::vector<SolverOptions> AsyncSolver::Impl::plan(const Request& request)
     {
       return {};
     }
+    settings.budgetSeconds = firstStageSeconds;
   }
   if (request.resolution.proxyVertices != 0 || solver.proxyVertices() != 0)
   {
     return {}; // the proxy is the coarse solution (and the surface may not fit the budget)
-  }
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    settings.budgetSeconds = firstStageSeconds;
   }
   const SolverOptions& options = request.options;
   const engine::MethodSpec& spec = engine::methodSpec(options.method);

@@ -1,6 +1,6 @@
 // Photon mapping with clustered final gather (Wang, Wang, Zhou & Guo 2009), per vertex: the
-// pieces the CPU backend (PmCpu.cpp) runs, testable on their own. Photons are instant
-// radiosity's light paths (ir/IrMath.h traceLightPath): each stores the flux it reflects at a
+// pieces the CPU backend (PmCpu.cpp) runs, testable on their own. Photons are the shared
+// light paths (shared/LightPaths.h traceLightPath): each stores the flux it reflects at a
 // diffuse hit. The vertices are clustered (adaptive seeding + k-means with the paper's
 // metric); only each cluster's sample vertex gathers (final gather against radiance
 // estimates of the photon map); every vertex interpolates its neighbours' samples with

@@ -1,7 +1,7 @@
 // Photon mapping's per-item math, for the CPU backend (PhotonMapping.cpp) and the CUDA
 // backend (PmKernels.cu) alike: a radiance estimate at a photon, the caustic estimate at a
 // vertex, one final-gather ray, one vertex's interpolation. Searches are PmTypes.h's;
-// scenes are instant radiosity's PathScene (ir/IrMath.h), whose light paths are the photons.
+// scenes are the light paths' PathScene (shared/LightPaths.h), whose paths are the photons.
 #pragma once
 
 #include "methods/pm/PmTypes.h"

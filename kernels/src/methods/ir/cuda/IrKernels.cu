@@ -8,7 +8,7 @@ namespace linkgi::ir::gpu
 {
 namespace
 {
-constexpr int kThreads = 128;
+constexpr int kThreads = cuda::kBlockThreads;
 
 __global__ void gatherKernel(GatherLaunch p, cuda::Rgba* out, unsigned long long* rays)
 {
@@ -54,10 +54,7 @@ __global__ void gatherKernel(GatherLaunch p, cuda::Rgba* out, unsigned long long
   atomicAdd(rays, traced);
 }
 
-unsigned blocks(std::size_t n)
-{
-  return unsigned((n + kThreads - 1) / kThreads);
-}
+using cuda::gridBlocks;
 
 __global__ void subsetKeyKernel(Index vertexCount, Index elements, std::uint32_t subsets, std::uint32_t seed,
   std::uint64_t* keys, Index* ids)
@@ -212,27 +209,27 @@ void DeviceProxy::build(const ProxyGrid& grid, const Vec3f* vertexPositions, Ind
   positions.resize(std::max<Index>(nv, 1));
   triangles.resize(std::max<Index>(nt, 1));
   // Vertices into clusters.
-  cellKernel<<<blocks(nv), kThreads, 0, stream>>>(grid, vertexPositions, nv, keys.data(), ids.data());
+  cellKernel<<<gridBlocks(nv), kThreads, 0, stream>>>(grid, vertexPositions, nv, keys.data(), ids.data());
   LINKGI_CUDA_CHECK_LAUNCH("cellKernel");
   cuda::sortPairs(keys.data(), sortedKeys.data(), ids.data(), order.data(), nv, grid.cellBits(), temp, stream);
-  headKernel<<<blocks(nv + 1), kThreads, 0, stream>>>(sortedKeys.data(), nv, kDegenerate, heads.data());
+  headKernel<<<gridBlocks(nv + 1), kThreads, 0, stream>>>(sortedKeys.data(), nv, kDegenerate, heads.data());
   LINKGI_CUDA_CHECK_LAUNCH("headKernel");
   cuda::exclusiveSum(heads.data(), scanned.data(), nv + 1, temp, stream);
-  clusterKernel<<<blocks(nv + 1), kThreads, 0, stream>>>(order.data(), heads.data(), scanned.data(), nv,
+  clusterKernel<<<gridBlocks(nv + 1), kThreads, 0, stream>>>(order.data(), heads.data(), scanned.data(), nv,
     cluster.data(), first.data());
   LINKGI_CUDA_CHECK_LAUNCH("clusterKernel");
-  meanKernel<<<blocks(nv), kThreads, 0, stream>>>(vertexPositions, order.data(), first.data(), scanned.data(), nv,
+  meanKernel<<<gridBlocks(nv), kThreads, 0, stream>>>(vertexPositions, order.data(), first.data(), scanned.data(), nv,
     positions.data());
   LINKGI_CUDA_CHECK_LAUNCH("meanKernel");
   // Triangles between three clusters, each set of three once.
   LINKGI_CUDA_CHECK(cudaMemcpyAsync(sizes.data(), scanned.data() + nv, sizeof(Offset), cudaMemcpyDeviceToDevice, stream));
-  triangleKeyKernel<<<blocks(nt), kThreads, 0, stream>>>(meshTriangles, nt, cluster.data(), keys.data(), ids.data());
+  triangleKeyKernel<<<gridBlocks(nt), kThreads, 0, stream>>>(meshTriangles, nt, cluster.data(), keys.data(), ids.data());
   LINKGI_CUDA_CHECK_LAUNCH("triangleKeyKernel");
   cuda::sortPairs(keys.data(), sortedKeys.data(), ids.data(), order.data(), nt, 64, temp, stream);
-  headKernel<<<blocks(nt + 1), kThreads, 0, stream>>>(sortedKeys.data(), nt, kDegenerate, heads.data());
+  headKernel<<<gridBlocks(nt + 1), kThreads, 0, stream>>>(sortedKeys.data(), nt, kDegenerate, heads.data());
   LINKGI_CUDA_CHECK_LAUNCH("headKernel");
   cuda::exclusiveSum(heads.data(), scanned.data(), nt + 1, temp, stream);
-  keepKernel<<<blocks(nt), kThreads, 0, stream>>>(meshTriangles, order.data(), heads.data(), scanned.data(),
+  keepKernel<<<gridBlocks(nt), kThreads, 0, stream>>>(meshTriangles, order.data(), heads.data(), scanned.data(),
     cluster.data(), nt, triangles.data());
   LINKGI_CUDA_CHECK_LAUNCH("keepKernel");
   LINKGI_CUDA_CHECK(cudaMemcpyAsync(sizes.data() + 1, scanned.data() + nt, sizeof(Offset), cudaMemcpyDeviceToDevice, stream));
@@ -255,7 +252,7 @@ void elementsBySubset(Index vertexCount, bool twoSided, std::uint32_t subsets, s
   }
   keys.resize(2 * std::size_t(elements));
   ids.resize(elements);
-  subsetKeyKernel<<<blocks(elements), kThreads, 0, stream>>>(vertexCount, elements, subsets, seed, keys.data(), ids.data());
+  subsetKeyKernel<<<gridBlocks(elements), kThreads, 0, stream>>>(vertexCount, elements, subsets, seed, keys.data(), ids.data());
   LINKGI_CUDA_CHECK_LAUNCH("subsetKeyKernel");
   int bits = 1;
   while (bits < 32 && (1u << bits) < subsets)

@@ -12,16 +12,13 @@ namespace
 using cuda::Rgba;
 using cuda::toRgba;
 using cuda::toVec;
-constexpr int kThreads = 128;
+constexpr int kThreads = cuda::kBlockThreads;
 /// Threads of the push's block per leaf.
 constexpr int kPushThreads = 128;
 /// Near discs a leaf keeps (its neighbours through every ancestor's links; duplicates too).
 constexpr int kMaxNearDiscs = 512;
 
-unsigned blocks(std::size_t n, int threads = kThreads)
-{
-  return unsigned((n + threads - 1) / threads);
-}
+using cuda::gridBlocks;
 
 struct Append
 {
@@ -414,7 +411,7 @@ void visitPairs(const PairRules& rules, const NodePair* frontier, std::size_t co
 {
   if (count)
   {
-    visitKernel<<<blocks(count), kThreads, 0, stream>>>(rules, frontier, count, next, links);
+    visitKernel<<<gridBlocks(count), kThreads, 0, stream>>>(rules, frontier, count, next, links);
     LINKGI_CUDA_CHECK_LAUNCH("visitKernel");
   }
 }
@@ -432,13 +429,13 @@ void keepShortestPerBin(const NodePair* links, std::size_t linkCount, const Node
   rows.zero.resize(std::max<std::size_t>(linkCount, 1));
   if (linkCount)
   {
-    binKernel<<<blocks(linkCount), kThreads, 0, stream>>>(links, linkCount, nodes, binsPerSide, binCount,
+    binKernel<<<gridBlocks(linkCount), kThreads, 0, stream>>>(links, linkCount, nodes, binsPerSide, binCount,
       rows.best.data(), rows.zeroCounts.data(), rows.zero.data(), rows.zeroCount.data());
     LINKGI_CUDA_CHECK_LAUNCH("binKernel");
   }
   rows.binCounts.resize(nodeCount);
   rows.rowCounts.resize(nodeCount);
-  countRowsKernel<<<blocks(nodeCount), kThreads, 0, stream>>>(rows.best.data(), nodeCount, binCount,
+  countRowsKernel<<<gridBlocks(nodeCount), kThreads, 0, stream>>>(rows.best.data(), nodeCount, binCount,
     rows.zeroCounts.data(), rows.binCounts.data(), rows.rowCounts.data());
   LINKGI_CUDA_CHECK_LAUNCH("countRowsKernel");
   rows.rowStarts.resize(nodeCount);
@@ -446,12 +443,12 @@ void keepShortestPerBin(const NodePair* links, std::size_t linkCount, const Node
   // Room for every link: at most all of them survive.
   rows.columns.resize(std::max<std::size_t>(linkCount, 1));
   rows.cursor.resize(nodeCount);
-  writeRowsKernel<<<blocks(nodeCount), kThreads, 0, stream>>>(rows.best.data(), nodeCount, binCount,
+  writeRowsKernel<<<gridBlocks(nodeCount), kThreads, 0, stream>>>(rows.best.data(), nodeCount, binCount,
     rows.rowStarts.data(), rows.binCounts.data(), rows.columns.data(), rows.cursor.data());
   LINKGI_CUDA_CHECK_LAUNCH("writeRowsKernel");
   if (linkCount)
   {
-    writeZeroKernel<<<blocks(linkCount), kThreads, 0, stream>>>(rows.zero.data(), rows.zeroCount.data(),
+    writeZeroKernel<<<gridBlocks(linkCount), kThreads, 0, stream>>>(rows.zero.data(), rows.zeroCount.data(),
       rows.cursor.data(), rows.columns.data());
     LINKGI_CUDA_CHECK_LAUNCH("writeZeroKernel");
   }
@@ -493,13 +490,13 @@ void pushToLeaves(const PushParams& p, std::size_t stride, LeafRows& rows, unsig
 void leafRadianceAndPullUp(const TreeLevels& tree, const std::vector<Index>& levelOffsets, const Vec3f* albedo,
   const Vec3f* emission, const Rgba* fixedIrradiance, const Rgba* indirect, Rgba* radiance, cudaStream_t stream)
 {
-  leafRadianceKernel<<<blocks(tree.leafCount), kThreads, 0, stream>>>(albedo, emission, fixedIrradiance, indirect,
+  leafRadianceKernel<<<gridBlocks(tree.leafCount), kThreads, 0, stream>>>(albedo, emission, fixedIrradiance, indirect,
     tree.leafCount, radiance);
   LINKGI_CUDA_CHECK_LAUNCH("leafRadianceKernel");
   for (std::size_t l = 0; l + 1 < levelOffsets.size(); ++l)
   {
     const Index count = levelOffsets[l + 1] - levelOffsets[l];
-    pullUpKernel<<<blocks(count), kThreads, 0, stream>>>(tree, levelOffsets[l], count, radiance);
+    pullUpKernel<<<gridBlocks(count), kThreads, 0, stream>>>(tree, levelOffsets[l], count, radiance);
     LINKGI_CUDA_CHECK_LAUNCH("pullUpKernel");
   }
 }
@@ -508,7 +505,7 @@ void addDirect(const Vec3f* direct, const Rgba* environment, std::size_t count, 
 {
   if (count)
   {
-    addDirectKernel<<<blocks(count), kThreads, 0, stream>>>(direct, environment, count, fixed);
+    addDirectKernel<<<gridBlocks(count), kThreads, 0, stream>>>(direct, environment, count, fixed);
     LINKGI_CUDA_CHECK_LAUNCH("addDirectKernel");
   }
 }
@@ -517,7 +514,7 @@ void addTo(const Rgba* x, std::size_t count, Rgba* y, cudaStream_t stream)
 {
   if (count)
   {
-    addToKernel<<<blocks(count), kThreads, 0, stream>>>(x, count, y);
+    addToKernel<<<gridBlocks(count), kThreads, 0, stream>>>(x, count, y);
     LINKGI_CUDA_CHECK_LAUNCH("addToKernel");
   }
 }

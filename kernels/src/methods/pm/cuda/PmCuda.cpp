@@ -1,4 +1,4 @@
-// Photon mapping on one GPU: light paths (instant radiosity's kernels), the photon map, its
+// Photon mapping on one GPU: light paths (cuda/LightPathKernels.h), the photon map, its
 // kd-trees and estimates, the final gather, the interpolation and the caustics stay on the
 // device; the mesh, the direct light and the finish are the pieces every one-GPU backend
 // shares (cuda/OneDevice.h). The clusters depend on the geometry alone and are the host's

@@ -10,17 +10,14 @@ namespace linkgi::pm::gpu
 {
 namespace
 {
-constexpr int kThreads = 128;
+constexpr int kThreads = cuda::kBlockThreads;
 /// A range's split axis is the longest side of the box of at most this many of its points.
 constexpr std::uint32_t kAxisSample = 256;
 /// Levels whose ranges hold more points than this on average are sorted by one radix sort of
 /// the whole array (a segmented sort gives a large range a single block).
 constexpr std::uint32_t kSegmentedSortBelow = 4096;
 
-unsigned blocks(std::size_t n, int threads = kThreads)
-{
-  return unsigned((n + threads - 1) / threads);
-}
+using cuda::gridBlocks;
 
 __global__ void iotaKernel(Index* order, std::uint32_t n)
 {
@@ -276,7 +273,7 @@ struct SitesLaunch
   static void run(const PhotonsView& p, const Index* sitePhotons, std::uint32_t siteCount, std::uint32_t k,
     float max2, Vec3f* positions, Vec3f* normals, Vec3f* radiance, cudaStream_t stream)
   {
-    sitesKernel<K><<<blocks(siteCount), kThreads, 0, stream>>>(p, sitePhotons, siteCount, k, max2, positions,
+    sitesKernel<K><<<gridBlocks(siteCount), kThreads, 0, stream>>>(p, sitePhotons, siteCount, k, max2, positions,
       normals, radiance);
     LINKGI_CUDA_CHECK_LAUNCH("sitesKernel");
   }
@@ -288,7 +285,7 @@ struct CausticLaunch
   static void run(const PhotonsView& c, const Vec3f* positions, const Vec3f* normals, const Vec3f* albedo,
     const float* areas, Index vertexCount, std::uint32_t k, float max2, Vec3f* out, cudaStream_t stream)
   {
-    causticKernel<K><<<blocks(vertexCount), kThreads, 0, stream>>>(c, positions, normals, albedo, areas,
+    causticKernel<K><<<gridBlocks(vertexCount), kThreads, 0, stream>>>(c, positions, normals, albedo, areas,
       vertexCount, k, max2, out);
     LINKGI_CUDA_CHECK_LAUNCH("causticKernel");
   }
@@ -381,7 +378,7 @@ void DevicePointTree::build(const Vec3f* p, std::uint32_t n, cudaStream_t stream
   {
     return;
   }
-  iotaKernel<<<blocks(n), kThreads, 0, stream>>>(order.data(), n);
+  iotaKernel<<<gridBlocks(n), kThreads, 0, stream>>>(order.data(), n);
   axes.fillZero(stream);
   int levels = 0;
   for (std::uint32_t largest = n; largest > kTreeLeaf; largest /= 2)
@@ -413,12 +410,12 @@ void DevicePointTree::build(const Vec3f* p, std::uint32_t n, cudaStream_t stream
   {
     const std::uint32_t ranges = 1u << level;
     const bool last = level + 1 == levels;
-    splitKernel<<<blocks(std::size_t(ranges) * 32), kThreads, 0, stream>>>(points, order.data(), begins.data(),
+    splitKernel<<<gridBlocks(std::size_t(ranges) * 32), kThreads, 0, stream>>>(points, order.data(), begins.data(),
       ends.data(), ranges, rangeAxes.data(), axes.data(), nextBegins.data(), nextEnds.data(), last);
     LINKGI_CUDA_CHECK_LAUNCH("splitKernel");
     if (n / ranges > kSegmentedSortBelow)
     {
-      globalKeysKernel<<<blocks(n), kThreads, 0, stream>>>(points, order.data(), begins.data(), ends.data(),
+      globalKeysKernel<<<gridBlocks(n), kThreads, 0, stream>>>(points, order.data(), begins.data(), ends.data(),
         ranges, rangeAxes.data(), n, wideKeys.data());
       LINKGI_CUDA_CHECK_LAUNCH("globalKeysKernel");
       cuda::sortPairs(wideKeys.data(), wideKeysOut.data(), order.data(), orderOut.data(), n, 32 + positionBits,
@@ -426,7 +423,7 @@ void DevicePointTree::build(const Vec3f* p, std::uint32_t n, cudaStream_t stream
     }
     else
     {
-      keysKernel<<<blocks(n), kThreads, 0, stream>>>(points, order.data(), begins.data(), ends.data(), ranges,
+      keysKernel<<<gridBlocks(n), kThreads, 0, stream>>>(points, order.data(), begins.data(), ends.data(), ranges,
         rangeAxes.data(), n, keys.data());
       LINKGI_CUDA_CHECK_LAUNCH("keysKernel");
       // Positions outside the ranges keep their entries: the sort writes only inside them.
@@ -458,7 +455,7 @@ PointTreeView DevicePointTree::inTreeOrder(std::initializer_list<std::pair<const
   {
     if (count)
     {
-      permuteKernel<<<blocks(count), kThreads, 0, stream>>>(order.data(), count, a.first, a.second);
+      permuteKernel<<<gridBlocks(count), kThreads, 0, stream>>>(order.data(), count, a.first, a.second);
       LINKGI_CUDA_CHECK_LAUNCH("permuteKernel");
     }
     points = points ? points : a.second;
@@ -481,14 +478,14 @@ void splitPhotons(const paths::Vpl* hits, std::size_t count, DevicePhotons& out,
   flags.fillZero(stream); // the entries past the last: the scans' totals
   if (count)
   {
-    flagKernel<<<blocks(count), kThreads, 0, stream>>>(hits, count, photon, caustic);
+    flagKernel<<<gridBlocks(count), kThreads, 0, stream>>>(hits, count, photon, caustic);
     LINKGI_CUDA_CHECK_LAUNCH("flagKernel");
   }
   cuda::exclusiveSum(photon, scan.data(), count + 1, temp, stream);
   cuda::exclusiveSum(caustic, scan.data() + count + 1, count + 1, temp, stream);
   if (count)
   {
-    scatterKernel<<<blocks(count), kThreads, 0, stream>>>(hits, count, scan.data(), scan.data() + count + 1,
+    scatterKernel<<<gridBlocks(count), kThreads, 0, stream>>>(hits, count, scan.data(), scan.data() + count + 1,
       out.positions.data(), out.normals.data(), out.flux.data(), out.causticPositions.data(),
       out.causticNormals.data(), out.causticFlux.data());
     LINKGI_CUDA_CHECK_LAUNCH("scatterKernel");
@@ -510,10 +507,10 @@ void estimateSites(const PhotonsView& photons, const Index* order, std::uint32_t
     scan.resize(n);
     Index* flags = scratch.data();
     Index* sitePhotons = scratch.data() + n;
-    siteFlagKernel<<<blocks(n), kThreads, 0, stream>>>(order, n, stride, flags);
+    siteFlagKernel<<<gridBlocks(n), kThreads, 0, stream>>>(order, n, stride, flags);
     LINKGI_CUDA_CHECK_LAUNCH("siteFlagKernel");
     cuda::exclusiveSum(flags, scan.data(), n, temp, stream);
-    siteOrderKernel<<<blocks(n), kThreads, 0, stream>>>(order, n, stride, scan.data(), sitePhotons);
+    siteOrderKernel<<<gridBlocks(n), kThreads, 0, stream>>>(order, n, stride, scan.data(), sitePhotons);
     LINKGI_CUDA_CHECK_LAUNCH("siteOrderKernel");
     withHeap<SitesLaunch>(k, photons, sitePhotons, siteCount, k, max2, sitePositions, siteNormals, siteRadiance,
       stream);
@@ -535,7 +532,7 @@ void interpolate(const Vec3f* positions, const Vec3f* normals, Index vertexCount
 {
   if (vertexCount)
   {
-    interpolateKernel<<<blocks(vertexCount), kThreads, 0, stream>>>(positions, normals, vertexCount, neighbours,
+    interpolateKernel<<<gridBlocks(vertexCount), kThreads, 0, stream>>>(positions, normals, vertexCount, neighbours,
       samples, irradiance, harmonicDistance, caustics, out);
     LINKGI_CUDA_CHECK_LAUNCH("interpolateKernel");
   }

@@ -1,6 +1,6 @@
 // Launchers of photon mapping's CUDA kernels: host-callable, no __global__ here. The
 // per-item math is pm/PmMath.h's and the searches pm/PmTypes.h's, the same the CPU runs;
-// light paths are instant radiosity's (ir/IrKernels.h).
+// light paths are cuda/LightPathKernels.h's.
 #pragma once
 
 #include "methods/pm/PmMath.h"

@@ -2,7 +2,7 @@
 # Build, whole suite, memcheck on instant radiosity's GPU tests and the small CUDA tests, IR + links
 # benches on conference.
 # From the repository root of a GPU machine, GoogleTest's sources in .gtest/googletest:
-#   OUT=out bash Documentation/scripts/cuda-instant-radiosity-session.sh
+#   OUT=out bash Documentation/scripts/cuda-instant-radiosity-runs.sh
 set -u
 top=$PWD
 export LINKGI_GPU_BUILD=/tmp/b
