@@ -17,7 +17,7 @@ packages=(
   dpkg-dev file
   clang libclang-rt-14-dev libfuzzer-14-dev
   python3-sphinx python3-myst-parser python3-pydata-sphinx-theme
-  chromium blender python3-venv
+  chromium blender python3-venv python3-matplotlib
 )
 
 missing=()
@@ -61,11 +61,16 @@ if ! echo "$sha  $wheel" | sha256sum --check --status 2>/dev/null; then
   echo "setup: downloaded $(basename "$wheel")"
 fi
 
-# python -m linkgi.web (the live app) runs on trame from PyPI: a virtual environment of
-# Debian's Python, which sees its VTK (--system-site-packages).
-venv="$top/build/venv-web"
-if ! "$venv/bin/python" -c "import trame, trame_vtk, trame_vuetify" 2>/dev/null; then
+# Python packages from PyPI for LinkGI's Python extras, in a virtual environment of
+# Debian's Python that sees its VTK (--system-site-packages): trame for python -m linkgi.web,
+# PyVista for linkgi.pyvista. PyVista 0.46.5 is the newest that runs on VTK 9.1; it goes in
+# without its declared dependencies (they would pull PyPI's VTK over Debian's): the others
+# come from the line before and Debian (numpy, matplotlib, Pillow).
+venv="$top/build/venv"
+if ! "$venv/bin/python" -c "import trame, trame_vtk, trame_vuetify, pyvista" 2>/dev/null; then
   /usr/bin/python3 -m venv --system-site-packages "$venv"
-  "$venv/bin/pip" install --quiet trame==4.0.0 trame-vtk==2.11.17 trame-vuetify==3.3.0
-  echo "setup: made $venv with trame"
+  "$venv/bin/pip" install --quiet trame==4.0.0 trame-vtk==2.11.17 trame-vuetify==3.3.0 \
+    scooby==0.12.1 pooch==1.9.0 typing-extensions==4.16.0
+  "$venv/bin/pip" install --quiet --no-deps pyvista==0.46.5
+  echo "setup: made $venv with trame and PyVista"
 fi
