@@ -11,7 +11,7 @@ set(LINKGI_TRAME_VTK_WHEEL "${_linkgi_package_source}/build/downloads/trame_vtk-
 
 function(linkgi_python_package directory destination component)
   set(files)
-  foreach(file IN ITEMS __init__.py export.py web.py _gltf.py _vtkjs.py)
+  foreach(file IN ITEMS __init__.py export.py pyvista.py web.py _gltf.py _vtkjs.py)
     configure_file("${_linkgi_package_source}/Wrapping/Python/linkgi/${file}"
       "${directory}/${file}" COPYONLY)
     list(APPEND files "${directory}/${file}")

@@ -13,6 +13,9 @@ linkgi .deb) it needs nothing else; from a build tree, PYTHONPATH=<build>/lib/py
 For ParaView's Python (pvpython, pvbatch) the plugin's LinkGI/python folder holds the same
 package built against ParaView's VTK.
 
+PyVista: linkgi.pyvista.add_mesh(plotter, mesh, ...) and linkgi.pyvista.illuminate(mesh,
+lights, ...).
+
 Sharing (numpy needed): linkgi.export_html and linkgi.export_glb write what the global
 illumination mappers display as a web page or glTF; python -m linkgi.web FILE lights a model
 live in the browser (trame).

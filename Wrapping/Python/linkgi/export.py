@@ -11,9 +11,8 @@ any viewer that draws vertex colours, with no renderer of ours:
 Both take what the user looks at: a vtkRenderWindow or vtkRenderer (VTK Python), a
 ParaView view (pvpython, pvbatch), or a lit dataset (the output of
 vtkGlobalIlluminationFilter) with an optional camera and lights. A PyVista Plotter is taken
-by its renderer, for when LinkGI runs with PyPI's VTK (PyVista needs VTK 9.3.1 or newer;
-LinkGI builds for Debian's 9.1 today), untested until then. The shadows are the
-filter's per-vertex shadows: the mappers' per-pixel shadow maps do not carry over.
+by its renderer (linkgi.pyvista). The shadows are the filter's per-vertex shadows: the
+mappers' per-pixel shadow maps do not carry over.
 """
 import numpy as np
 
