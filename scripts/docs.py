@@ -16,6 +16,7 @@ Needs Debian's python3-sphinx, python3-myst-parser and python3-pydata-sphinx-the
 ctest runs it as docs.Site (README command 2).
 """
 import argparse
+import ast
 import datetime
 import inspect
 import os
@@ -68,6 +69,11 @@ GALLERY = [
      "linkgi.export_html in headless Chromium (the baked per-vertex colours, any browser).",
      ["{python}", "{top}/Documentation/export-images.py", "{out}"],
      "Documentation/export-images.py"),
+    ("pyvista-nut", "In PyVista: a nut on a floor under a lamp", "PyVista", "link structure",
+     "linkgi.pyvista.add_mesh takes plotter.add_mesh's arguments and draws the mesh with "
+     "shadows and bounced light; left, PyVista's own rendering of the same scene.",
+     ["{venv}", "{top}/Examples/Python/pyvista_nut.py", "{out}"],
+     "Examples/Python/pyvista_nut.py"),
     ("implicit-visibility-errors", "Implicit visibility against the reference",
      "VTK Python", "implicit visibility",
      "The error of implicit visibility's indirect light against the path-traced reference.",
@@ -147,6 +153,14 @@ def python_reference():
     for function in (export.bake, export.export_html, export.export_glb):
         out += ["### linkgi." + function.__name__ + str(inspect.signature(function)), "",
                 fenced(inspect.cleandoc(function.__doc__), "text"), ""]
+    # linkgi.pyvista imports PyVista, which only build/venv has: read, not imported.
+    source = ast.parse(open(os.path.join(TOP, "Wrapping", "Python", "linkgi", "pyvista.py"),
+                            encoding="utf-8").read())
+    out += ["## PyVista: `linkgi.pyvista`", "", fenced(ast.get_docstring(source), "text"), ""]
+    for node in source.body:
+        if isinstance(node, ast.FunctionDef) and not node.name.startswith("_"):
+            out += ["### linkgi.pyvista.%s(%s)" % (node.name, ast.unparse(node.args)), "",
+                    fenced(ast.get_docstring(node), "text"), ""]
     from linkgi import web  # imports trame only when run
     out += ["## Live in the browser: `python -m linkgi.web`", "",
             fenced(inspect.cleandoc(web.__doc__), "text"), ""]
@@ -196,7 +210,8 @@ def gallery(src, build, environment, pv_environment):
             "Every picture here was made by running the example shown under it, while this "
             "site was built: on %s, on %s (%d cores, Mesa's software OpenGL), at commit %s."
             % (when, cpu, os.cpu_count(), commit), ""]
-    values = {"python": "/usr/bin/python3", "pvbatch": "pvbatch", "build": build, "top": TOP}
+    values = {"python": "/usr/bin/python3", "pvbatch": "pvbatch", "build": build, "top": TOP,
+              "venv": os.path.join(build, "venv", "bin", "python")}
     for name, title, kind, method, what, command, shown in GALLERY:
         picture = os.path.join(folder, name + ".png")
         argv = [part.format(out=picture, **values) for part in command]
@@ -215,6 +230,7 @@ def gallery(src, build, environment, pv_environment):
                  fenced(" ".join(part.replace("{out}", name + ".png")
                                  .replace("{build}/", "build/").replace("{top}/", "")
                                  .replace("{python}", "/usr/bin/python3")
+                                 .replace("{venv}", "build/venv/bin/python")
                                  .replace("{pvbatch}", "pvbatch") for part in command), "sh"),
                  "```{literalinclude} " + copy, ":language: " + language, "```", ""]
     write(os.path.join(folder, "index.md"), "\n".join(page))
