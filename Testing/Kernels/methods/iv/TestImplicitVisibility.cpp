@@ -485,3 +485,29 @@ TEST(TestImplicitVisibility, EmptyBinsSeeTheEnvironment)
   EXPECT_GT(farthest, 0.9f * kPi);
   EXPECT_LE(farthest, kPi + 1e-4f);
 }
+
+TEST(TestImplicitVisibility, ConvexCreasesSeeTheWholeSky)
+{
+  // A black box alone under a white sky: above any point of a face lies nothing of the
+  // (convex) box, so every vertex gathers the sky over its whole hemisphere, E = pi. Its
+  // edges and corners are creases: each face has its own vertices there, at the same
+  // positions as the other faces' but with their normals, and a twin's disc (a third of
+  // its triangles, about its vertex) stands over the face beside it, seen from behind.
+  MeshBuilder b;
+  b.addBox({ -0.5f, 0.f, -0.5f }, { 0.5f, 1.f, 0.5f }, 0.125f, Vec3f(0.f));
+  Scene s = b.take();
+  s.environment.color = Vec3f(1.f);
+  for (const std::uint32_t n : { 8u, 12u })
+  {
+    SolverOptions o = ivOptions(n, 1);
+    o.smoothing = false;
+    Solver solver;
+    const Solution& sol = solver.update(s, o);
+    float darkest = kPi;
+    for (std::size_t v = 0; v < s.vertexCount(); ++v)
+    {
+      darkest = std::min(darkest, sol.indirect[v].x);
+    }
+    EXPECT_NEAR(darkest, kPi, 1e-3f * kPi) << n << " bins per side";
+  }
+}

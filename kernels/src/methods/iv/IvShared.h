@@ -173,9 +173,17 @@ enum class DiscReach
   Near
 };
 
-LINKGI_HOST_DEVICE inline DiscReach discReach(float radius, float r2, float binAngle)
+/// `facing` = n_disc . (receiver - centre). A disc that shows the receiver its back is its
+/// centre alone: the centre is a point of the surface (its vertex), the rest of the disc
+/// its tangent plane, which reaches past the surface wherever that bends away from the
+/// receiver's side: over a convex edge or bump, and most of all at a vertex split along a
+/// crease, whose twin at the same position covers up to half of the other's hemisphere
+/// from behind. Seen from outside a closed surface, what lies first along a ray is a front
+/// face, so such a rim only blackens bins.
+LINKGI_HOST_DEVICE inline DiscReach discReach(float radius, float r2, float binAngle, float facing)
 {
-  return 4.f * radius * radius > r2 ? DiscReach::Near
+  return !(facing > 0.f) ? DiscReach::Centre
+    : 4.f * radius * radius > r2 ? DiscReach::Near
     : radius * radius > 0.25f * binAngle * binAngle * r2 ? DiscReach::Splat
                                                          : DiscReach::Centre;
 }

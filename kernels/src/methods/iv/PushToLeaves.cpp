@@ -178,7 +178,7 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
             {
               const Vec3f toSource = tree.position[src] - p;
               const float r2 = dot(toSource, toSource), radius = tree.radius[src];
-              const DiscReach reach = discReach(radius, r2, binAngle);
+              const DiscReach reach = discReach(radius, r2, binAngle, -dot(tree.normal[src], toSource));
               if (reach == DiscReach::Near)
               {
                 nearDiscs.push_back(src); // a neighbour, or a disc across a contact

@@ -249,7 +249,7 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
       {
         const Vec3f toSource = s.position - bins.at;
         const float r2 = dot(toSource, toSource);
-        const DiscReach reach = discReach(s.radius, r2, p.binAngle);
+        const DiscReach reach = discReach(s.radius, r2, p.binAngle, -dot(s.normal, toSource));
         if (reach == DiscReach::Near)
         {
           const int slot = atomicAdd(&nearCount, 1); // a neighbour, or a disc across a contact
