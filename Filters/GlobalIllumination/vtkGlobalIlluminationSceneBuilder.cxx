@@ -93,34 +93,38 @@ void CheckFinite(vtkPolyData* input)
   }
 }
 
-// Only points, surface cells and the two id arrays go through the VTK filters.
+// The cells of `cells` in canonical order (CanonicalCells), their ids (`firstId` + their
+// index) appended to `ids`.
+vtkSmartPointer<vtkCellArray> InCanonicalOrder(
+  vtkCellArray* cells, vtkIdType firstId, vtkIdType minimumSize, vtkIdTypeArray* ids)
+{
+  std::vector<vtkIdType> index;
+  vtkSmartPointer<vtkCellArray> sorted =
+    vtkGlobalIlluminationSceneBuilder::CanonicalCells(cells, minimumSize, index);
+  for (vtkIdType c : index)
+  {
+    ids->InsertNextValue(firstId + c);
+  }
+  return sorted;
+}
+
+// Only points, surface cells (in canonical order: any order of the same cells makes the
+// same scene) and the two id arrays go through the VTK filters.
 vtkSmartPointer<vtkPolyData> SurfaceWithIds(vtkPolyData* input)
 {
   auto surface = vtkSmartPointer<vtkPolyData>::New();
   surface->SetPoints(input->GetPoints());
-  surface->SetPolys(input->GetPolys());
   surface->GetPointData()->AddArray(IdRange(PointIdsName, 0, input->GetNumberOfPoints()));
+  auto cellIds = vtkSmartPointer<vtkIdTypeArray>::New();
+  cellIds->SetName(CellIdsName);
+  cellIds->Allocate(input->GetNumberOfPolys() + input->GetNumberOfStrips());
   // Cell ids of vtkPolyData run over verts, then lines, then polys, then strips.
-  const vtkIdType firstSurfaceCell = input->GetNumberOfVerts() + input->GetNumberOfLines();
-  vtkSmartPointer<vtkIdTypeArray> cellIds =
-    IdRange(CellIdsName, firstSurfaceCell, input->GetNumberOfPolys());
+  const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  surface->SetPolys(InCanonicalOrder(input->GetPolys(), firstPoly, 0, cellIds));
   // Strips of fewer than 3 points hold no triangle, and crash vtkTriangleFilter (VTK 9.1
   // reads the first points of every strip): left out, the others keep their cell ids.
-  vtkNew<vtkCellArray> strips;
-  vtkIdType stripId = firstSurfaceCell + input->GetNumberOfPolys();
-  auto iter = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
-  for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++stripId)
-  {
-    vtkIdType n;
-    const vtkIdType* ids;
-    iter->GetCurrentCell(n, ids);
-    if (n >= 3)
-    {
-      strips->InsertNextCell(n, ids);
-      cellIds->InsertNextValue(stripId);
-    }
-  }
-  surface->SetStrips(strips);
+  surface->SetStrips(
+    InCanonicalOrder(input->GetStrips(), firstPoly + input->GetNumberOfPolys(), 3, cellIds));
   surface->GetCellData()->AddArray(cellIds);
   return surface;
 }

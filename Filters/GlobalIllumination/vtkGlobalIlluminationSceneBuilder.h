@@ -10,7 +10,9 @@
  * when asked (vtkPolyDataNormals with splitting, which appends the split copies after the
  * original points) and keeps only the points that triangles use. Every element remembers
  * its input point, every triangle its input cell, so that arrays can be read from the
- * input and results written back onto it.
+ * input and results written back onto it. The cells are taken in a canonical order
+ * (CanonicalCells), so the same surface makes the same scene whatever order its cells come
+ * in, and the engine relinks nothing for a reordering alone.
  *
  * Every function throws linkgi::Error with a sentence naming the problem.
  */
@@ -33,6 +35,7 @@
 #include <string>
 #include <vector>
 
+class vtkCellArray;
 class vtkDataArray;
 class vtkFieldData;
 class vtkFloatArray;
@@ -73,6 +76,19 @@ public:
    * non-finite coordinates.
    */
   static Mesh BuildMesh(vtkPolyData* input, bool computeNormals, double featureAngle);
+
+  /**
+   * The cells of `cells` that have at least `minimumSize` points, in an order that depends
+   * only on the cells, not on the order they come in: by their three lowest point ids
+   * (whatever point a cell's list starts from and whichever way it winds), ties by all
+   * their point ids, then as listed, then the same cell twice in its input order. `index`
+   * gets the place in `cells` of each cell of the result. VTK 9.1's vtkGeometryFilter emits
+   * an unstructured grid's faces in another order at every execution (its threads' pieces
+   * are joined as they finish); without this, a static time series would relink at every
+   * step. Returns `cells` itself where it is already in that order; O(n log n) otherwise.
+   */
+  static vtkSmartPointer<vtkCellArray> CanonicalCells(
+    vtkCellArray* cells, vtkIdType minimumSize, std::vector<vtkIdType>& index);
 
   /**
    * Lights every inward closed surface of `mesh` from the side its lights are on, once the
