@@ -50,6 +50,9 @@ view.AdditionalLights = [light]
 box = GlobalIlluminationScene(Scene="cornell")
 display = Show(box, view)
 display.Representation = "Global Illumination"
+# This test counts the solver's runs of each update: without progressive stages, whose coarse
+# solutions run on the same solver (TestGlobalIlluminationAsynchronous draws them).
+display.GlobalIlluminationProgressive = 0
 display.GlobalIlluminationRays = 256
 display.GlobalIlluminationBounces = 3
 display.GlobalIlluminationSmoothing = 1
@@ -92,6 +95,7 @@ floor = Plane(Origin=[-2, 0, -2], Point1=[-2, 0, 2], Point2=[2, 0, -2], XResolut
 scene = AppendGeometry(Input=[sphere, floor])
 kit = Show(scene, view)
 kit.Representation = "Global Illumination"
+kit.GlobalIlluminationProgressive = 0
 kit.GlobalIlluminationRays = 64
 view.AdditionalLights = []
 view.UseLight = 1

@@ -164,7 +164,9 @@ def run(arguments, ranks, counters_here=True, name="TestGlobalIlluminationMPI"):
         t.check(c2["ShadowMapRenders"] == c["ShadowMapRenders"] + 1,
                 "the light move re-rendered the shadow maps once, the camera move not")
         print("counters after the moves: %s" % c2)
-        t.check(c2["LinkBuilds"] == c["LinkBuilds"] == 1
+        # (c counts a coarse stage's links too where the first solve had one: one rank
+        # solves in the background, with progressive stages.)
+        t.check(c2["LinkBuilds"] == c["LinkBuilds"]
                 and c2["LightLinkBuilds"] == c["LightLinkBuilds"] + 1
                 and c2["BounceRuns"] == c["BounceRuns"] + 1,
                 "the light move re-ran light links and bounces only, the camera move nothing")

@@ -199,6 +199,38 @@ TEST(TestProgressive, HistoryPredictsTheStaleStagesScaledByTheirWork)
     8 * 0.45, 1e-12);
 }
 
+TEST(TestProgressive, AFinalRecordsTheStagesItLeftToItsCoarseStage)
+{
+  const auto stage = [](const char* name, double ms, const char* parent = "") {
+    StageStats st;
+    st.name = name;
+    st.parent = parent;
+    st.ran = true;
+    st.ms = ms;
+    return st;
+  };
+  SolverStats coarse; // a coarse stage of the link method: every stage ran
+  coarse.stages = { stage("Geometry", 40.0), stage("Links", 5.0), stage("Compress", 1.0, "Links"),
+    stage("LightLinks", 30.0), stage("Bounces", 2.0) };
+  coarse.msTotal = 78.0;
+  SolverStats final; // the final, on the same solver: only what the sampling touches
+  final.stages = { stage("Geometry", 0.0), stage("Links", 500.0), stage("Compress", 90.0, "Links"),
+    stage("LightLinks", 0.0), stage("Bounces", 20.0) };
+  final.stages[0].ran = final.stages[3].ran = false;
+  final.msTotal = 610.0;
+  const SolverStats merged = withStagesOf(final, coarse);
+  EXPECT_TRUE(merged.ran("Geometry"));
+  EXPECT_EQ(merged.ms("Geometry"), 40.0);
+  EXPECT_EQ(merged.ms("LightLinks"), 30.0);
+  EXPECT_EQ(merged.ms("Links"), 500.0); // the final's own, not the coarse stage's
+  EXPECT_EQ(merged.ms("Compress"), 90.0);
+  EXPECT_EQ(merged.msTotal, 680.0);
+  StageHistory history;
+  history.record(methodSpec(Method::Links), merged, 1.0);
+  EXPECT_NEAR(history.predictSeconds(staleStages(methodSpec(Method::Links).stages(), kEverything), 1.0),
+    0.68, 1e-12);
+}
+
 TEST(TestProgressive, EveryMethodPublishesACoarseStageThenExactlyTheFinalSolution)
 {
   for (const Method m : kMethods)
@@ -251,6 +283,11 @@ TEST(TestProgressive, EveryMethodPublishesACoarseStageThenExactlyTheFinalSolutio
         EXPECT_TRUE(sameBits(coarse.direct, exact.direct));
         EXPECT_NEAR(meanIndirect(coarse), meanIndirect(exact), 0.3 * meanIndirect(exact));
         EXPECT_FALSE(sameBits(coarse.indirect, exact.indirect));
+        // The final reuses what the coarse stage computed that the sampling does not touch:
+        // every method's first stage (the surface's structures) ran there, not again.
+        const std::string first = methodSpec(m).stages().front().name;
+        EXPECT_TRUE(mine[0]->stats.ran(first));
+        EXPECT_FALSE(last->stats.ran(first)) << first << " ran again in the final stage";
       }
     }
   }

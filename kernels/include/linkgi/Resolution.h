@@ -164,6 +164,12 @@ public:
 
   const Solution& update(const Scene& scene, const SolverOptions& options,
     const ResolutionOptions& resolution = {}, const ProgressCallback& progress = {});
+  /// A coarser solution of the surface as given, for a progressive update: solved by the
+  /// solver the next update() with the final options uses, so that the stages the sampling
+  /// does not touch (the surface's structures, the direct light) run once for both. Never
+  /// through a proxy: throws OutOfMemoryBudget where the surface is over the budget.
+  const Solution& updateCoarse(
+    const Scene& scene, const SolverOptions& coarse, const ProgressCallback& progress = {});
   /// The last update's solution: per element of the surface (the refined one when refined).
   const Solution& solution() const;
   /// The last update's statistics, with a warning when the memory budget chose a proxy.

@@ -40,10 +40,9 @@ struct AsyncSolver::Impl
 
   ResolvedSolver solver; // touched by the worker only
   int threads = 1;
-  // Progressive updates, touched by the worker only: the solver of the coarse stages (reset
-  // after each, so its caches never sit beside the final's), what the final stages took and
-  // the input they took it on.
-  Solver previewSolver;
+  // Progressive updates, touched by the worker only: what the final stages took and the
+  // input they took it on. The coarse stages run on `solver` too, so the final reuses what
+  // they computed that the sampling does not touch.
   engine::StageHistory history;
   std::shared_ptr<const Scene> finalScene;
   SolverOptions finalOptions;
@@ -79,9 +78,10 @@ struct AsyncSolver::Impl
   void solve(Request& request);
   std::vector<SolverOptions> plan(const Request& request);
   /// Publishes stage `stage` of `stages` of `request`; the final one also leaves the worker
-  /// idle with it.
+  /// idle with it, and records its times, with those of the stages it left to `coarse` (the
+  /// request's first coarse stage; null: none).
   void publish(const Request& request, std::uint32_t index, std::uint32_t stages, const Solution& solution,
-    const SolverStats& stats, bool throughProxy);
+    const SolverStats& stats, bool throughProxy, const SolverStats* coarse);
   /// The result to publish: `s` itself, or for a final solution after a final one, blended.
   std::shared_ptr<AsyncResult> blended(const Request& request, bool final, const Solution& s, const SolverStats& st);
 };
@@ -399,6 +399,7 @@ void AsyncSolver::Impl::solve(Request& request)
   {
     const std::vector<SolverOptions> previews = plan(request);
     const auto stages = static_cast<std::uint32_t>(previews.size() + 1);
+    std::optional<SolverStats> firstCoarse;
     for (std::uint32_t s = 1; s <= stages; ++s)
     {
       {
@@ -415,20 +416,20 @@ void AsyncSolver::Impl::solve(Request& request)
       {
         runWithConcurrency(threads,
           [&] { solver.update(*request.scene, request.options, request.resolution, stillWanted); });
-        publish(request, s, stages, solver.solution(), solver.stats(), solver.proxyVertices() != 0);
+        publish(request, s, stages, solver.solution(), solver.stats(), solver.proxyVertices() != 0,
+          firstCoarse ? &*firstCoarse : nullptr);
         return;
       }
       const SolverOptions& coarse = previews[s - 1];
       const auto start = Clock::now();
       try
       {
-        runWithConcurrency(threads, [&] { previewSolver.update(*request.scene, coarse, stillWanted); });
+        runWithConcurrency(threads, [&] { solver.updateCoarse(*request.scene, coarse, stillWanted); });
       }
       catch (const OutOfMemoryBudget&)
       {
         // The surface is over the budget even coarsely: the final stage goes through the
         // proxy the budget chooses (ResolvedSolver), with no coarse stage before it.
-        previewSolver.reset();
         s = stages - 1;
         continue;
       }
@@ -437,18 +438,16 @@ void AsyncSolver::Impl::solve(Request& request)
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
         const double work = engine::methodSpec(coarse.method).sampleWork(engine::elementCount(*request.scene, coarse), coarse);
         engine::recordRate(engine::RateOf::FirstCoarseStage, coarse, seconds / work);
+        firstCoarse = solver.stats(); // the stages the later ones reuse ran here
       }
-      publish(request, s, stages, previewSolver.solution(), previewSolver.stats(), false);
-      previewSolver.reset(); // its caches never sit beside the final stage's
+      publish(request, s, stages, solver.solution(), solver.stats(), false, nullptr);
     }
   }
   catch (const Aborted&)
   {
-    previewSolver.reset();
   }
   catch (const std::exception& e)
   {
-    previewSolver.reset();
     std::lock_guard<std::mutex> lock(mutex);
     error = e.what();
     running = 0; // with the error: busy() and lastError() never disagree
@@ -456,7 +455,7 @@ void AsyncSolver::Impl::solve(Request& request)
 }
 
 void AsyncSolver::Impl::publish(const Request& request, std::uint32_t index, std::uint32_t stages,
-  const Solution& solution, const SolverStats& stats, bool throughProxy)
+  const Solution& solution, const SolverStats& stats, bool throughProxy, const SolverStats* coarse)
 {
   std::shared_ptr<AsyncResult> result = blended(request, index == stages, solution, stats);
   result->stage = index;
@@ -466,13 +465,15 @@ void AsyncSolver::Impl::publish(const Request& request, std::uint32_t index, std
     const SolverOptions& o = request.options;
     const engine::MethodSpec& spec = engine::methodSpec(o.method);
     const std::size_t elements = engine::elementCount(*request.scene, o);
-    history.record(spec, stats, engine::historyWork(spec, elements, o));
+    // What the update would have taken alone: with the stages it left to its coarse stage.
+    const SolverStats measured = coarse ? engine::withStagesOf(stats, *coarse) : stats;
+    history.record(spec, measured, engine::historyWork(spec, elements, o));
     const bool full = std::all_of(spec.stages().begin(), spec.stages().end(),
-      [&](const engine::StageSpec& st) { return stats.ran(st.name); });
+      [&](const engine::StageSpec& st) { return measured.ran(st.name); });
     const double work = spec.sampleWork(elements, o);
     if (full && work > 0.0)
     {
-      engine::recordRate(engine::RateOf::FullUpdate, o, 1e-3 * stats.msTotal / work);
+      engine::recordRate(engine::RateOf::FullUpdate, o, 1e-3 * measured.msTotal / work);
     }
     finalScene = request.scene;
     finalOptions = o;

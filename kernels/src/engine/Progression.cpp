@@ -50,6 +50,38 @@ std::uint32_t scaledCount(std::uint32_t count, double fraction, std::uint32_t le
   return std::min(count, std::max(least, static_cast<std::uint32_t>(std::max(0.0, scaled))));
 }
 
+SolverStats withStagesOf(const SolverStats& final, const SolverStats& coarse)
+{
+  SolverStats merged = final;
+  for (const StageStats& stage : coarse.stages)
+  {
+    const StageStats* own = final.stage(stage.name);
+    if (!stage.parent.empty() || !stage.ran || (own && own->ran))
+    {
+      continue;
+    }
+    for (const StageStats& part : coarse.stages)
+    {
+      if (&part != &stage && part.parent != stage.name)
+      {
+        continue;
+      }
+      const auto same = std::find_if(merged.stages.begin(), merged.stages.end(),
+        [&](const StageStats& m) { return m.name == part.name; });
+      if (same == merged.stages.end())
+      {
+        merged.stages.push_back(part);
+      }
+      else
+      {
+        *same = part;
+      }
+      merged.msTotal += part.ms;
+    }
+  }
+  return merged;
+}
+
 double historyWork(const MethodSpec& spec, std::size_t elements, const SolverOptions& options)
 {
   const double work = spec.sampleWork(elements, options);

@@ -33,6 +33,12 @@ struct StageHistory
   double predictSeconds(std::uint32_t stale, double work) const;
 };
 
+/// `final`'s statistics plus the stages it left to `coarse`, a coarse stage of the same update
+/// on the same solver: stages (and their parts) that ran there and not in `final`, with their
+/// times added to msTotal. Those stages do not depend on the sampling, so this is what the
+/// update would have taken alone: what its history and rates record.
+SolverStats withStagesOf(const SolverStats& final, const SolverStats& coarse);
+
 /// The work StageHistory scales by: `spec`'s sampleWork, or the element count.
 double historyWork(const MethodSpec& spec, std::size_t elements, const SolverOptions& options);
 

@@ -139,6 +139,17 @@ const Solution& ResolvedSolver::update(const Scene& scene, const SolverOptions& 
   return m.proxy.solution();
 }
 
+const Solution& ResolvedSolver::updateCoarse(
+  const Scene& scene, const SolverOptions& coarse, const ProgressCallback& progress)
+{
+  Impl& m = *impl;
+  m.plain.update(scene, coarse, progress);
+  m.used = Impl::Used::Plain;
+  m.proxyUsed = 0;
+  m.stats = m.plain.stats();
+  return m.plain.solution();
+}
+
 const Solution& ResolvedSolver::solution() const
 {
   switch (impl->used)
