@@ -57,7 +57,9 @@ struct AsyncStage
 /// long first solves and publishes one or more coarse solutions of the same light (fewer
 /// rays, VPLs, photons or bins: the method's own MethodSpec::coarser), the first one aimed at
 /// setFirstStageSeconds() of work on this machine, and then the final solution, which is the
-/// one a non-progressive update publishes, bit for bit. How long the final takes is
+/// one a non-progressive update publishes, bit for bit. The coarse solutions are solved by
+/// the final's solver, so the final reuses what does not depend on the sampling (the
+/// surface's structures, the direct light). How long the final takes is
 /// predicted from the time each of its stale stages took the last time it ran (or, where this
 /// solver has not run it, from this process's last update of the method that ran every
 /// stage), and the coarse sampling from the time the last first coarse solution of the method
