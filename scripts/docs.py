@@ -147,6 +147,7 @@ def python_reference():
     out = ["# Python: `import linkgi`", "",
            "The classes VTK's wrapping makes of the C++ ones, in Debian's `/usr/bin/python3`; "
            "each docstring is the header's documentation.", ""]
+    out += ["## linkgi.methods()", "", fenced(inspect.cleandoc(linkgi.methods.__doc__), "text"), ""]
     from linkgi import export
     out += ["## Sharing: `linkgi.bake`, `linkgi.export_html`, `linkgi.export_glb`", "",
             fenced(inspect.cleandoc(export.__doc__), "text"), ""]

@@ -30,6 +30,19 @@ from .LinkGIFiltersGlobalIllumination import *  # noqa: F401,F403
 from .LinkGIRenderingGlobalIllumination import *  # noqa: F401,F403
 
 
+def methods():
+    """The solution methods by the names the output's LinkGI.Method gives them ("links",
+    "instant-radiosity", ...), each with the value vtkGlobalIlluminationFilter.SetMethod
+    takes, in that value's order: read from the filter's SetMethodTo... functions."""
+    gi = vtkGlobalIlluminationFilter()  # noqa: F405 (from the wrapped module above)
+    names = {}
+    for attribute in dir(gi):
+        if attribute.startswith("SetMethodTo"):
+            getattr(gi, attribute)()
+            names[gi.GetMethodAsString()] = gi.GetMethod()
+    return dict(sorted(names.items(), key=lambda item: item[1]))
+
+
 def __getattr__(name):
     # The exporters need numpy: imported on first use, not with the package.
     if name in ("export_html", "export_glb", "bake"):

@@ -17,9 +17,9 @@ the actor with vtkGlobalIlluminationMapper fed by vtkGlobalIlluminationFilter, l
 plotter's lights (its light kit by default). `illuminate` runs the filter alone and returns
 `DirectIrradiance`, `IndirectIrradiance` and `Radiance` as point arrays.
 
-The solver's settings are keywords: `method` ("links", "instant-radiosity",
-"implicit-visibility", "photon-mapping", "reference"; underscores work too), the short
-names below, or any property of vtkGlobalIlluminationFilter in snake case
+The solver's settings are keywords: `method` (a name of linkgi.methods(): "links",
+"instant-radiosity", "implicit-visibility", "photon-mapping", "reference"; underscores work
+too), the short names below, or any property of vtkGlobalIlluminationFilter in snake case
 (`light_oversampling=False`, `memory_budget=2**30`). A value outside a property's range is
 an error, not clamped; a solver error raises RuntimeError with the filter's message, and
 its warnings become Python warnings.
@@ -44,11 +44,12 @@ from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet, vtkPolyData
 from vtkmodules.vtkRenderingCore import vtkLight, vtkMapper, vtkRenderer
 from vtkmodules.vtkRenderingOpenGL2 import vtkCompositePolyDataMapper2
 
+from . import methods
 from .LinkGIFiltersGlobalIllumination import vtkGlobalIlluminationFilter
 from .LinkGIRenderingGlobalIllumination import (vtkGlobalIlluminationDrawnAlbedo,
                                                 vtkGlobalIlluminationMapper)
 
-__all__ = ["illuminate", "add_mesh", "methods"]
+__all__ = ["illuminate", "add_mesh"]
 
 # Short names for the settings a PyVista user changes most, as PyVista names things.
 SETTINGS = {
@@ -61,18 +62,6 @@ SETTINGS = {
     "gather_rays": "FinalGatherRays",
     "paths": "ReferencePathsPerVertex",
 }
-
-
-def methods():
-    """The methods' names, as the output's LinkGI.Method says them, from the filter's
-    SetMethodTo... functions: {name: value}."""
-    gi = vtkGlobalIlluminationFilter()
-    names = {}
-    for attribute in dir(gi):
-        if attribute.startswith("SetMethodTo"):
-            getattr(gi, attribute)()
-            names[gi.GetMethodAsString()] = gi.GetMethod()
-    return names
 
 
 def _property(keyword):
@@ -204,7 +193,7 @@ def illuminate(mesh, lights, method=None, albedo=None, **settings):
     lights: a pyvista.Plotter (its lights; its light kit's follow its camera), a
         pyvista.Light or vtkLight, or a list of them. A point or spot light falls off as
         its attenuation_values say: (0, 0, 1) is a lamp's 1/r^2, VTK's default none.
-    method: the method's name (default "links"); see methods().
+    method: the method's name (default "links"); see linkgi.methods().
     albedo: a number or RGB in [0, 1], or the name of a point or cell array (linear RGB).
     settings: bounces=, rays=, vpls=, bins=, photons=, clusters=, gather_rays=, paths=,
         two_sided=, or any filter property in snake case.

@@ -31,13 +31,15 @@ from vtkmodules.vtkIOPLY import vtkPLYReader
 from vtkmodules.vtkIOXML import vtkXMLGenericDataObjectReader
 from vtkmodules.vtkRenderingCore import vtkLight
 
+from . import methods
 from .LinkGIFiltersGlobalIllumination import vtkGlobalIlluminationFilter
 from .LinkGIRenderingGlobalIllumination import (vtkGlobalIlluminationDisplayColors,
                                                 vtkGlobalIlluminationShading)
 
 READERS = {".ply": vtkPLYReader, ".stl": vtkSTLReader, ".obj": vtkOBJReader,
            ".vtk": vtkDataSetReader}
-METHODS = ["links", "instant radiosity", "implicit visibility", "photon mapping"]
+# The interactive methods (the path tracer re-traces everything at every lamp move).
+METHODS = [name for name in methods() if name != "reference"]
 MODES = ["combined", "direct", "indirect"]
 
 
@@ -107,7 +109,7 @@ class LiveScene:
         return mesh(self._relative(self.ball.GetOutput()))
 
     def set_method(self, method, bounces):
-        self.gi.SetMethod(METHODS.index(method))
+        self.gi.SetMethod(methods()[method])
         self.gi.SetNumberOfBounces(int(bounces))
 
     def relight(self):
