@@ -33,7 +33,7 @@ LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
 # 1.213 m), 2 cm under it, in the scene's metres.
 LAMP = (0.95 / 3, 3.60 / 3, -1.945 / 3)
 SHADE = 0  # the lamp's shade, part 0 (Mesh013): its inside, 15-20 cm from the lamp, is 94% of sum A E^2
-METHODS = ("links", "instant-radiosity", "implicit-visibility", "photon-mapping")
+METHODS = [name for name in linkgi.methods() if name != "reference"]  # against the reference
 
 
 def read(path):
@@ -71,7 +71,7 @@ def solve(surface, method, paths=1024, seed=0):
     gi.AddLight(lamp())
     gi.SetAlbedoArrayName("Albedo")
     gi.SetBackendToCPU()
-    gi.SetMethod((METHODS + ("reference",)).index(method))  # the filter's numbering
+    gi.SetMethod(linkgi.methods()[method])
     gi.SetReferencePathsPerVertex(paths)
     gi.SetSeed(seed)
     start = time.perf_counter()
