@@ -172,7 +172,8 @@ public:
   ///@{
   /**
    * INSTANT_RADIOSITY: interleaved sampling. The VPLs are split into this many subsets and
-   * each vertex gathers one (scaled up); Smoothing recombines neighbours. 1 turns it off.
+   * each vertex gathers one (scaled up), and the one-ring smoothing, on whenever this is
+   * above 1, recombines neighbours. 1 turns it off.
    * The default value is 1.
    */
   vtkSetClampMacro(VPLInterleaving, int, 1, 64);
@@ -338,8 +339,10 @@ public:
 
   ///@{
   /**
-   * Smooth the indirect irradiance over each vertex's one-ring, within the feature angle.
-   * The default value is on.
+   * Smooth the indirect irradiance over each vertex's one-ring, within the feature angle:
+   * less noise, more blur (a bias that grows with the triangles' size). Instant radiosity's
+   * interleaving (VPLInterleaving > 1) and the coarse solutions of a progressive update
+   * smooth whatever this says. The default value is off.
    */
   vtkSetMacro(Smoothing, vtkTypeBool);
   vtkGetMacro(Smoothing, vtkTypeBool);

@@ -543,7 +543,7 @@ TEST(GlobalIlluminationFilter, PropertiesHaveTheirDocumentedDefaults)
   EXPECT_EQ(filter->GetRaysPerVertex(), 256);
   EXPECT_EQ(filter->GetNumberOfBounces(), 3);
   EXPECT_EQ(filter->GetFeatureAngle(), 30.0);
-  EXPECT_TRUE(filter->GetSmoothing());
+  EXPECT_FALSE(filter->GetSmoothing());
   EXPECT_FALSE(filter->GetComputeNormals());
   EXPECT_EQ(filter->GetBackend(), vtkGlobalIlluminationFilter::AUTO);
   EXPECT_EQ(filter->GetAlbedoArrayName(), nullptr);

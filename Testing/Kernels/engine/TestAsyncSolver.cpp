@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 #include <optional>
 #include <chrono>
@@ -250,22 +251,31 @@ TEST(TestAsyncSolver, DirectionSetDoesNotCrawlUnderDeformation)
   p0.deformation = 0.30f;
   p1.deformation = 0.31f;
   const Scene a = makeStandardScene("torso", p0), b = makeStandardScene("torso", p1);
-  const auto indirect = [](const Scene& s, std::uint32_t rays) {
+  const auto indirect = [](const Scene& s, std::uint32_t rays, std::uint32_t seed) {
     SolverOptions o;
     o.raysPerVertex = rays;
+    o.seed = seed;
     return Solver().update(s, o).indirect;
   };
-  const std::vector<Vec3f> xa = indirect(a, 256), xb = indirect(b, 256);
-  const std::vector<Vec3f> ta = indirect(a, 1024), tb = indirect(b, 1024);
-  double change = 0.0, scale = 0.0;
-  for (std::size_t i = 0; i < xa.size(); ++i)
-  {
-    const double d = luminance(xb[i] - xa[i]) - luminance(tb[i] - ta[i]);
-    change += d * d;
-    scale += luminance(ta[i]) * luminance(ta[i]);
-  }
-  // Measured 0.13%; with the twist re-rolled between the two frames (another seed) 1.2%.
-  EXPECT_LT(std::sqrt(change / scale), 0.005);
+  const std::vector<Vec3f> ta = indirect(a, 1024, 0), tb = indirect(b, 1024, 0);
+  const std::vector<Vec3f> xa = indirect(a, 256, 0);
+  // Relative RMS of (256-ray change - 1024-ray change) from frame a to frame b.
+  const auto crawl = [&](const std::vector<Vec3f>& xb) {
+    double change = 0.0, scale = 0.0;
+    for (std::size_t i = 0; i < xa.size(); ++i)
+    {
+      const double d = luminance(xb[i] - xa[i]) - luminance(tb[i] - ta[i]);
+      change += d * d;
+      scale += luminance(ta[i]) * luminance(ta[i]);
+    }
+    return std::sqrt(change / scale);
+  };
+  const double kept = crawl(indirect(b, 256, 0));
+  const double rerolled = crawl(indirect(b, 256, 1)); // the twist re-rolled between the frames
+  std::printf("crawl: %.4f with the vertex's own twist, %.4f re-rolled\n", kept, rerolled);
+  // Measured 0.82% and 2.16%; a twist that followed the frame instead of the vertex would
+  // change as much as a re-rolled one.
+  EXPECT_LT(kept, 0.5 * rerolled);
 }
 
 #ifdef __linux__

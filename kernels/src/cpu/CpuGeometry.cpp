@@ -81,7 +81,7 @@ void finishSolution(const StageContext& c, const Topology& topology, std::vector
   const Scene& s = c.scene;
   const SolverOptions& o = c.options;
   const Elements elements{ s.vertexCount(), o.twoSided };
-  if (o.smoothing)
+  if (smoothingOn(o))
   {
     const auto t = std::chrono::steady_clock::now();
     const float cosFeature = std::cos(o.featureAngleDegrees * (kPi / 180.f));

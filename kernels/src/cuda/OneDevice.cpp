@@ -135,7 +135,7 @@ void DeviceFinish::run(const Scene& s, const SolverOptions& o, const DeviceMesh&
   f.bounce.albedo = albedo;
   f.bounce.emission = emission;
   f.indirect = nullptr;
-  f.smoothing = o.smoothing;
+  f.smoothing = smoothingOn(o);
   f.cosFeatureAngle = std::cos(o.featureAngleDegrees * (kPi / 180.f));
   f.neighbourOffsets = mesh.topology.neighbourOffsets.data();
   f.neighbours = mesh.topology.neighbours.data();

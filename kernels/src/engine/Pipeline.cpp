@@ -245,7 +245,7 @@ Changes changesBetween(const Scene& now, const SolverOptions& o, const Scene& be
   differs(kSides, o.twoSided != b.twoSided);
   differs(kLightSampling, o.lightOversampling != b.lightOversampling);
   differs(kIteration, o.bounces != b.bounces);
-  differs(kFiltering, o.smoothing != b.smoothing || o.featureAngleDegrees != b.featureAngleDegrees);
+  differs(kFiltering, smoothingOn(o) != smoothingOn(b) || o.featureAngleDegrees != b.featureAngleDegrees);
   differs(kBackendSetup, o.cudaBvhBuild != b.cudaBvhBuild);
   differs(kPlacement, o.backend != b.backend || o.cudaDevices != b.cudaDevices);
   differs(kMethodOptions, methodOptionsDiffer(o, b));

@@ -143,6 +143,8 @@ std::vector<SolverOptions> planPreviews(const MethodSpec& spec, std::size_t elem
   for (; fraction <= kPreviewLargest; fraction *= kPreviewGrowth)
   {
     SolverOptions coarse = spec.coarser(options, fraction);
+    // Few samples per vertex are noisy, and the final replaces this solution: smooth it.
+    coarse.smoothing = true;
     const double coarseWork = spec.sampleWork(elements, coarse);
     if (!(coarseWork < work))
     {

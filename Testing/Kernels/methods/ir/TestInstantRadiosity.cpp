@@ -157,7 +157,8 @@ TEST(TestInstantRadiosity, AgreesWithReference)
     previous = err.relRmseLuminance;
     if (vpls == 4096)
     {
-      EXPECT_LE(maxComponent(err.relRmse), 0.06f); // 0.050 measured: mostly the clamp's bias
+      // 0.065 measured (0.050 with the smoothing on): mostly the clamp's bias.
+      EXPECT_LE(maxComponent(err.relRmse), 0.07f);
     }
   }
 }
@@ -208,7 +209,7 @@ TEST(TestInstantRadiosity, StagesRerunOnlyWhatChanged)
   EXPECT_TRUE(st.ran("Geometry") && st.refitBvh);
   EXPECT_TRUE(st.ran("VPLs") && st.ran("LightLinks") && st.ran("Gather"));
 
-  o.smoothing = false; // only the finish
+  o.smoothing = true; // only the finish
   const Solution before = solver.solution();
   solver.update(moved, o);
   EXPECT_FALSE(st.ran("VPLs") || st.ran("Gather") || st.ran("LightLinks"));
@@ -226,9 +227,11 @@ TEST(TestInstantRadiosity, InterleavingAndProxyStayCloseToTheFullGather)
 {
   // Interleaved sampling gathers a quarter of the VPLs per vertex (and smoothing recombines
   // them); the proxy replaces the mesh in the shadow rays. Both must stay near the full,
-  // exact gather, and trace fewer rays or test fewer triangles.
+  // exact gather, and trace fewer rays or test fewer triangles. Every solution smoothed (as
+  // interleaving always is), so what differs is the sampling.
   const Scene s = test::roomWithBlock(0.125f);
   SolverOptions o = instantRadiosity(1024);
+  o.smoothing = true;
   Solver full;
   const Solution exact = full.update(s, o);
   const std::uint64_t fullRays = full.stats().rays;

@@ -215,7 +215,7 @@ TEST(TestPhotonMapping, StagesRerunOnlyWhatChanged)
   solver.update(moved, o);
   EXPECT_TRUE(st.ran("Geometry") && st.ran("Clusters") && st.ran("Photons") && st.ran("Gather"));
 
-  o.smoothing = false; // only the finish
+  o.smoothing = true; // only the finish
   solver.update(moved, o);
   EXPECT_FALSE(st.ran("Photons") || st.ran("Gather") || st.ran("Clusters"));
   EXPECT_TRUE(st.ran("Finish"));

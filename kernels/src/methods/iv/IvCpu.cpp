@@ -145,7 +145,7 @@ private:
     {
       indirect[v] += envIrradiance[v];
     }
-    if (o.smoothing)
+    if (smoothingOn(o))
     {
       const auto t = std::chrono::steady_clock::now();
       const float cosFeature = std::cos(o.featureAngleDegrees * (kPi / 180.f));

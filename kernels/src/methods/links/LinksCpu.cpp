@@ -147,7 +147,7 @@ private:
     {
       indirect[e] += envIrradiance[e];
     }
-    if (o.smoothing)
+    if (smoothingOn(o))
     {
       const auto t = std::chrono::steady_clock::now();
       const float cosFeature = std::cos(o.featureAngleDegrees * (kPi / 180.f));

@@ -168,7 +168,7 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
   FinishParams f;
   f.bounce = paramsOf(d0);
   f.indirect = options.bounces > 0 ? d0.indirect.data() : nullptr;
-  f.smoothing = options.smoothing;
+  f.smoothing = smoothingOn(options);
   f.cosFeatureAngle = std::cos(options.featureAngleDegrees * (kPi / 180.f));
   f.neighbourOffsets = d0.topology.neighbourOffsets.data();
   f.neighbours = d0.topology.neighbours.data();
@@ -190,7 +190,7 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
     std::vector<Vec3f>& to = i == 0 ? solution.direct : i == 1 ? solution.indirect : solution.radiance;
     PinnedStaging::copy(to.data(), staged + i * ne, ne * sizeof(Vec3f));
   }
-  if (options.smoothing)
+  if (smoothingOn(options))
   {
     c.part("Smoothing", msSince(t)); // with the read-back, as on the CPU
   }
