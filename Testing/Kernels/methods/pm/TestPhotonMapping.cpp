@@ -388,6 +388,30 @@ TEST(TestPhotonMapping, TreeSearchesEqualBruteForce)
   EXPECT_EQ(pm::nearestOne(empty.view(), Vec3f(0.f), 1.f, [](Index) { return true; }), kInvalidIndex);
 }
 
+TEST(TestPhotonMapping, GatherReadsTheEstimateOfItsOwnSurface)
+{
+  // A gather ray's hit reads the nearest radiance estimate that faces its way and lies near
+  // its tangent plane, not a nearer one on another surface: the bright inside of a double
+  // wall 1 cm behind, facing the same way, or a wall at right angles.
+  const std::vector<Vec3f> sites = { { 0.f, 0.f, -0.01f }, { 0.05f, 0.f, 0.f }, { 0.01f, 0.f, 0.f },
+    // a sphere of radius 1: an estimate 0.3 rad from the pole, and an inner shell 2 cm inside
+    { std::sin(0.3f), 0.f, 10.f + std::cos(0.3f) }, { 0.f, 0.f, 10.98f } };
+  const std::vector<Vec3f> normals = { { 0.f, 0.f, 1.f }, { 0.f, 0.f, 1.f }, { 1.f, 0.f, 0.f },
+    { std::sin(0.3f), 0.f, std::cos(0.3f) }, { 0.f, 0.f, 1.f } };
+  const std::vector<Vec3f> radiance = { Vec3f(10.f), Vec3f(1.f), Vec3f(5.f), Vec3f(2.f), Vec3f(10.f) };
+  const pm::PointTree tree(sites);
+  pm::RadianceSitesView view;
+  view.tree = tree.view();
+  view.normals = normals.data();
+  view.radiance = radiance.data();
+  const Vec3f up(0.f, 0.f, 1.f);
+  EXPECT_EQ(pm::lookupRadiance(view, Vec3f(0.f), up), Vec3f(1.f)) << "the plane's own estimate";
+  EXPECT_EQ(pm::lookupRadiance(view, Vec3f(0.f, 0.f, 11.f), up), Vec3f(2.f)) << "the sphere's own estimate";
+  EXPECT_EQ(pm::lookupRadiance(view, Vec3f(0.f, 0.f, -0.01f), up), Vec3f(10.f)) << "the inner wall's own";
+  view.maxDistance2 = 0.04f * 0.04f; // only the other surfaces' estimates are this near
+  EXPECT_EQ(pm::lookupRadiance(view, Vec3f(0.f), up), Vec3f(0.f)) << "none of its own within reach";
+}
+
 // Both backends trace the same Halton light paths (a hit may differ where a path grazes an
 // edge), so the photon maps, the estimates and the gathers agree: on the Cornell box, after a
 // light move, and on the caustic scene with its caustics.

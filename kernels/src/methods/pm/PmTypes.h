@@ -15,8 +15,13 @@ namespace linkgi::pm
 {
 /// Ranges of at most this many points are leaves (PointTree::build stops there).
 constexpr std::uint32_t kTreeLeaf = 8;
-/// A gather hit reads the nearest estimate whose normal is within 60 degrees of its own.
+/// A gather hit reads the nearest estimate whose normal is within 60 degrees of its own...
 constexpr float kLookupCos = 0.5f;
+/// ...and that lies within 30 degrees of its tangent plane (sin 30 = 0.5): an estimate on
+/// another surface that faces the same way, across a thin wall or a fold (the bright inside
+/// of a double-walled lamp shade behind its outside), lies off that plane. On a curved
+/// surface the nearest estimates at a distance d lie about d / 2R below it.
+constexpr float kLookupPlaneSin = 0.5f;
 /// Depth of the explicit stack: a median tree of 2^32 points with leaves of 8 is 30 deep.
 constexpr int kTreeStack = 64;
 
@@ -190,14 +195,19 @@ struct RadianceSitesView
 };
 
 /// The outgoing radiance a gather ray sees at surface point y (unit normal n): the nearest
-/// estimate facing within 60 degrees of n within sqrt(maxDistance2), zero when there is none.
+/// estimate within sqrt(maxDistance2) that faces within 60 degrees of n and lies within 30
+/// degrees of y's tangent plane; zero when there is none.
 LINKGI_HOST_DEVICE inline Vec3f lookupRadiance(const RadianceSitesView& s, const Vec3f& y, const Vec3f& n)
 {
   if (s.tree.count == 0)
   {
     return Vec3f(0.f);
   }
-  const Index i = nearestOne(s.tree, y, s.maxDistance2, [&](Index j) { return dot(s.normals[j], n) > kLookupCos; });
+  const Index i = nearestOne(s.tree, y, s.maxDistance2, [&](Index j) {
+    const Vec3f d = s.tree.points[j] - y;
+    const float h = dot(d, n);
+    return dot(s.normals[j], n) > kLookupCos && h * h <= kLookupPlaneSin * kLookupPlaneSin * dot(d, d);
+  });
   return i == kInvalidIndex ? Vec3f(0.f) : s.radiance[i];
 }
 }
