@@ -18,6 +18,7 @@ import json
 import os
 import re
 import socket
+import signal
 import subprocess
 import sys
 import tempfile
@@ -103,12 +104,13 @@ class DevTools:
 
 
 async def drive(url, out, moved):
-    with tempfile.TemporaryDirectory() as profile:
+    # Chromium's helper processes may still write to the profile after the browser exits.
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         browser = subprocess.Popen(
             ["chromium", "--headless=new", "--no-sandbox", "--use-gl=swiftshader",
              "--enable-unsafe-swiftshader", "--remote-debugging-port=0",
              f"--user-data-dir={profile}", "--no-first-run", "about:blank"],
-            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, start_new_session=True)
         try:
             endpoint = None
             for line in browser.stderr:
@@ -147,7 +149,7 @@ async def drive(url, out, moved):
                                                   "window.trame.state.get('light_z')]")
                     return x, arrived, light_ms, before, after, clicked
         finally:
-            browser.terminate()
+            os.killpg(browser.pid, signal.SIGTERM)  # the browser and its helpers
             browser.wait(timeout=30)
 
 

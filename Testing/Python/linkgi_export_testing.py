@@ -214,7 +214,8 @@ def open_in_chromium(page, fragment, screenshot):
     size), and the URLs of the requests the page made."""
     chromium = shutil.which("chromium") or shutil.which("chromium-browser")
     assert chromium, "Chromium is missing (scripts/setup.sh installs it)"
-    with tempfile.TemporaryDirectory() as profile:
+    # Chromium's helper processes may still write to the profile after the browser exits.
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         net_log = os.path.join(profile, "net.json")
         command = [
             chromium, "--headless=new", "--no-sandbox", "--disable-gpu", "--use-gl=swiftshader",
