@@ -117,6 +117,7 @@ vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
   , NumberOfVPLs(1024)
   , VPLClampDistance(0.01)
   , VPLInterleaving(1)
+  , VPLCompensationRays(64)
   , ProxyVisibility(0)
   , ProxyResolution(32)
   , ImplicitVisibilityBins(12)
@@ -520,6 +521,7 @@ linkgi::SolverOptions vtkGlobalIlluminationFilter::vtkInternals::Options(
   options.instantRadiosity.vplCount = static_cast<std::uint32_t>(self->NumberOfVPLs);
   options.instantRadiosity.clampDistance = static_cast<float>(self->VPLClampDistance);
   options.instantRadiosity.interleave = static_cast<std::uint32_t>(self->VPLInterleaving);
+  options.instantRadiosity.compensationRays = static_cast<std::uint32_t>(self->VPLCompensationRays);
   options.instantRadiosity.proxyVisibility = self->ProxyVisibility != 0;
   options.instantRadiosity.proxyResolution = static_cast<std::uint32_t>(self->ProxyResolution);
   options.smoothing = self->Smoothing != 0;
@@ -546,6 +548,7 @@ void vtkGlobalIlluminationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Number Of VPLs: " << this->NumberOfVPLs << "\n";
   os << indent << "VPL Clamp Distance: " << this->VPLClampDistance << "\n";
   os << indent << "VPL Interleaving: " << this->VPLInterleaving << "\n";
+  os << indent << "VPL Compensation Rays: " << this->VPLCompensationRays << "\n";
   os << indent << "Proxy Visibility: " << (this->ProxyVisibility ? "On" : "Off") << "\n";
   os << indent << "Proxy Resolution: " << this->ProxyResolution << "\n";
   os << indent << "Implicit Visibility Bins: " << this->ImplicitVisibilityBins << "\n";

@@ -171,6 +171,17 @@ public:
 
   ///@{
   /**
+   * INSTANT_RADIOSITY: the clamp's bias compensation. Each vertex traces this many short
+   * cosine-weighted rays (a perfect square, at most 1024) and takes back the light the
+   * clamp removed from the surfaces nearer than it, with the solution's own radiance there.
+   * 0 turns it off. The default value is 64.
+   */
+  vtkSetClampMacro(VPLCompensationRays, int, 0, 1024);
+  vtkGetMacro(VPLCompensationRays, int);
+  ///@}
+
+  ///@{
+  /**
    * INSTANT_RADIOSITY: interleaved sampling. The VPLs are split into this many subsets and
    * each vertex gathers one (scaled up), and the one-ring smoothing, on whenever this is
    * above 1, recombines neighbours. 1 turns it off.
@@ -645,6 +656,7 @@ protected:
   int NumberOfVPLs;
   double VPLClampDistance;
   int VPLInterleaving;
+  int VPLCompensationRays;
   vtkTypeBool ProxyVisibility;
   int ProxyResolution;
   int ImplicitVisibilityBins;

@@ -544,6 +544,7 @@ TEST(GlobalIlluminationFilter, PropertiesHaveTheirDocumentedDefaults)
   EXPECT_EQ(filter->GetNumberOfBounces(), 3);
   EXPECT_EQ(filter->GetFeatureAngle(), 30.0);
   EXPECT_FALSE(filter->GetSmoothing());
+  EXPECT_EQ(filter->GetVPLCompensationRays(), 64);
   EXPECT_FALSE(filter->GetComputeNormals());
   EXPECT_EQ(filter->GetBackend(), vtkGlobalIlluminationFilter::AUTO);
   EXPECT_EQ(filter->GetAlbedoArrayName(), nullptr);

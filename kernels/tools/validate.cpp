@@ -47,7 +47,7 @@ Args parse(int argc, char** argv)
     {
       throw Error("Usage: linkgi-validate [--scenes a,b] [--method " + methodNames("|") + "] "
                   "[--rays 256] [--bounces 3] [--smoothing 0] [--oversampling 1] "
-                  "[--reference-factor 16] [--vpls 1024] [--clamp 0.02] [--interleave 1] [--photons 262144] [--clusters 4096] [--gather-rays 256] [--caustic-paths 16777216] "
+                  "[--reference-factor 16] [--vpls 1024] [--clamp 0.01] [--interleave 1] [--compensation 64] [--photons 262144] [--clusters 4096] [--gather-rays 256] [--caustic-paths 16777216] "
                   "[--proxy 0|N] [--bins 12] [--seed 0] [--refine-from CELL] [--refine-tolerance 0.1] "
                   "[--refine-vertices N] [--refine-rounds 3]; " + arg +
         " needs a value.");
@@ -77,6 +77,8 @@ Args parse(int argc, char** argv)
       a.options.instantRadiosity.clampDistance = std::stof(value);
     else if (arg == "--interleave")
       a.options.instantRadiosity.interleave = std::stoul(value);
+    else if (arg == "--compensation")
+      a.options.instantRadiosity.compensationRays = std::stoul(value);
     else if (arg == "--proxy")
     {
       // 0: exact visibility; N: the proxy of N cells along the longest axis
@@ -162,8 +164,8 @@ std::string methodJson(const SolverOptions& o)
   }
   const InstantRadiosityOptions& ir = o.instantRadiosity;
   return ",\"clamp\":" + std::to_string(ir.clampDistance) + ",\"interleave\":" +
-    std::to_string(ir.interleave) + ",\"proxy\":" +
-    std::to_string(ir.proxyVisibility ? ir.proxyResolution : 0);
+    std::to_string(ir.interleave) + ",\"compensation\":" + std::to_string(ir.compensationRays) +
+    ",\"proxy\":" + std::to_string(ir.proxyVisibility ? ir.proxyResolution : 0);
 }
 
 void validateScene(const std::string& name, const Args& args)

@@ -143,6 +143,11 @@ struct InstantRadiosityOptions
   /// Grid cells along the longest axis of the proxy's vertex clustering, 2 to 4096.
   /// Default 32.
   std::uint32_t proxyResolution = 32;
+  /// Bias compensation: cosine-weighted rays per vertex (a perfect square, at most 1024)
+  /// that recover the light the clamp takes, from the surfaces nearer than the clamp, with
+  /// the update's own per-vertex radiance there (after Kollig & Keller 2004; see
+  /// Documentation/Methods.md). 0: off, that light is lost. Default 64.
+  std::uint32_t compensationRays = 64;
   /// Russian roulette: a light path continues past a hit with probability max(rho) and
   /// carries rho / max(rho) (unbiased, fewer VPLs); `bounces` still caps its length. Off
   /// (default): every path runs all its bounces carrying rho.

@@ -125,6 +125,7 @@ TEST(TestInstantRadiosity, ClampBiasIsBoundedOnPerpendicularSquares)
     SolverOptions o = instantRadiosity(8192, clamp);
     o.bounces = 1;
     o.smoothing = false;
+    o.instantRadiosity.compensationRays = 0; // the clamp's own bias
     Solver solver;
     const double bias = 1.0 - receiverMean(s, solver.update(s, o)) / exact;
     const double h = 1.2 * clamp * diagonal;
@@ -135,6 +136,26 @@ TEST(TestInstantRadiosity, ClampBiasIsBoundedOnPerpendicularSquares)
     EXPECT_GE(bias, -0.02) << "the clamp only removes light";
     EXPECT_GT(bias, previous - 0.02) << "a larger clamp loses more";
     previous = bias;
+  }
+}
+
+TEST(TestInstantRadiosity, CompensationTakesBackTheClampsLight)
+{
+  // The same squares: what the clamp drops near the common edge, the compensation rays
+  // take back from the emitter's own radiance there, for any clamp.
+  const Scene s = test::twoSquares(true, 32);
+  const double exact = kPi * perpendicularFormFactor(1.0, 1.0);
+  for (float clamp : { 0.05f, 0.1f })
+  {
+    SolverOptions o = instantRadiosity(8192, clamp);
+    o.bounces = 1;
+    o.instantRadiosity.compensationRays = 0;
+    const double lost = 1.0 - receiverMean(s, Solver().update(s, o)) / exact;
+    o.instantRadiosity.compensationRays = 64;
+    const double left = 1.0 - receiverMean(s, Solver().update(s, o)) / exact;
+    std::printf("clamp %.2f: bias %.4f without compensation, %.4f with\n", clamp, lost, left);
+    EXPECT_GT(lost, 0.03) << "the clamp loses light here";
+    EXPECT_LT(std::abs(left), 0.25 * lost) << "clamp " << clamp;
   }
 }
 
@@ -285,6 +306,9 @@ TEST(TestInstantRadiosity, BadOptionsAreNamed)
   EXPECT_NE(message(o).find("virtual point lights"), std::string::npos);
   o = instantRadiosity(64, 2.f);
   EXPECT_NE(message(o).find("clamp distance"), std::string::npos);
+  o = instantRadiosity(64);
+  o.instantRadiosity.compensationRays = 48; // not a perfect square
+  EXPECT_NE(message(o).find("compensation rays"), std::string::npos);
   o = instantRadiosity(64);
   o.instantRadiosity.interleave = 0;
   EXPECT_NE(message(o).find("interleaving"), std::string::npos);

@@ -39,6 +39,12 @@ std::vector<Vec3f> gatherCpu(const Scene& scene, const std::vector<RayOrigin>& o
   const VplSet& vpls, const RayTracer* visibility, const GatherParams& params, bool twoSided,
   std::uint64_t* rays = nullptr, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 
+/// `indirect` plus the clamp's bias compensation (compensationSample, IrMath.h) at every
+/// element: `rays` (k*k) rays per element against `tracer`, from the ray origins.
+std::vector<Vec3f> compensateCpu(const Scene& scene, const std::vector<RayOrigin>& origins,
+  const RayTracer& tracer, const CompensationInputs& inputs, const std::vector<Vec3f>& indirect,
+  std::uint32_t rays, std::uint32_t seed);
+
 #if LINKGI_HAVE_CUDA
 /// The same gather on the first GPU (mesh, BVH and shifts built there; exact visibility):
 /// for comparing the backends on one VPL set. Throws CudaError without a device or CUDA.

@@ -81,6 +81,39 @@ std::vector<Vec3f> gatherCpu(const Scene& s, const std::vector<RayOrigin>& origi
   return irradiance;
 }
 
+std::vector<Vec3f> compensateCpu(const Scene& s, const std::vector<RayOrigin>& origins,
+  const RayTracer& tracer, const CompensationInputs& inputs, const std::vector<Vec3f>& indirect,
+  std::uint32_t rays, std::uint32_t seed)
+{
+  const Elements elements{ s.vertexCount(), inputs.twoSided };
+  const auto k = std::uint32_t(std::lround(std::sqrt(double(rays))));
+  std::vector<Vec3f> out(indirect);
+  parallelFor("Compensation", elements.count(), 64, [&](std::size_t first, std::size_t last) {
+    std::vector<Ray> batch(rays);
+    std::vector<Hit> hits(rays);
+    const auto indirectAt = [&indirect](Index e) { return indirect[e]; };
+    for (std::size_t e = first; e < last; ++e)
+    {
+      const Index v = elements.vertexOf(e);
+      const Vec3f n = s.normals[v] * elements.sideSign(e);
+      const Frame frame = vertexFrame(n, true, seed, Index(e));
+      const Vec3f origin = elementRayOrigin(s.positions[v], n, origins[v]);
+      for (std::uint32_t i = 0; i < rays; ++i)
+      {
+        batch[i] = compensationRay(origin, frame, i, k, inputs.dmin);
+      }
+      tracer.trace(batch.data(), hits.data(), rays);
+      Vec3f sum(0.f);
+      for (std::uint32_t i = 0; i < rays; ++i)
+      {
+        sum += compensationSample(inputs, batch[i], hits[i], indirectAt);
+      }
+      out[e] += sum * (kPi / float(rays));
+    }
+  }, {});
+  return out;
+}
+
 namespace
 {
 using namespace engine;
@@ -186,7 +219,28 @@ private:
 
   void finish(const StageContext& c)
   {
-    finishSolution(c, geometry.topology, gathered.now().irradiance, direct.now().irradiance);
+    const std::vector<Vec3f>& indirect = gathered.now().irradiance;
+    const std::vector<Vec3f>& directLight = direct.now().irradiance;
+    const std::uint32_t rays = c.options.instantRadiosity.compensationRays;
+    if (rays == 0)
+    {
+      finishSolution(c, geometry.topology, indirect, directLight);
+      return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    CompensationInputs in;
+    in.triangles = c.scene.triangles.data();
+    in.faceNormals = geometry.faceNormals.data();
+    in.albedo = c.scene.albedo.data();
+    in.emission = c.scene.emission.empty() ? nullptr : c.scene.emission.data();
+    in.direct = directLight.data();
+    in.vertexCount = Index(c.scene.vertexCount());
+    in.twoSided = c.options.twoSided;
+    in.dmin = c.options.instantRadiosity.clampDistance * boundingDiagonal(c.scene.positions);
+    std::vector<Vec3f> compensated =
+      compensateCpu(c.scene, geometry.origins, *geometry.tracer, in, indirect, rays, c.options.seed);
+    c.part("Compensation", msSince(start));
+    finishSolution(c, geometry.topology, std::move(compensated), directLight);
   }
 
   CpuGeometry geometry;

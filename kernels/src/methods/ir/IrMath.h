@@ -4,6 +4,7 @@
 // VPLs are shared/LightPaths.h's.
 #pragma once
 
+#include "shared/Bounce.h"
 #include "shared/DirectLight.h"
 #include "shared/LightPaths.h"
 #include "shared/Sampling.h"
@@ -80,6 +81,63 @@ LINKGI_HOST_DEVICE inline bool proxyShadowRay(Ray& ray, float margin)
 LINKGI_HOST_DEVICE inline std::uint32_t vertexSubset(Index v, std::uint32_t subsets, std::uint32_t seed)
 {
   return subsets > 1 ? hash32(v ^ hash32(seed + 0x632be5abu)) % subsets : 0u;
+}
+
+/// Bias compensation (after Kollig & Keller 2004) as a gather over the update's own
+/// per-vertex solution: what the clamp takes from element x is
+///   E_c(x) = int (1 - f(d(w))) L(y(w)) cos dw  ~  pi / n sum_i (1 - f(d_i)) L(y_i)
+/// over n = k*k cosine-weighted rays at the centres of a k x k grid (twisted per vertex),
+/// traced only as far as f's upper end, 1.2 dmin. L(y) = Le + rho/pi (E_d + E_ind) is
+/// interpolated at the hit from its triangle's elements; the back of a one-sided triangle
+/// is black. E_ind(y) is itself the clamped gather's, so what short paths add after their
+/// first bounce stays out, and a compensated path may have one bounce more than `bounces`.
+struct CompensationInputs
+{
+  const Triangle* triangles = nullptr;
+  const Vec3f* faceNormals = nullptr; ///< frontFaceNormals
+  const Vec3f* albedo = nullptr;      ///< per vertex
+  const Vec3f* emission = nullptr;    ///< per vertex, null: none
+  const Vec3f* direct = nullptr;      ///< E_d per element
+  Index vertexCount = 0;
+  bool twoSided = false;
+  float dmin = 0.f;
+};
+
+/// Ray i of element e's k x k compensation rays from `origin` in `frame`.
+LINKGI_HOST_DEVICE inline Ray compensationRay(const Vec3f& origin, const Frame& frame, std::uint32_t i,
+  std::uint32_t k, float dmin)
+{
+  const float u = (float(i % k) + 0.5f) / float(k), v = (float(i / k) + 0.5f) / float(k);
+  return Ray{ origin, 0.f, frame.toWorld(cosineHemisphere(u, v)), 1.2f * dmin };
+}
+
+/// (1 - f(d)) L(y) for one compensation ray and its hit (zero for a miss or a blocked back
+/// side); `indirect(e)` reads E_ind of element e.
+template <typename IndirectAt>
+LINKGI_HOST_DEVICE inline Vec3f compensationSample(const CompensationInputs& c, const Ray& ray, const Hit& h,
+  const IndirectAt& indirect)
+{
+  if (h.triangle == kInvalidIndex)
+  {
+    return Vec3f(0.f);
+  }
+  const bool back = dot(ray.direction, c.faceNormals[h.triangle]) > 0.f;
+  if (back && !c.twoSided)
+  {
+    return Vec3f(0.f);
+  }
+  const Triangle t = c.triangles[h.triangle];
+  const float bary[3] = { 1.f - h.u - h.v, h.u, h.v };
+  Vec3f radiance(0.f);
+  for (int j = 0; j < 3; ++j)
+  {
+    const Index v = t.v[j];
+    const Index e = back ? v + c.vertexCount : v;
+    const Vec3f le = (c.emission && !back) ? c.emission[v] : Vec3f(0.f);
+    radiance += outgoingRadiance(c.albedo[v], c.direct[e], indirect(e), le) * bary[j];
+  }
+  const float distance = h.t * std::sqrt(dot(ray.direction, ray.direction));
+  return radiance * (1.f - distanceBound(distance, c.dmin));
 }
 
 /// What the gather of one element reads besides the VPLs.

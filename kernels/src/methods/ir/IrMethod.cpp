@@ -16,7 +16,8 @@ bool operator==(const InstantRadiosityOptions& a, const InstantRadiosityOptions&
 {
   return a.vplCount == b.vplCount && a.clampDistance == b.clampDistance &&
     a.interleave == b.interleave && a.proxyVisibility == b.proxyVisibility &&
-    a.proxyResolution == b.proxyResolution && a.russianRoulette == b.russianRoulette;
+    a.proxyResolution == b.proxyResolution && a.russianRoulette == b.russianRoulette &&
+    a.compensationRays == b.compensationRays;
 }
 }
 
@@ -50,6 +51,10 @@ MemoryEstimate estimateIrMemory(const MemoryShape& shape, const SolverOptions& o
     const std::uint64_t r = o.instantRadiosity.proxyResolution + 1;
     m.hostBytes += r * r * r * (sizeof(Vec3f) + sizeof(Index)) + cpuGeometryBytes(shape);
   }
+  if (o.instantRadiosity.compensationRays > 0)
+  {
+    m.hostBytes += shape.vertices * (o.twoSided ? 2 : 1) * sizeof(Vec3f); // E_ind compensated
+  }
   if (stale & (1u << kVplStage))
   {
     m.hostBytes += std::uint64_t(pathCount(o)) * (o.bounces + 1) * (sizeof(Vpl) + sizeof(int)) * 2;
@@ -78,8 +83,10 @@ public:
         geometry, 3.0 },
       { "LightLinks", "LightLinkBuilds", kLights | kLightSampling | kSides, geometry, 7.0 },
       { "Gather", "GatherRuns", kSides | kMethodOptions,
-        geometry | (1u << kProxyStage) | (1u << kVplStage), 85.0 },
-      { "Finish", "", kEverything, geometry | (1u << kGatherStage) | (1u << kLightLinkStage), 1.0 },
+        geometry | (1u << kProxyStage) | (1u << kVplStage), 80.0 },
+      // The clamp's compensation (part "Compensation") reads the direct and the gathered
+      // light, so it is here.
+      { "Finish", "", kEverything, geometry | (1u << kGatherStage) | (1u << kLightLinkStage), 6.0 },
     };
     return table;
   }
@@ -100,6 +107,11 @@ public:
     {
       throw Error("The VPL interleaving must be between 1 (off) and 64 subsets; got " +
         std::to_string(ir.interleave) + ".");
+    }
+    if (ir.compensationRays > 1024 || (ir.compensationRays > 0 && !isPerfectSquare(ir.compensationRays)))
+    {
+      throw Error("The VPL clamp's compensation rays must be 0 (off) or a perfect square up to 1024; got " +
+        std::to_string(ir.compensationRays) + ".");
     }
     if (ir.proxyResolution < 2 || ir.proxyResolution > 4096)
     {

@@ -194,8 +194,32 @@ private:
   void finish(const StageContext& c)
   {
     // albedo and emission: uploaded by the VPL stage, which every change of them re-runs
-    done.run(c.scene, c.options, mesh, direct.direct.data(), gathered.data(), pathScene.albedo.data(),
-      c.scene.emission.empty() ? nullptr : pathScene.emission.data(), c.solution, {}, stream);
+    const Vec3f* emission = c.scene.emission.empty() ? nullptr : pathScene.emission.data();
+    const Rgba* indirect = gathered.data();
+    if (c.options.instantRadiosity.compensationRays > 0)
+    {
+      gpu::CompensationLaunch p;
+      p.mesh = mesh.bvh.view();
+      p.positions = mesh.positions.data();
+      p.normals = mesh.normals.data();
+      p.origins = mesh.origins.data();
+      p.inputs.triangles = mesh.triangles.data();
+      p.inputs.faceNormals = mesh.faceNormals.data();
+      p.inputs.albedo = pathScene.albedo.data();
+      p.inputs.emission = emission;
+      p.inputs.direct = direct.direct.data();
+      p.inputs.vertexCount = mesh.vertexCount;
+      p.inputs.twoSided = c.options.twoSided;
+      p.inputs.dmin = c.options.instantRadiosity.clampDistance * mesh.extent.diagonal;
+      p.indirect = gathered.data();
+      p.rays = c.options.instantRadiosity.compensationRays;
+      p.seed = c.options.seed;
+      compensated.resize(gathered.size());
+      gpu::compensate(p, compensated.data(), stream);
+      indirect = compensated.data();
+    }
+    done.run(c.scene, c.options, mesh, direct.direct.data(), indirect, pathScene.albedo.data(), emission,
+      c.solution, {}, stream);
     if (lightPending)
     {
       lightRays = rayCounts[kLightSlot];
@@ -226,6 +250,7 @@ private:
   gpu::DevicePaths paths;
   DeviceVpls vpls;
   GPUBuffer<Rgba> gathered;
+  GPUBuffer<Rgba> compensated; ///< gathered plus the clamp's compensation (kept: finish may re-run alone)
   GPUBuffer<unsigned long long> gatherCounter;
   GPUBuffer<Index> elementOrder, orderIds; ///< the gather's elements by subset, and scratch
   GPUBuffer<std::uint64_t> orderKeys;

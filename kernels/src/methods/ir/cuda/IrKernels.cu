@@ -54,6 +54,40 @@ __global__ void gatherKernel(GatherLaunch p, cuda::Rgba* out, unsigned long long
   atomicAdd(rays, traced);
 }
 
+__global__ void compensateKernel(CompensationLaunch p, cuda::Rgba* out)
+{
+  const CompensationInputs& c = p.inputs;
+  const Index elements = c.twoSided ? 2 * c.vertexCount : c.vertexCount;
+  const Index e = blockIdx.x * blockDim.x + threadIdx.x;
+  if (e >= elements)
+  {
+    return;
+  }
+  const Index v = e < c.vertexCount ? e : e - c.vertexCount;
+  const Vec3f n = p.normals[v] * (e < c.vertexCount ? 1.f : -1.f);
+  const Frame frame = vertexFrame(n, true, p.seed, e);
+  const Vec3f origin = elementRayOrigin(p.positions[v], n, p.origins[v]);
+  std::uint32_t k = 1;
+  while ((k + 1) * (k + 1) <= p.rays)
+  {
+    ++k;
+  }
+  const auto indirectAt = [&p](Index i) {
+    const cuda::Rgba x = p.indirect[i];
+    return Vec3f(x.r, x.g, x.b);
+  };
+  Vec3f sum(0.f);
+  for (std::uint32_t i = 0; i < p.rays; ++i)
+  {
+    const Ray ray = compensationRay(origin, frame, i, k, c.dmin);
+    Hit h;
+    bvh::traverse<false>(p.mesh, ray, h);
+    sum += compensationSample(c, ray, h, indirectAt);
+  }
+  const Vec3f total = indirectAt(e) + sum * (kPi / float(p.rays));
+  out[e] = { total.x, total.y, total.z, 0.f };
+}
+
 using cuda::gridBlocks;
 
 __global__ void subsetKeyKernel(Index vertexCount, Index elements, std::uint32_t subsets, std::uint32_t seed,
@@ -168,6 +202,17 @@ __global__ void keepKernel(const Triangle* triangles, const Index* order, const 
     kept[scanned[i]] = Triangle{ { cluster[t.v[0]], cluster[t.v[1]], cluster[t.v[2]] } };
   }
 }
+}
+
+void compensate(const CompensationLaunch& p, cuda::Rgba* out, cudaStream_t stream)
+{
+  const std::size_t elements = p.inputs.twoSided ? 2 * std::size_t(p.inputs.vertexCount) : p.inputs.vertexCount;
+  if (elements == 0 || p.rays == 0)
+  {
+    return;
+  }
+  compensateKernel<<<unsigned((elements + kThreads - 1) / kThreads), kThreads, 0, stream>>>(p, out);
+  LINKGI_CUDA_CHECK_LAUNCH("compensateKernel");
 }
 
 void gatherVpls(const GatherLaunch& p, cuda::Rgba* out, unsigned long long* rays, cudaStream_t stream)

@@ -54,6 +54,23 @@ struct GatherLaunch
   const Index* order = nullptr;
 };
 
+/// What the clamp's compensation reads on the device (compensateCpu's inputs).
+struct CompensationLaunch
+{
+  BvhView mesh;
+  const Vec3f* positions = nullptr;
+  const Vec3f* normals = nullptr;
+  const RayOrigin* origins = nullptr;
+  CompensationInputs inputs;
+  const cuda::Rgba* indirect = nullptr; ///< E_ind per element, as gathered
+  std::uint32_t rays = 0;               ///< k*k per element
+  std::uint32_t seed = 0;
+};
+
+/// out[e] = indirect[e] plus the clamp's compensation at element e (compensateCpu's sums,
+/// in the same order). One thread per element.
+void compensate(const CompensationLaunch& p, cuda::Rgba* out, cudaStream_t stream);
+
 /// The elements (both sides when twoSided) sorted by their VPL subset (vertexSubset), in
 /// element order within a subset, into `order`; `keys`, `ids` and `temp` are scratch.
 void elementsBySubset(Index vertexCount, bool twoSided, std::uint32_t subsets, std::uint32_t seed,
