@@ -250,7 +250,7 @@ private:
   gpu::DevicePaths paths;
   DeviceVpls vpls;
   GPUBuffer<Rgba> gathered;
-  GPUBuffer<Rgba> compensated; ///< gathered plus the clamp's compensation (kept: finish may re-run alone)
+  GPUBuffer<Rgba> compensated; ///< gathered plus the clamp's compensation (kept: equal sizes allocate nothing)
   GPUBuffer<unsigned long long> gatherCounter;
   GPUBuffer<Index> elementOrder, orderIds; ///< the gather's elements by subset, and scratch
   GPUBuffer<std::uint64_t> orderKeys;
