@@ -57,6 +57,10 @@ def check_keywords():
         (dict(method="photon_mapping", photons=20000, gather_rays=64, albedo=(0.5, 0.6, 0.7)),
          lambda gi: (gi.SetMethodToPhotonMapping(), gi.SetNumberOfPhotons(20000),
                      gi.SetFinalGatherRays(64), gi.SetAlbedo(0.5, 0.6, 0.7))),
+        # properties named with an acronym (VPL...) in snake case
+        (dict(method="instant_radiosity", vpls=256, vpl_clamp_distance=0.02, vpl_compensation_rays=16),
+         lambda gi: (gi.SetMethodToInstantRadiosity(), gi.SetNumberOfVPLs(256),
+                     gi.SetVPLClampDistance(0.02), gi.SetVPLCompensationRays(16))),
     ]
     for keywords, configure in cases:
         lit = lgi.illuminate(mesh, lamp, **keywords)

@@ -65,9 +65,14 @@ SETTINGS = {
 
 
 def _property(keyword):
-    """The filter property a keyword names: a short name or snake case."""
+    """The filter property a keyword names: a short name or snake case, matched without
+    regard to case so that acronyms work (vpl_clamp_distance: VPLClampDistance)."""
     if keyword in SETTINGS:
         return SETTINGS[keyword]
+    wanted = keyword.replace("_", "").lower()
+    for name in dir(vtkGlobalIlluminationFilter):
+        if name.startswith("Set") and name[3:].lower() == wanted:
+            return name[3:]
     return "".join(part[:1].upper() + part[1:] for part in keyword.split("_"))
 
 
