@@ -40,9 +40,8 @@ std::uint64_t cpuGeometryBytes(const MemoryShape& shape);
 /// smoothed E_ind and the solution's three arrays.
 std::uint64_t cpuSolutionBytes(const MemoryShape& shape, const SolverOptions& options);
 
-/// The last stage of the CPU methods that gather E_ind per element (instant radiosity,
-/// photon mapping): feature-aware smoothing when the options ask for it (the part
-/// "Smoothing"), then writeSolution.
+/// The end of every CPU method's update, from its E_ind and E_d per element: feature-aware
+/// smoothing where smoothingOn (the part "Smoothing"), then writeSolution.
 void finishSolution(const StageContext& context, const Topology& topology, std::vector<Vec3f> indirect,
   const std::vector<Vec3f>& direct);
 

@@ -145,22 +145,7 @@ private:
     {
       indirect[v] += envIrradiance[v];
     }
-    if (smoothingOn(o))
-    {
-      const auto t = std::chrono::steady_clock::now();
-      const float cosFeature = std::cos(o.featureAngleDegrees * (kPi / 180.f));
-      indirect = smoothFeatureAware(indirect, geometry.topology, s.normals, Elements{ nv, false }, cosFeature);
-      c.part("Smoothing", msSince(t));
-    }
-    Solution& sol = c.solution;
-    sol.direct = directNow.irradiance;
-    sol.radiance.resize(nv);
-    for (std::size_t v = 0; v < nv; ++v)
-    {
-      const Vec3f le = s.emission.empty() ? Vec3f(0.f) : s.emission[v];
-      sol.radiance[v] = outgoingRadiance(inputs.albedo[v], sol.direct[v], indirect[v], le);
-    }
-    sol.indirect = std::move(indirect);
+    finishSolution(c, geometry.topology, std::move(indirect), directNow.irradiance); // one-sided
   }
 
   CpuGeometry geometry;

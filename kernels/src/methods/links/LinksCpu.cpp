@@ -117,7 +117,7 @@ private:
     const LinkStructure& linksNow = linksStaged ? nextLinks : links;
     const DirectLightResult& directNow = directStaged ? nextDirect : direct;
     const Elements elements{ s.vertexCount(), o.twoSided };
-    const std::size_t ne = elements.count(), nv = s.vertexCount();
+    const std::size_t ne = elements.count();
 
     const std::vector<Vec3f> texels = environmentTexelRadiance(s.environment);
     std::vector<Vec3f> envIrradiance(ne);
@@ -147,23 +147,7 @@ private:
     {
       indirect[e] += envIrradiance[e];
     }
-    if (smoothingOn(o))
-    {
-      const auto t = std::chrono::steady_clock::now();
-      const float cosFeature = std::cos(o.featureAngleDegrees * (kPi / 180.f));
-      indirect = smoothFeatureAware(indirect, geometry.topology, s.normals, elements, cosFeature);
-      c.part("Smoothing", msSince(t));
-    }
-
-    Solution& sol = c.solution;
-    sol.direct = directNow.irradiance;
-    sol.radiance.resize(ne);
-    for (std::size_t e = 0; e < ne; ++e)
-    {
-      const Vec3f le = (e < nv && !s.emission.empty()) ? s.emission[e] : Vec3f(0.f);
-      sol.radiance[e] = outgoingRadiance(inputs.albedo[e], sol.direct[e], indirect[e], le);
-    }
-    sol.indirect = std::move(indirect);
+    finishSolution(c, geometry.topology, std::move(indirect), directNow.irradiance);
   }
 
   CpuGeometry geometry;
