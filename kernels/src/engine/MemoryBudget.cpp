@@ -1,6 +1,7 @@
 #include "engine/MemoryBudget.h"
 
 #include "linkgi/Error.h"
+#include "shared/Sampling.h"
 
 #include <cmath>
 #include <limits>
@@ -20,7 +21,7 @@ MemoryVerdict judgeMemory(const MethodSpec& spec, const MemoryShape& shape,
   }
   // Fewer rays: the largest perfect square below the request whose estimate fits.
   SolverOptions fewer = options;
-  for (auto k = std::uint32_t(std::lround(std::sqrt(double(options.raysPerVertex)))); k-- > 1;)
+  for (std::uint32_t k = squareSide(options.raysPerVertex); k-- > 1;)
   {
     fewer.raysPerVertex = k * k;
     const std::uint64_t bytes = spec.estimateMemory(shape, fewer, stale, cuda).hostBytes;

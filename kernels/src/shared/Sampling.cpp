@@ -8,9 +8,14 @@
 
 namespace linkgi
 {
+std::uint32_t squareSide(std::uint32_t n)
+{
+  return static_cast<std::uint32_t>(std::lround(std::sqrt(double(n))));
+}
+
 bool isPerfectSquare(std::uint32_t n)
 {
-  const auto k = static_cast<std::uint32_t>(std::lround(std::sqrt(double(n))));
+  const std::uint32_t k = squareSide(n);
   return n > 0 && k * k == n;
 }
 
@@ -21,7 +26,7 @@ std::vector<Vec3f> makeDirectionSet(std::uint32_t n)
     throw Error("The number of rays per vertex must be a perfect square (k*k, e.g. 64, 256, "
                 "1024); got " + std::to_string(n) + ".");
   }
-  const auto k = static_cast<std::uint32_t>(std::lround(std::sqrt(double(n))));
+  const std::uint32_t k = squareSide(n);
   std::vector<Vec3f> dirs;
   dirs.reserve(n);
   for (std::uint32_t by = 0; by < k; by += 4)

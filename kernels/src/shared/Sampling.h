@@ -49,6 +49,8 @@ std::vector<Vec3f> makeDirectionSet(std::uint32_t n);
 
 /// True if n = k*k for an integer k >= 1.
 bool isPerfectSquare(std::uint32_t n);
+/// k for n = k*k (the nearest integer to sqrt(n)).
+std::uint32_t squareSide(std::uint32_t n);
 
 /// Well-mixed 32-bit hash (lowbias32), for per-vertex random numbers that do not depend on
 /// the thread schedule.

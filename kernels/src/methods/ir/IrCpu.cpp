@@ -86,7 +86,7 @@ std::vector<Vec3f> compensateCpu(const Scene& s, const std::vector<RayOrigin>& o
   std::uint32_t rays, std::uint32_t seed)
 {
   const Elements elements{ s.vertexCount(), inputs.twoSided };
-  const auto k = std::uint32_t(std::lround(std::sqrt(double(rays))));
+  const std::uint32_t k = squareSide(rays);
   std::vector<Vec3f> out(indirect);
   parallelFor("Compensation", elements.count(), 64, [&](std::size_t first, std::size_t last) {
     std::vector<Ray> batch(rays);

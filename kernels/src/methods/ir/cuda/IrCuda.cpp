@@ -212,7 +212,7 @@ private:
       p.inputs.twoSided = c.options.twoSided;
       p.inputs.dmin = c.options.instantRadiosity.clampDistance * mesh.extent.diagonal;
       p.indirect = gathered.data();
-      p.rays = c.options.instantRadiosity.compensationRays;
+      p.side = squareSide(c.options.instantRadiosity.compensationRays);
       p.seed = c.options.seed;
       compensated.resize(gathered.size());
       gpu::compensate(p, compensated.data(), stream);

@@ -67,24 +67,20 @@ __global__ void compensateKernel(CompensationLaunch p, cuda::Rgba* out)
   const Vec3f n = p.normals[v] * (e < c.vertexCount ? 1.f : -1.f);
   const Frame frame = vertexFrame(n, true, p.seed, e);
   const Vec3f origin = elementRayOrigin(p.positions[v], n, p.origins[v]);
-  std::uint32_t k = 1;
-  while ((k + 1) * (k + 1) <= p.rays)
-  {
-    ++k;
-  }
+  const std::uint32_t k = p.side, rays = k * k;
   const auto indirectAt = [&p](Index i) {
     const cuda::Rgba x = p.indirect[i];
     return Vec3f(x.r, x.g, x.b);
   };
   Vec3f sum(0.f);
-  for (std::uint32_t i = 0; i < p.rays; ++i)
+  for (std::uint32_t i = 0; i < rays; ++i)
   {
     const Ray ray = compensationRay(origin, frame, i, k, c.dmin);
     Hit h;
     bvh::traverse<false>(p.mesh, ray, h);
     sum += compensationSample(c, ray, h, indirectAt);
   }
-  const Vec3f total = indirectAt(e) + sum * (kPi / float(p.rays));
+  const Vec3f total = indirectAt(e) + sum * (kPi / float(rays));
   out[e] = { total.x, total.y, total.z, 0.f };
 }
 
@@ -207,7 +203,7 @@ __global__ void keepKernel(const Triangle* triangles, const Index* order, const 
 void compensate(const CompensationLaunch& p, cuda::Rgba* out, cudaStream_t stream)
 {
   const std::size_t elements = p.inputs.twoSided ? 2 * std::size_t(p.inputs.vertexCount) : p.inputs.vertexCount;
-  if (elements == 0 || p.rays == 0)
+  if (elements == 0 || p.side == 0)
   {
     return;
   }

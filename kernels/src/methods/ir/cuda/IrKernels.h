@@ -63,7 +63,7 @@ struct CompensationLaunch
   const RayOrigin* origins = nullptr;
   CompensationInputs inputs;
   const cuda::Rgba* indirect = nullptr; ///< E_ind per element, as gathered
-  std::uint32_t rays = 0;               ///< k*k per element
+  std::uint32_t side = 0;               ///< k: k*k rays per element
   std::uint32_t seed = 0;
 };
 
