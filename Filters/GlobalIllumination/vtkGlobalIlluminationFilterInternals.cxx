@@ -40,6 +40,48 @@ linkgi::Vec3f ToVec3f(const double v[3])
   return { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
 }
 
+// The colour array `name` of `input` as GatherColors reads it, or null.
+vtkObject* ColorArray(vtkPolyData* input, const char* name, int association)
+{
+  if (!name || !*name)
+  {
+    return nullptr;
+  }
+  return association == vtkDataObject::FIELD_ASSOCIATION_CELLS ? input->GetCellData()->GetAbstractArray(name)
+                                                               : input->GetPointData()->GetAbstractArray(name);
+}
+
+}
+
+//------------------------------------------------------------------------------
+void vtkGlobalIlluminationSourceKey::Set(std::initializer_list<vtkObject*> objects)
+{
+  this->Objects.assign(objects.begin(), objects.end());
+  this->Times.clear();
+  for (vtkObject* object : objects)
+  {
+    this->Times.push_back(object ? object->GetMTime() : 0);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkGlobalIlluminationSourceKey::Matches(std::initializer_list<vtkObject*> objects) const
+{
+  if (objects.size() != this->Objects.size())
+  {
+    return false;
+  }
+  std::size_t i = 0;
+  for (vtkObject* object : objects)
+  {
+    // A dead object's weak pointer is null: it matches no live one.
+    if (this->Objects[i].GetPointer() != object || (object ? object->GetMTime() : 0) != this->Times[i])
+    {
+      return false;
+    }
+    ++i;
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -47,19 +89,26 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
   vtkGlobalIlluminationFilter* self, vtkPolyData* input)
 {
   const bool computeNormals = self->ComputeNormals != 0;
-  const bool stale = !this->MeshValid || this->MeshInput != input ||
-    this->MeshInputTime != input->GetMTime() || this->MeshComputeNormals != computeNormals ||
+  // What BuildMesh reads: the points, the polygons and strips (with their storage: VTK 9.1's
+  // cell arrays do not include it in their own modification time), the verts and lines
+  // (their counts number the cell ids) and the point normals.
+  vtkCellArray* polys = input->GetPolys();
+  vtkCellArray* strips = input->GetStrips();
+  const std::initializer_list<vtkObject*> geometry = { input->GetPoints(), polys,
+    polys->GetOffsetsArray(), polys->GetConnectivityArray(), strips, strips->GetOffsetsArray(),
+    strips->GetConnectivityArray(), input->GetVerts(), input->GetLines(),
+    input->GetPointData()->GetNormals() };
+  const bool stale = !this->MeshSource.Matches(geometry) ||
+    this->MeshComputeNormals != computeNormals ||
     (this->Mesh.NormalsComputed && this->MeshFeatureAngle != self->FeatureAngle);
   if (stale)
   {
-    this->MeshValid = false;
+    this->MeshSource.Clear();
     this->Mesh = Builder::BuildMesh(input, computeNormals, self->FeatureAngle);
     ++this->MeshVersion;
-    this->MeshInput = input;
-    this->MeshInputTime = input->GetMTime();
+    this->MeshSource.Set(geometry);
     this->MeshComputeNormals = computeNormals;
     this->MeshFeatureAngle = self->FeatureAngle;
-    this->MeshValid = true;
   }
 
   linkgi::Scene& scene = this->Mesh.Scene;
@@ -70,7 +119,12 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
     name(self->AlbedoArrayName) + '|' + std::to_string(self->AlbedoArrayAssociation) + '|' +
     albedo + '|' + name(self->EmissionArrayName) + '|' +
     std::to_string(self->EmissionArrayAssociation);
-  if (colorsKey != this->ColorsKey) // the mesh (its input) or the colour settings changed
+  const std::initializer_list<vtkObject*> colorArrays = {
+    ColorArray(input, self->AlbedoArrayName, self->AlbedoArrayAssociation),
+    ColorArray(input, self->EmissionArrayName, self->EmissionArrayAssociation)
+  };
+  // The mesh (its input), the colour settings or the colour arrays changed.
+  if (colorsKey != this->ColorsKey || !this->ColorsSource.Matches(colorArrays))
   {
     this->ColorsKey.clear();
     scene.albedo = Builder::GatherColors(input, this->Mesh, self->AlbedoArrayName,
@@ -82,6 +136,7 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
         self->EmissionArrayAssociation, linkgi::Vec3f(0.f), "emission");
     }
     this->ColorsKey = colorsKey;
+    this->ColorsSource.Set(colorArrays);
   }
   scene.triangleMaterials.clear();
   scene.triangleIor.clear();

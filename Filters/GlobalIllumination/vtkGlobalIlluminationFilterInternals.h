@@ -14,13 +14,29 @@
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkWeakPointer.h"
 
 #include "linkgi/AsyncSolver.h"
 #include "linkgi/Resolution.h"
 
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
+
+/// The objects something was made from, each at its modification time: it matches while
+/// each is the same live object, unmodified. Weak, so it keeps none of them alive.
+class vtkGlobalIlluminationSourceKey
+{
+public:
+  void Set(std::initializer_list<vtkObject*> objects);
+  bool Matches(std::initializer_list<vtkObject*> objects) const;
+  void Clear() { this->Objects.clear(); }
+
+private:
+  std::vector<vtkWeakPointer<vtkObject>> Objects;
+  std::vector<vtkMTimeType> Times;
+};
 
 struct vtkGlobalIlluminationFilter::vtkInternals
 {
@@ -56,18 +72,19 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   /// This process's rows of the global surface for the engine (Options), null alone.
   std::shared_ptr<const linkgi::Partition> ActivePartition;
 
-  // The triangle mesh and what it was built from; rebuilt only when one of these changes,
-  // so a light-only update costs no triangulation.
+  // The triangle mesh and what it was built from (the input's points, cells and normals,
+  // not the input object: a shallow copy with a new colour array, as a new colour map
+  // makes, is the same surface); rebuilt only when one of these changes, so a light-only
+  // or colour-only update costs no triangulation.
   vtkGlobalIlluminationSceneBuilder::Mesh Mesh;
   std::uint64_t MeshVersion = 0; ///< counts rebuilds of Mesh
-  bool MeshValid = false;
-  const vtkPolyData* MeshInput = nullptr;
-  vtkMTimeType MeshInputTime = 0;
+  vtkGlobalIlluminationSourceKey MeshSource;
   bool MeshComputeNormals = false;
   double MeshFeatureAngle = 0.0;
   // What Mesh.Scene's albedo and emission were gathered with: a render loop updates at every
   // light move, and gathering them again each time costs the render thread.
   std::string ColorsKey;
+  vtkGlobalIlluminationSourceKey ColorsSource; ///< the albedo and emission arrays
 
   const linkgi::Scene& UpdateScene(vtkGlobalIlluminationFilter* self, vtkPolyData* input);
   linkgi::SolverOptions Options(vtkGlobalIlluminationFilter* self);
