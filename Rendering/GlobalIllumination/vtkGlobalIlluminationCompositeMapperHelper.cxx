@@ -78,11 +78,8 @@ void vtkGlobalIlluminationCompositeMapperHelper::RenderPieceDraw(vtkRenderer* re
 {
   if (!ren->GetSelector())
   {
-    // Blocks are appended into one position buffer at every build, so the build time is
-    // as fine a version as any here.
     this->Core->Prepare(ren, act,
-      vtkGlobalIlluminationMapperCore::MakeCasters(
-        this->VBOs, this->Primitives, act, this->VBOBuildTime.GetMTime()),
+      vtkGlobalIlluminationMapperCore::MakeCasters(this->VBOs, this->Primitives, act, this->ShadedBlocks),
       this->ShadedBlocks);
   }
   this->Superclass::RenderPieceDraw(ren, act);

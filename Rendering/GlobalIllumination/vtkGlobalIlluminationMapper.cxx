@@ -83,15 +83,9 @@ void vtkGlobalIlluminationMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* ac
 {
   if (!ren->GetSelector())
   {
-    // The triangles' version: that of the input's cells (the VBO build time would also
-    // move with every new irradiance array).
-    vtkPolyData* input = this->CurrentInput;
-    const vtkMTimeType cells = input
-      ? std::max(input->GetPolys()->GetMTime(), input->GetStrips()->GetMTime())
-      : this->VBOBuildTime.GetMTime();
+    const std::vector<vtkPolyData*> drawn{ this->CurrentInput };
     this->Core->Prepare(ren, act,
-      vtkGlobalIlluminationMapperCore::MakeCasters(this->VBOs, this->Primitives, act, cells),
-      { input });
+      vtkGlobalIlluminationMapperCore::MakeCasters(this->VBOs, this->Primitives, act, drawn), drawn);
   }
   this->Superclass::RenderPieceDraw(ren, act);
   this->Core->FinishDraw();

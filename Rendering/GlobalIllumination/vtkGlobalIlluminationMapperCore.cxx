@@ -2,6 +2,7 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkGlobalIlluminationGlobalCasters.h"
@@ -32,6 +33,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 namespace
@@ -83,6 +85,40 @@ void MoveOrigin(std::array<double, 16>& m, const std::array<double, 3>& origin)
   }
 }
 
+/// One number for the drawn blocks' positions and triangles: a hash of each block's
+/// points and cells (the objects and their modification times, the cells' storage too:
+/// VTK 9.1's cell arrays leave it out of their own). Not the buffers' upload time: the
+/// same surface handed over as a new data object (a new solution's arrays beside the same
+/// points and cells) is uploaded again, and its maps would be rendered again for nothing.
+vtkMTimeType CastersVersion(const std::vector<vtkPolyData*>& drawn)
+{
+  std::uint64_t hash = 0;
+  const auto mix = [&hash](std::uint64_t value)
+  {
+    // splitmix64's finalizer over the running hash and the value
+    std::uint64_t z = hash ^ (value + 0x9e3779b97f4a7c15ull + (hash << 6) + (hash >> 2));
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    hash = z ^ (z >> 31);
+  };
+  const auto object = [&mix](vtkObject* o)
+  {
+    mix(reinterpret_cast<std::uintptr_t>(o));
+    mix(o ? o->GetMTime() : 0);
+  };
+  for (vtkPolyData* poly : drawn)
+  {
+    object(poly ? poly->GetPoints() : nullptr);
+    for (vtkCellArray* cells : { poly ? poly->GetPolys() : nullptr, poly ? poly->GetStrips() : nullptr })
+    {
+      object(cells);
+      object(cells ? cells->GetOffsetsArray() : nullptr);
+      object(cells ? cells->GetConnectivityArray() : nullptr);
+    }
+  }
+  return hash;
+}
+
 /// The centre of `bounds`, or the origin for empty bounds.
 std::array<double, 3> Centre(const std::array<double, 6>& bounds)
 {
@@ -118,7 +154,7 @@ bool vtkGlobalIlluminationMapperCore::Shades(
 //------------------------------------------------------------------------------
 ShadowMaps::Casters vtkGlobalIlluminationMapperCore::MakeCasters(
   vtkOpenGLVertexBufferObjectGroup* vbos, vtkOpenGLHelper* primitives, vtkActor* actor,
-  vtkMTimeType version)
+  const std::vector<vtkPolyData*>& drawn)
 {
   ShadowMaps::Casters casters;
   vtkOpenGLVertexBufferObject* positions = vbos->GetVBO("vertexMC");
@@ -129,9 +165,7 @@ ShadowMaps::Casters vtkGlobalIlluminationMapperCore::MakeCasters(
   }
   casters.ModelToWorld = ModelToWorld(positions, actor);
   actor->GetBounds(casters.WorldBounds.data());
-  // The positions' upload, not the VBO group's build time, which also moves when only
-  // point data (a new indirect irradiance) changed; `version` covers the triangles.
-  casters.Version = std::max<vtkMTimeType>(version, positions->GetUploadTime().GetMTime());
+  casters.Version = CastersVersion(drawn);
   casters.Draw = [vbos, primitives](vtkShaderProgram* program, vtkOpenGLVertexArrayObject* vao)
   {
     vtkOpenGLVertexBufferObject* vbo = vbos->GetVBO("vertexMC");

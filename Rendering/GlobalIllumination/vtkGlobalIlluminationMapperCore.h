@@ -144,12 +144,12 @@ public:
     vtkOpenGLVertexBufferObjectGroup* vbos, const std::vector<vtkPolyData*>& polys, bool fill) const;
   ///@}
 
-  /// The shadow casters drawn from a mapper's buffers (its triangles and strips).
-  /// `version` must change whenever the triangles do; the positions' own upload time is
-  /// added here, so new point data alone never re-renders the shadow maps.
+  /// The shadow casters drawn from a mapper's buffers (its triangles and strips), which
+  /// hold `drawn` in order. Their version follows the blocks' points and cells only, so
+  /// new point data alone (a new indirect irradiance) never re-renders the shadow maps.
   static vtkGlobalIlluminationShadowMaps::Casters MakeCasters(
     vtkOpenGLVertexBufferObjectGroup* vbos, vtkOpenGLHelper* primitives, vtkActor* actor,
-    vtkMTimeType version);
+    const std::vector<vtkPolyData*>& drawn);
 
   /// Takes the renderer's lights and brings the shadow maps up to date, with the other
   /// processes' triangles of the shading's GlobalCasters if it has any, and the look

@@ -225,7 +225,9 @@ bool vtkGlobalIlluminationShadowMaps::Update(vtkOpenGLRenderWindow* window,
   // Everything the depth images depend on; colours and intensities are not part of it, nor
   // is where a light at the eye is.
   const bool remote = casters.Remote && !casters.Remote->empty();
-  std::vector<double> signature{ shadows ? 1.0 : 0.0, double(resolution), double(casters.Version),
+  // The version is a hash: all its 64 bits, in two exact halves.
+  std::vector<double> signature{ shadows ? 1.0 : 0.0, double(resolution),
+    double(casters.Version >> 32), double(casters.Version & 0xffffffffu),
     remote ? double(casters.RemoteVersion) : -1.0 };
   signature.insert(signature.end(), casters.ModelToWorld.begin(), casters.ModelToWorld.end());
   if (remote)

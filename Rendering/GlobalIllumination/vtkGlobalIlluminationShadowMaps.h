@@ -53,8 +53,8 @@ public:
     std::function<void(vtkShaderProgram*, vtkOpenGLVertexArrayObject*)> Draw;
     std::array<double, 16> ModelToWorld{}; ///< row-major, from the positions as drawn
     std::array<double, 6> WorldBounds{};
-    /// Changes whenever the caster positions or triangles change; nothing else (new point
-    /// colours or irradiance must not re-render the maps).
+    /// Changes whenever the caster positions or triangles change (a hash, not a time);
+    /// nothing else (new point colours or irradiance must not re-render the maps).
     vtkMTimeType Version = 0;
     /// Triangles of other processes (vtkGlobalIlluminationGlobalCasters) drawn besides
     /// Draw's: 9 floats (three corners) each, null or empty for none. WorldBounds covers

@@ -227,3 +227,33 @@ t.check(drawn and drawn[-1][0] == drawn[-1][1] and drawn[-1][1] >= 2,
         "the relink ended in its final stage, after coarse ones: %s" % drawn)
 t.check(len(drawn) >= 2 and drawn[0][0] < drawn[0][1],
         "a coarse stage was drawn before the final one: %s" % drawn)
+
+# 5. A new surface coloured by a point array, shown the GUI's way (Wait = Never): it is drawn
+# first with no indirect light, then with each stage's solution, and its colour map is
+# rescaled on the first render (its albedo comes anew); each is a new data object beside
+# the same points and cells, and its shadow maps are rendered once for all of them.
+Hide(scene, view)
+sphere = Sphere(Center=[0, 0.8, 0], Radius=0.5, ThetaResolution=100, PhiResolution=100)
+surface = Elevation(Input=sphere, LowPoint=[0, 0.3, 0], HighPoint=[0, 1.3, 0])
+shown = Show(surface, view)
+ColorBy(shown, ("POINTS", "Elevation"))
+shown.Representation = "Global Illumination"
+shown.GlobalIlluminationWait = "Never"
+shown.GlobalIlluminationProgressive = 1
+shown.GlobalIlluminationFirstStageSeconds = 0.01
+Render(view)
+for _ in range(12000):
+    Render(view)
+    now = statistics(shown)
+    if now["ShownRequest"] == now["NewestRequest"] and now["ShownStages"] >= 1:
+        shown.SMProxy.UpdatePropertyInformation()
+        if (shown.SMProxy.GetProperty("GlobalIlluminationShownStage").GetElement(0) ==
+                now["ShownStages"]):
+            break
+    time.sleep(0.01)
+now = statistics(shown)
+t.check(now["ShownRequest"] == now["NewestRequest"],
+        "the new surface's final solution is drawn: %s" % now)
+t.check(now["ShadowMapRenders"] == 1,
+        "its shadow maps were rendered once for all its solutions (%d times, %d stages)"
+        % (now["ShadowMapRenders"], now["ShownStages"]))
