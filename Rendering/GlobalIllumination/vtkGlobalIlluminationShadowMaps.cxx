@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace
 {
@@ -332,15 +333,10 @@ void vtkGlobalIlluminationShadowMaps::Render(
   state->vtkglDisable(GL_CULL_FACE); // open surfaces cast shadows from both sides
   state->vtkglClearDepth(1.0);
 
-  vtkShaderProgram* program = lights.empty()
-    ? nullptr
-    : window->GetShaderCache()->ReadyShaderProgram(
-        vtkGlobalIlluminationShadowVS, vtkGlobalIlluminationShadowFS, "");
-  vtkNew<vtkOpenGLVertexArrayObject> vao;
   float modelToWorld[16], remoteToWorld[16];
   ToColumnMajor(casters.ModelToWorld, modelToWorld);
   ToColumnMajor(casters.RemoteToWorld, remoteToWorld);
-  const bool remote = program && casters.Remote && !casters.Remote->empty();
+  const bool remote = !lights.empty() && casters.Remote && !casters.Remote->empty();
   if (remote && this->RemoteUploaded != casters.RemoteVersion)
   {
     // Uploaded once per gather, not per render of the maps.
@@ -348,16 +344,17 @@ void vtkGlobalIlluminationShadowMaps::Render(
     this->RemoteUploaded = casters.RemoteVersion;
     this->RemoteVertices = static_cast<int>(casters.Remote->size() / 3);
   }
-  if (program)
-  {
-    vao->Bind();
-  }
   for (int layer = 0; layer < this->Layers; ++layer)
   {
     glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, this->TextureHandle, 0, layer);
     state->vtkglClear(GL_DEPTH_BUFFER_BIT);
   }
-  for (std::size_t i = 0; program && i < lights.size(); ++i)
+  // Two programs, each with its vertex array: the radial depth (cube and spot maps) and the
+  // projection's own (directional maps).
+  std::string radialFS = vtkGlobalIlluminationShadowFS, planarFS = vtkGlobalIlluminationShadowFS;
+  vtkShaderProgram::Substitute(radialFS, "//VTK::ShadowDepth::Dec", "#define giRadial");
+  vtkNew<vtkOpenGLVertexArrayObject> radialVao, planarVao;
+  for (std::size_t i = 0; i < lights.size(); ++i)
   {
     const Light& light = lights[i];
     const Map& map = this->Maps[i];
@@ -365,11 +362,21 @@ void vtkGlobalIlluminationShadowMaps::Render(
     {
       continue;
     }
-    program->SetUniform3f("giLightPosition", light.Position.data());
-    program->SetUniform3f("giLightDirection", light.Direction.data());
-    program->SetUniformi("giRadial", map.Kind != 3);
-    const float depthMap[2] = { float(map.DepthMap[0]), float(map.DepthMap[1]) };
-    program->SetUniform2f("giDepthMap", depthMap);
+    const bool radial = map.Kind != 3;
+    vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
+      vtkGlobalIlluminationShadowVS, radial ? radialFS.c_str() : planarFS.c_str(), "");
+    if (!program)
+    {
+      continue; // the shader cache has reported why
+    }
+    vtkOpenGLVertexArrayObject* vao = radial ? radialVao.GetPointer() : planarVao.GetPointer();
+    vao->Bind();
+    if (radial)
+    {
+      program->SetUniform3f("giLightPosition", light.Position.data());
+      const float depthMap[2] = { float(map.DepthMap[0]), float(map.DepthMap[1]) };
+      program->SetUniform2f("giDepthMap", depthMap);
+    }
     const int faces = map.Kind == 1 ? 6 : 1;
     for (int face = 0; face < faces; ++face)
     {
@@ -395,9 +402,6 @@ void vtkGlobalIlluminationShadowMaps::Render(
         glDrawArrays(GL_TRIANGLES, 0, this->RemoteVertices);
       }
     }
-  }
-  if (program)
-  {
     vao->Release();
   }
   glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, 0, 0, 0);
