@@ -17,6 +17,12 @@
 #include <thread>
 #include <vector>
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 using namespace linkgi;
 using namespace linkgi::engine;
 
@@ -328,6 +334,38 @@ TEST(TestProgressive, ANewRequestDropsTheStagesLeftOfTheOldOne)
     EXPECT_TRUE(b.request == a.request || a.final() || b.stage == 1) << "a newer request starts at its first stage";
   }
 }
+
+#ifdef __linux__
+// The first coarse stage, short and what the user waits for, runs at the priority of the
+// thread that made the solver (the render loop's), the final's long work at nice 10. The
+// publish callbacks run on the update's thread, so they read its priority stage by stage.
+TEST(TestProgressive, TheFirstStageRunsAtTheCallersPriorityTheFinalAtNice10)
+{
+  const int caller = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+  if (caller >= 10)
+  {
+    GTEST_SKIP() << "this thread runs at nice " << caller << ": both priorities are nice 10";
+  }
+  std::mutex mutex;
+  std::vector<std::pair<std::uint32_t, int>> seen; // (stage, nice) at each publication
+  AsyncSolver::forgetMeasurements(); // a first update: it has a coarse stage
+  AsyncSolver async(1);
+  async.setProgressive(true);
+  async.setFirstStageSeconds(0.01);
+  async.setOnPublish([&](std::uint64_t) {
+    const int nice = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+    std::lock_guard<std::mutex> lock(mutex);
+    seen.emplace_back(async.latest()->stage, nice);
+  });
+  const std::uint64_t id = async.request(test::roomWithBlock(), cpuOptions(Method::Links));
+  ASSERT_TRUE(async.wait(id, 120.0)) << async.lastError();
+  std::lock_guard<std::mutex> lock(mutex);
+  ASSERT_GE(seen.size(), 2u);
+  EXPECT_EQ(seen.front().first, 1u);
+  EXPECT_EQ(seen.front().second, caller) << "the first coarse stage at the caller's priority";
+  EXPECT_EQ(seen.back().second, 10) << "the final stage at nice 10";
+}
+#endif
 
 TEST(TestProgressive, OffPublishesFinalsOnly)
 {

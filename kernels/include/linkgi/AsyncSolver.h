@@ -41,7 +41,9 @@ struct AsyncStage
 /// update times old) and only cancel() aborts it.
 ///
 /// Sharing the machine with the render loop (Linux): each update runs on a thread of its own
-/// at nice 10. Under continuous change (a request less than a second after the previous one:
+/// at nice 10, except a progressive update's first coarse stage, which runs at the priority
+/// of the thread that made the solver (the render loop's): it is short (setFirstStageSeconds)
+/// and what the user waits for. Under continuous change (a request less than a second after the previous one:
 /// an orbit with a camera-following light, a dragged light) the update runs in the idle
 /// scheduling class (SCHED_IDLE) instead, so every frame the render loop draws preempts it at
 /// once; on a two-core machine that is what keeps an orbit's frame time close to one without

@@ -75,7 +75,9 @@ struct AsyncSolver::Impl
 
   void run();
   bool solveOnThread(Request& request, bool idle);
-  void solve(Request& request);
+  /// `lowerLater`: the thread still runs at its creator's priority, and lowers itself to
+  /// nice 10 after the first coarse stage (or before the first stage, if that is the final).
+  void solve(Request& request, bool lowerLater);
   std::vector<SolverOptions> plan(const Request& request);
   /// Publishes stage `stage` of `stages` of `request`; the final one also leaves the worker
   /// idle with it, and records its times, with those of the stages it left to `coarse` (the
@@ -241,7 +243,8 @@ void AsyncSolver::Impl::run()
 {
   // This thread takes the requests and watches the update threads; each update runs on a
   // thread of its own (solveOnThread), at the priority of its own (see the class comment).
-  engine::lowerPriority(false);
+  // It keeps its creator's priority (it only waits), which its update threads inherit: a
+  // thread may lower its own priority but, unprivileged, never raise it again.
   engine::nameThread("linkgi-watch");
   for (;;)
   {
@@ -279,13 +282,13 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
     starved = false;
     idleClass = false;
   }
-  const auto update = [this, &request](bool inIdleClass) {
+  const auto update = [this, &request](bool inIdleClass, bool lowerLater) {
     {
       std::lock_guard<std::mutex> lock(mutex);
       idleClass = inIdleClass;
       updateTid = engine::threadId();
     }
-    solve(request);
+    solve(request, lowerLater);
     {
       std::lock_guard<std::mutex> lock(mutex);
       solved = true;
@@ -297,14 +300,17 @@ bool AsyncSolver::Impl::solveOnThread(Request& request, bool idle)
   try
   {
     thread = std::thread([&update, idle] {
-      const bool inIdleClass = engine::lowerPriority(idle);
+      // Under continuous change the idle class from the start; otherwise solve() lowers
+      // the thread once its first coarse stage, which the user waits for, is published.
+      const bool inIdleClass = idle && engine::lowerPriority(true);
       engine::nameThread("linkgi-async");
-      update(inIdleClass);
+      update(inIdleClass, !idle);
     });
   }
   catch (const std::system_error&) // no thread to be had: solve here, at nice 10
   {
-    update(false);
+    engine::lowerPriority(false);
+    update(false, false);
     return false;
   }
   // An idle-class update gets no CPU while anything else wants it. That is the point while
@@ -386,7 +392,7 @@ std::vector<SolverOptions> AsyncSolver::Impl::plan(const Request& request)
   return engine::planPreviews(spec, elements, options, finalSeconds, settings);
 }
 
-void AsyncSolver::Impl::solve(Request& request)
+void AsyncSolver::Impl::solve(Request& request, bool lowerLater)
 {
   // The update stops at its next progress check after cancel() or the destructor, and, with
   // setAbortRunning(true), once a newer request is waiting, or once it starved.
@@ -411,6 +417,15 @@ void AsyncSolver::Impl::solve(Request& request)
         }
         progress = 0.0;
         stage = AsyncStage{ s, stages };
+      }
+      // A first coarse stage runs at the priority of the thread that asked for the update
+      // (the render loop's): it is short (firstStageSeconds of work) and what the user waits
+      // for, and at nice 10 a render loop drawing meanwhile left it a tenth of a core. The
+      // rest, the final's long work, runs at nice 10 beside the render loop.
+      if (lowerLater && !(s == 1 && s < stages))
+      {
+        engine::lowerPriority(false);
+        lowerLater = false;
       }
       if (s == stages)
       {
