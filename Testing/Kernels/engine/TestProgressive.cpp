@@ -359,6 +359,16 @@ TEST(TestProgressive, TheFirstStageRunsAtTheCallersPriorityTheFinalAtNice10)
   });
   const std::uint64_t id = async.request(test::roomWithBlock(), cpuOptions(Method::Links));
   ASSERT_TRUE(async.wait(id, 120.0)) << async.lastError();
+  const std::uint32_t stages = async.latest()->stages;
+  const auto allSeen = [&] {
+    std::lock_guard<std::mutex> lock(mutex);
+    return !seen.empty() && seen.back().first == stages;
+  };
+  // The final's callback runs just after wait() sees it published.
+  for (int i = 0; i < 1000 && !allSeen(); ++i)
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   std::lock_guard<std::mutex> lock(mutex);
   ASSERT_GE(seen.size(), 2u);
   EXPECT_EQ(seen.front().first, 1u);
