@@ -254,7 +254,7 @@ public:
   ///@{
   /**
    * PHOTON_MAPPING: clusters of vertices; only one sample vertex per cluster final-gathers,
-   * the others interpolate. At most the vertex count is used. The default value is 4096.
+   * the others interpolate. At most the vertex count is used. The default value is 12288.
    */
   vtkSetClampMacro(NumberOfClusters, int, 1, 1048576);
   vtkGetMacro(NumberOfClusters, int);
@@ -262,8 +262,8 @@ public:
 
   ///@{
   /**
-   * PHOTON_MAPPING: final-gather rays per sample vertex, a perfect square (64, 256, 1024;
-   * any other value is an error naming it). The default value is 256.
+   * PHOTON_MAPPING: final-gather rays per sample vertex, a perfect square (64, 144, 256,
+   * 1024; any other value is an error naming it). The default value is 144.
    */
   vtkSetClampMacro(FinalGatherRays, int, 1, 65536);
   vtkGetMacro(FinalGatherRays, int);

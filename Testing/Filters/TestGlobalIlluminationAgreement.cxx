@@ -2,7 +2,7 @@
 // on the models) on real scanned models (Testing/Data/Models), each standing on the floor
 // of a room lit by a lamp under its ceiling: the whole room within 10% for every method,
 // the model's own indirect light unbiased for all but instant radiosity, and the link
-// method within 10% on what a camera sees of the model.
+// method and photon mapping within 10% on what a camera sees of the model.
 #include "FilterTestUtilities.h"
 
 #include "vtkGlobalIlluminationSceneBuilder.h"
@@ -145,11 +145,11 @@ TEST(TestGlobalIlluminationAgreement, EveryMethodAgreesWithThePathTracerOnRealMo
         100.f * bias, solver.stats().msTotal, double(solver.stats().hostBytesEstimated) / (1 << 20));
       EXPECT_LT(direct, 1e-4f) << model.File << ", method " << int(method); // the same shadow rays
       EXPECT_LT(room, 0.10f) << model.File << ", method " << int(method);
-      if (method == linkgi::Method::Links)
+      if (method == linkgi::Method::Links || method == linkgi::Method::PhotonMapping)
       {
         // Within 10% where a camera sees the model (Documentation/Methods.md, real models:
-        // the others are not yet).
-        EXPECT_LT(onSeen, 0.10f) << model.File;
+        // instant radiosity and implicit visibility are not yet).
+        EXPECT_LT(onSeen, 0.10f) << model.File << ", method " << int(method);
       }
       if (method != linkgi::Method::InstantRadiosity)
       {

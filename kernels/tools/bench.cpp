@@ -153,7 +153,7 @@ Args parse(int argc, char** argv)
     else
     {
       throw Error("Usage: linkgi-bench [--scenes a,b (isosurface:N = N vertices)] [--method " + methodNames("|") + "] "
-                  "[--vpls 1024] [--interleave 1] [--compensation 64] [--proxy 0|N] [--bins 12] [--photons 262144] [--clusters 4096] [--gather-rays 256] [--proxy-vertices N [--proxy-only]] [--refine-vertices N] [--memory-budget BYTES] [--rays 256] [--bounces 3] [--repeat 3] "
+                  "[--vpls 1024] [--interleave 1] [--compensation 64] [--proxy 0|N] [--bins 12] [--photons 262144] [--clusters 12288] [--gather-rays 144] [--proxy-vertices N [--proxy-only]] [--refine-vertices N] [--memory-budget BYTES] [--rays 256] [--bounces 3] [--repeat 3] "
                   "[--backend cpu|cuda|auto] [--devices N] [--bvh-update auto|rebuild|refit] [--bvh-build gpu|sah] "
                   "[--dump DIR] [--compare DIR] [--no-bare] [--no-gather] [--progressive]; unknown argument " +
         arg + ".");
