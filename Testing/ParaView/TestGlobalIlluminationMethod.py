@@ -110,4 +110,8 @@ t.check(statistic("LinkBuilds") == 0 and statistic("MeanIndirect") > 0.0,
         "the representation ran instant radiosity: no links, light on the walls")
 display.GlobalIlluminationMethod = "Links"
 Render(view)
-t.check(statistic("LinkBuilds") == 1, "back to Links builds the links")
+# Once per stage: where the process's last link update predicts a long one (a loaded
+# machine), a progressive coarse stage builds its own links before the final's.
+t.check(statistic("LinkBuilds") >= 1 and statistic("LinkBuilds") == statistic("ShownStages"),
+        "back to Links builds the links, once per stage: %d builds, %d stages"
+        % (statistic("LinkBuilds"), statistic("ShownStages")))
