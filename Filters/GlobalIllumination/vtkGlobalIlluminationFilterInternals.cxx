@@ -4,6 +4,7 @@
 #include "vtkDataObject.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkGlobalIlluminationGeometry.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkImageData.h"
@@ -54,7 +55,7 @@ vtkObject* ColorArray(vtkPolyData* input, const char* name, int association)
 }
 
 //------------------------------------------------------------------------------
-void vtkGlobalIlluminationSourceKey::Set(std::initializer_list<vtkObject*> objects)
+void vtkGlobalIlluminationSourceKey::Set(const std::vector<vtkObject*>& objects)
 {
   this->Objects.assign(objects.begin(), objects.end());
   this->Times.clear();
@@ -65,21 +66,20 @@ void vtkGlobalIlluminationSourceKey::Set(std::initializer_list<vtkObject*> objec
 }
 
 //------------------------------------------------------------------------------
-bool vtkGlobalIlluminationSourceKey::Matches(std::initializer_list<vtkObject*> objects) const
+bool vtkGlobalIlluminationSourceKey::Matches(const std::vector<vtkObject*>& objects) const
 {
   if (objects.size() != this->Objects.size())
   {
     return false;
   }
-  std::size_t i = 0;
-  for (vtkObject* object : objects)
+  for (std::size_t i = 0; i < objects.size(); ++i)
   {
     // A dead object's weak pointer is null: it matches no live one.
+    vtkObject* object = objects[i];
     if (this->Objects[i].GetPointer() != object || (object ? object->GetMTime() : 0) != this->Times[i])
     {
       return false;
     }
-    ++i;
   }
   return true;
 }
@@ -89,15 +89,7 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
   vtkGlobalIlluminationFilter* self, vtkPolyData* input)
 {
   const bool computeNormals = self->ComputeNormals != 0;
-  // What BuildMesh reads: the points, the polygons and strips (with their storage: VTK 9.1's
-  // cell arrays do not include it in their own modification time), the verts and lines
-  // (their counts number the cell ids) and the point normals.
-  vtkCellArray* polys = input->GetPolys();
-  vtkCellArray* strips = input->GetStrips();
-  const std::initializer_list<vtkObject*> geometry = { input->GetPoints(), polys,
-    polys->GetOffsetsArray(), polys->GetConnectivityArray(), strips, strips->GetOffsetsArray(),
-    strips->GetConnectivityArray(), input->GetVerts(), input->GetLines(),
-    input->GetPointData()->GetNormals() };
+  const std::vector<vtkObject*> geometry = vtkGlobalIlluminationGeometry::Sources(input);
   const bool stale = !this->MeshSource.Matches(geometry) ||
     this->MeshComputeNormals != computeNormals ||
     (this->Mesh.NormalsComputed && this->MeshFeatureAngle != self->FeatureAngle);
@@ -119,7 +111,7 @@ const linkgi::Scene& vtkGlobalIlluminationFilter::vtkInternals::UpdateScene(
     name(self->AlbedoArrayName) + '|' + std::to_string(self->AlbedoArrayAssociation) + '|' +
     albedo + '|' + name(self->EmissionArrayName) + '|' +
     std::to_string(self->EmissionArrayAssociation);
-  const std::initializer_list<vtkObject*> colorArrays = {
+  const std::vector<vtkObject*> colorArrays = {
     ColorArray(input, self->AlbedoArrayName, self->AlbedoArrayAssociation),
     ColorArray(input, self->EmissionArrayName, self->EmissionArrayAssociation)
   };

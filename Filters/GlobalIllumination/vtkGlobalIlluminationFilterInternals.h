@@ -19,7 +19,6 @@
 #include "linkgi/AsyncSolver.h"
 #include "linkgi/Resolution.h"
 
-#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,8 +28,8 @@
 class vtkGlobalIlluminationSourceKey
 {
 public:
-  void Set(std::initializer_list<vtkObject*> objects);
-  bool Matches(std::initializer_list<vtkObject*> objects) const;
+  void Set(const std::vector<vtkObject*>& objects);
+  bool Matches(const std::vector<vtkObject*>& objects) const;
   void Clear() { this->Objects.clear(); }
 
 private:
@@ -72,10 +71,10 @@ struct vtkGlobalIlluminationFilter::vtkInternals
   /// This process's rows of the global surface for the engine (Options), null alone.
   std::shared_ptr<const linkgi::Partition> ActivePartition;
 
-  // The triangle mesh and what it was built from (the input's points, cells and normals,
-  // not the input object: a shallow copy with a new colour array, as a new colour map
-  // makes, is the same surface); rebuilt only when one of these changes, so a light-only
-  // or colour-only update costs no triangulation.
+  // The triangle mesh and what it was built from (vtkGlobalIlluminationGeometry::Sources, not the input
+  // object: a shallow copy with a new colour array, as a new colour map makes, is the same
+  // surface); rebuilt only when one of these changes, so a light-only or colour-only update
+  // costs no triangulation.
   vtkGlobalIlluminationSceneBuilder::Mesh Mesh;
   std::uint64_t MeshVersion = 0; ///< counts rebuilds of Mesh
   vtkGlobalIlluminationSourceKey MeshSource;

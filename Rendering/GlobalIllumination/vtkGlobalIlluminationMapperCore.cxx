@@ -2,9 +2,9 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
-#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
+#include "vtkGlobalIlluminationGeometry.h"
 #include "vtkGlobalIlluminationGlobalCasters.h"
 #include "vtkGlobalIlluminationLights.h"
 #include "vtkGlobalIlluminationShading.h"
@@ -85,11 +85,11 @@ void MoveOrigin(std::array<double, 16>& m, const std::array<double, 3>& origin)
   }
 }
 
-/// One number for the drawn blocks' positions and triangles: a hash of each block's
-/// points and cells (the objects and their modification times, the cells' storage too:
-/// VTK 9.1's cell arrays leave it out of their own). Not the buffers' upload time: the
-/// same surface handed over as a new data object (a new solution's arrays beside the same
-/// points and cells) is uploaded again, and its maps would be rendered again for nothing.
+/// One number for the drawn blocks' geometry: a hash of each block's
+/// vtkGlobalIlluminationGeometry::Sources and their modification times. Not the
+/// buffers' upload time: the same surface handed over as a new data object (a new
+/// solution's arrays beside the same points and cells) is uploaded again, and its maps
+/// would be rendered again for nothing.
 vtkMTimeType CastersVersion(const std::vector<vtkPolyData*>& drawn)
 {
   std::uint64_t hash = 0;
@@ -101,19 +101,13 @@ vtkMTimeType CastersVersion(const std::vector<vtkPolyData*>& drawn)
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
     hash = z ^ (z >> 31);
   };
-  const auto object = [&mix](vtkObject* o)
-  {
-    mix(reinterpret_cast<std::uintptr_t>(o));
-    mix(o ? o->GetMTime() : 0);
-  };
   for (vtkPolyData* poly : drawn)
   {
-    object(poly ? poly->GetPoints() : nullptr);
-    for (vtkCellArray* cells : { poly ? poly->GetPolys() : nullptr, poly ? poly->GetStrips() : nullptr })
+    mix(poly != nullptr); // one entry per block, a missing one too
+    for (vtkObject* o : vtkGlobalIlluminationGeometry::Sources(poly))
     {
-      object(cells);
-      object(cells ? cells->GetOffsetsArray() : nullptr);
-      object(cells ? cells->GetConnectivityArray() : nullptr);
+      mix(reinterpret_cast<std::uintptr_t>(o));
+      mix(o ? o->GetMTime() : 0);
     }
   }
   return hash;
