@@ -7,8 +7,10 @@ and when its final solution, after Apply, a new contour value and a light move.
 (with PYTHONPATH holding ParaView's Python modules, as Testing/ParaView/CMakeLists.txt sets
 it). The surface: Wavelet -extent..extent contoured at RTData 160 (extent 64: the 150k-point
 surface of the orbit benchmark), view 800x600, the light kit. The GUI's way of drawing: Wait
-For Global Illumination = Never, and a Render every 20 ms (the GUI's watcher polls every
-100 ms) until the final solution of the newest request is drawn; each update's figures are
+For Global Illumination = Never, and a render every 20 ms (the GUI's watcher polls every
+100 ms) until the final solution of the newest request is drawn; each render is the view's
+StillRender, as the GUI's, not paraview.simple's Render, which renders a session's first
+frame twice (StillRender, ResetCamera, StillRender); each update's figures are
 seconds from the change (Show for Apply) to the first Render that drew a solution of it
 with indirect light, and to the one that drew its final solution.
 
@@ -49,7 +51,7 @@ def until_final(view, display, start, timeout=600.0):
     seconds since `start` of the first and of the final solution drawn, and the stages."""
     first = None
     while time.perf_counter() - start < timeout:
-        Render(view)
+        view.StillRender()  # as the GUI renders; see the module's docstring
         request = information(display, "NewestRequest")
         if information(display, "ShownRequest") == request:
             now = time.perf_counter() - start
