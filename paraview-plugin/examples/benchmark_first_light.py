@@ -9,7 +9,7 @@ it). The surface: Wavelet -extent..extent contoured at RTData 160 (extent 64: th
 surface of the orbit benchmark), view 800x600, the light kit. The GUI's way of drawing: Wait
 For Global Illumination = Never, and a render every 20 ms (the GUI's watcher polls every
 100 ms) until the final solution of the newest request is drawn; each render is the view's
-StillRender, as the GUI's, not paraview.simple's Render, which renders a session's first
+StillRender, as the GUI's, not paraview.simple's Render, which renders a script's first
 frame twice (StillRender, ResetCamera, StillRender); each update's figures are
 seconds from the change (Show for Apply) to the first Render that drew a solution of it
 with indirect light, and to the one that drew its final solution.
