@@ -150,8 +150,12 @@ vtkDataObject* vtkGlobalIlluminationDrawnAlbedo::Apply(vtkDataObject* data, vtkM
   }
   const char* colorArray = mapper->GetArrayName();
   vtkInternals& internals = *this->Internals;
-  std::ostringstream key;
   vtkScalarsToColors* table = mapper->GetLookupTable();
+  // Built now, as the mapper builds it when it first draws: a colour transfer function's
+  // build moves its time (its internal table) but not its colours, and would otherwise
+  // remake the colours and the mapper's buffers at the second render.
+  table->Build();
+  std::ostringstream key;
   key << colorArray << '|' << cells << '|' << table << '|' << table->GetMTime() << '|'
       << mapper->GetColorMode() << '|' << mapper->GetArrayComponent() << '|' << diffuse;
   if (data != internals.ColoredFrom || data->GetMTime() != internals.ColoredTime ||

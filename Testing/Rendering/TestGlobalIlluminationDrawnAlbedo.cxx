@@ -6,6 +6,7 @@
 #include "vtkGlobalIlluminationColors.h"
 
 #include "vtkCellData.h"
+#include "vtkDiscretizableColorTransferFunction.h"
 #include "vtkDoubleArray.h"
 #include "vtkGlobalIlluminationDrawnAlbedo.h"
 #include "vtkLookupTable.h"
@@ -100,6 +101,23 @@ int TestGlobalIlluminationDrawnAlbedo(int, char*[])
   vtkDataArray* green = vtkPolyData::SafeDownCast(recolored)->GetPointData()->GetArray(mapped);
   ok &= Check(
     Near(green->GetComponent(1, 1), linear(0.5)), "a changed table is mapped again");
+
+  // A colour transfer function builds its internal table when it first maps (the mapper's
+  // draw), which moves its time but not its colours: the copy is kept (a new one would
+  // rebuild every vertex buffer of the next frame). A new colour still maps again.
+  vtkNew<vtkDiscretizableColorTransferFunction> function;
+  function->AddRGBPoint(0.0, 1.0, 0.0, 0.0);
+  function->AddRGBPoint(1.0, 0.0, 0.0, 1.0);
+  mapper->SetLookupTable(function);
+  vtkDataObject* first = drawn->Apply(plane, mapper, property, gi);
+  function->Build(); // what the mapper's first draw does
+  ok &= Check(drawn->Apply(plane, mapper, property, gi) == first,
+    "a colour transfer function built by a draw: the copy is kept");
+  function->AddRGBPoint(1.0, 0.0, 1.0, 0.0);
+  green = vtkPolyData::SafeDownCast(drawn->Apply(plane, mapper, property, gi))->GetPointData()->GetArray(mapped);
+  ok &= Check(Near(green->GetComponent(1, 1), linear(0.5)) && Near(green->GetComponent(1, 2), 0.0),
+    "a changed colour transfer function is mapped again");
+  mapper->SetLookupTable(table);
 
   // Cell scalars.
   mapper->SetScalarModeToUseCellFieldData();
