@@ -145,6 +145,10 @@ std::vector<SolverOptions> planPreviews(const MethodSpec& spec, std::size_t elem
     SolverOptions coarse = spec.coarser(options, fraction);
     // Few samples per vertex are noisy, and the final replaces this solution: smooth it.
     coarse.smoothing = true;
+    // One shadow ray per vertex and light, not five: the oversampling only smooths shadow
+    // edges, which the coarse indirect light cannot show, and it was a third of a first
+    // stage's time on a large surface. The final traces its own.
+    coarse.lightOversampling = false;
     const double coarseWork = spec.sampleWork(elements, coarse);
     if (!(coarseWork < work))
     {
