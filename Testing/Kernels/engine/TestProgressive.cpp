@@ -49,6 +49,7 @@ SolverOptions withoutSampling(SolverOptions o)
 {
   o.raysPerVertex = 0;
   o.instantRadiosity.vplCount = 0;
+  o.instantRadiosity.compensationRays = 0;
   o.implicitVisibility.binsPerSide = 0;
   o.photonMapping.photons = 0;
   o.photonMapping.gatherRays = 0;

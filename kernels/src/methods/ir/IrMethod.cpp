@@ -134,15 +134,22 @@ public:
 #endif
   double sampleWork(std::size_t elements, const SolverOptions& o) const override
   {
-    // The gather: each element meets its subset of the VPLs.
-    return double(elements) * o.instantRadiosity.vplCount / o.instantRadiosity.interleave;
+    // The gather (each element meets its subset of the VPLs, a shadow ray each) and the
+    // clamp's compensation (its rays per element).
+    const InstantRadiosityOptions& ir = o.instantRadiosity;
+    return double(elements) * (double(ir.vplCount) / ir.interleave + ir.compensationRays);
   }
   SolverOptions coarser(const SolverOptions& o, double fraction) const override
   {
-    // At least 4 VPLs in every interleaved subset.
+    // At least 4 VPLs in every interleaved subset, and 3x3 compensation rays (2x2 strata
+    // bias a mean, as the link method's rays).
     SolverOptions c = o;
-    const std::uint32_t subsets = o.instantRadiosity.interleave;
-    c.instantRadiosity.vplCount = scaledCount(o.instantRadiosity.vplCount, fraction, std::max(16u, 4 * subsets));
+    InstantRadiosityOptions& ir = c.instantRadiosity;
+    ir.vplCount = scaledCount(ir.vplCount, fraction, std::max(16u, 4 * ir.interleave));
+    if (ir.compensationRays > 0)
+    {
+      ir.compensationRays = scaledSquare(ir.compensationRays, fraction, 9);
+    }
     return c;
   }
   MemoryEstimate estimateMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale,
