@@ -8,10 +8,12 @@ import os
 import statistics
 
 RECORDS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "records")
-# The records, in the order of Engine.md's tables: the 2-core VM (finals reusing their
-# coarse stage's work, then rebuilding everything, at de1579e), one H200, the same H200
-# bench at 033b104 (where a GPU update with nothing measured still got a coarse stage).
-BENCHES = ("2026-11-27_2core-xeon-vm_15e09e3_progressive-stages-reuse/bench-cpu-2core-vm.jsonl",
+# The records, in the order of Engine.md's tables: the 2-core VM (coarse stages without
+# oversampled shadows, at 3ede7f0; with them, at 15e09e3; finals rebuilding everything, at
+# de1579e), one H200, the same H200 bench at 033b104 (where a GPU update with nothing
+# measured still got a coarse stage).
+BENCHES = ("2026-11-28_2core-xeon-vm_3ede7f0+dcdf0f3_progressive-stages/bench-cpu-2core-vm.jsonl",
+           "2026-11-27_2core-xeon-vm_15e09e3_progressive-stages-reuse/bench-cpu-2core-vm.jsonl",
            "2026-11-27_2core-xeon-vm_de1579e_progressive-stages/bench-cpu-2core-vm.jsonl",
            "2026-11-27_h200_05b5582_progressive-stages/bench-cuda-h200.jsonl",
            "2026-11-27_h200_033b104_progressive-stages/bench-cuda-h200-033b104.jsonl")
