@@ -89,24 +89,22 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
     vertexOf[point[v]] = Index(v);
   }
 
-  // Surfaces: triangles joined through shared points; edges keyed by their two points.
+  // Surfaces: triangles joined through shared points.
   UnionFind surfaces(points);
-  std::vector<std::uint64_t> edges;
-  edges.reserve(3 * nt);
   for (const Triangle& t : scene.triangles)
   {
-    for (int k = 0; k < 3; ++k)
-    {
-      const Index a = point[t.v[k]], b = point[t.v[(k + 1) % 3]];
-      surfaces.join(a, b);
-      edges.push_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b));
-    }
+    surfaces.join(point[t.v[0]], point[t.v[1]]);
+    surfaces.join(point[t.v[1]], point[t.v[2]]);
   }
-  std::sort(edges.begin(), edges.end());
+  std::vector<Index> rootOf(points);
+  for (std::size_t p = 0; p < points; ++p)
+  {
+    rootOf[p] = surfaces.find(Index(p));
+  }
   std::vector<Index> surfaceOfRoot(points, kInvalidIndex);
   std::vector<SurfaceSums> sums;
   const auto surfaceOf = [&](Index p) {
-    const Index root = surfaces.find(p);
+    const Index root = rootOf[p];
     if (surfaceOfRoot[root] == kInvalidIndex)
     {
       surfaceOfRoot[root] = Index(sums.size());
@@ -114,19 +112,48 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
     }
     return surfaceOfRoot[root];
   };
-  for (std::size_t i = 0; i < edges.size();)
+
+  // Edges (a, b), a < b, bucketed by a (a counting sort), each bucket sorted by b: the
+  // edges in (a, b) order, and an edge of one triangle borders a hole.
+  std::vector<std::size_t> first(points + 1, 0);
+  for (const Triangle& t : scene.triangles)
   {
-    std::size_t j = i + 1;
-    while (j < edges.size() && edges[j] == edges[i])
+    for (int k = 0; k < 3; ++k)
     {
-      ++j;
+      ++first[std::min(point[t.v[k]], point[t.v[(k + 1) % 3]]) + 1];
     }
-    if (j - i == 1) // an edge of one triangle: on the border of a hole
+  }
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<Index> higher(first.back());
+  {
+    std::vector<std::size_t> next(first.begin(), first.end() - 1);
+    for (const Triangle& t : scene.triangles)
     {
-      const Index a = Index(edges[i] >> 32), b = Index(edges[i] & 0xffffffffu);
-      sums[surfaceOf(a)].boundary += length(scene.positions[vertexOf[a]] - scene.positions[vertexOf[b]]);
+      for (int k = 0; k < 3; ++k)
+      {
+        const Index a = point[t.v[k]], b = point[t.v[(k + 1) % 3]];
+        higher[next[std::min(a, b)]++] = std::max(a, b);
+      }
     }
-    i = j;
+  }
+  for (std::size_t a = 0; a < points; ++a)
+  {
+    const auto begin = higher.begin() + std::ptrdiff_t(first[a]), end = higher.begin() + std::ptrdiff_t(first[a + 1]);
+    std::sort(begin, end);
+    for (auto i = begin; i != end;)
+    {
+      auto j = std::next(i);
+      while (j != end && *j == *i)
+      {
+        ++j;
+      }
+      if (j - i == 1)
+      {
+        sums[surfaceOf(Index(a))].boundary +=
+          length(scene.positions[vertexOf[a]] - scene.positions[vertexOf[*i]]);
+      }
+      i = j;
+    }
   }
   for (std::size_t v = 0; v < nv; ++v)
   {
