@@ -22,6 +22,7 @@
 
 #include "linkgi/Scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -257,9 +258,9 @@ inline std::string MethodName(vtkPolyData* pd)
   return names && names->GetNumberOfValues() > 0 ? names->GetValue(0) : "";
 }
 
-/// A filter on a sphere (radius 0.4, centre 0.5 above the floor) over a 4 x 4 floor of
-/// `floorResolution`^2 cells, lit by a point light, on the CPU.
-inline vtkSmartPointer<vtkGlobalIlluminationFilter> MakeSphereOnFloorFilter(int floorResolution = 20)
+/// A sphere (radius 0.4, centre 0.5 above the floor) over a 4 x 4 floor of
+/// `floorResolution`^2 cells, with the sources' point normals.
+inline vtkSmartPointer<vtkPolyData> MakeSphereOnFloor(int floorResolution = 20)
 {
   vtkNew<vtkSphereSource> sphere;
   sphere->SetCenter(0, 0, 0.5);
@@ -270,11 +271,45 @@ inline vtkSmartPointer<vtkGlobalIlluminationFilter> MakeSphereOnFloorFilter(int 
   append->AddInputData(MakeFloor(2, floorResolution));
   append->AddInputConnection(sphere->GetOutputPort());
   append->Update();
+  return append->GetOutput();
+}
+
+/// A filter on MakeSphereOnFloor(floorResolution), lit by a point light, on the CPU.
+inline vtkSmartPointer<vtkGlobalIlluminationFilter> MakeSphereOnFloorFilter(int floorResolution = 20)
+{
   auto filter = vtkSmartPointer<vtkGlobalIlluminationFilter>::New();
-  filter->SetInputData(append->GetOutput());
+  filter->SetInputData(MakeSphereOnFloor(floorResolution));
   const double light[3] = { 0.5, 0.3, 2.0 }, origin[3] = { 0, 0, 0 };
   filter->AddLight(MakeLight(light, origin, 4.0));
   filter->SetBackendToCPU();
   return filter;
+}
+
+/// A filter on `input` with `rays` rays per vertex, nothing else set.
+inline vtkSmartPointer<vtkGlobalIlluminationFilter> MakeFilter(vtkPolyData* input, int rays = 64)
+{
+  auto filter = vtkSmartPointer<vtkGlobalIlluminationFilter>::New();
+  filter->SetInputData(input);
+  filter->SetRaysPerVertex(rays);
+  return filter;
+}
+
+/// A directional light travelling straight down (-z) with irradiance `e`.
+inline vtkSmartPointer<vtkLight> Sun(double e = 1.0)
+{
+  const double above[3] = { 0, 0, 1 }, origin[3] = { 0, 0, 0 };
+  return MakeLight(above, origin, e, false);
+}
+
+/// Largest |a - b| over all components of two arrays, relative to b's largest value.
+inline double RelativeDifference(vtkDataArray* a, vtkDataArray* b)
+{
+  double diff = 0, scale = 1e-12;
+  for (vtkIdType i = 0; i < b->GetNumberOfValues(); ++i)
+  {
+    diff = std::max(diff, std::abs(a->GetVariantValue(i).ToDouble() - b->GetVariantValue(i).ToDouble()));
+    scale = std::max(scale, std::abs(b->GetVariantValue(i).ToDouble()));
+  }
+  return diff / scale;
 }
 }

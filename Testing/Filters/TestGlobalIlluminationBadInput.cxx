@@ -22,12 +22,6 @@ namespace
 {
 const double Origin[3] = { 0, 0, 0 };
 
-vtkSmartPointer<vtkLight> Sun()
-{
-  const double above[3] = { 0, 0, 1 };
-  return MakeLight(above, Origin, 1.0, false);
-}
-
 // A lit 4 x 4 floor filter, ready to update.
 vtkSmartPointer<vtkGlobalIlluminationFilter> FloorFilter(vtkPolyData* input = nullptr)
 {

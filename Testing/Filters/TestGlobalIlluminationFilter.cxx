@@ -1,17 +1,15 @@
-// vtkGlobalIlluminationFilter: output layout, agreement with the engine, incremental
-// updates, cell types, albedo sources, light conversion and analytic irradiance.
+// vtkGlobalIlluminationFilter: output layout, agreement with the engine, cell types, albedo
+// sources, light conversion and analytic irradiance (incremental updates:
+// TestGlobalIlluminationFilterUpdates.cxx).
 #include "FilterTestUtilities.h"
 
-#include "vtkAppendPolyData.h"
 #include "vtkCellData.h"
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkImageData.h"
 #include "vtkLightCollection.h"
-#include "vtkMath.h"
 #include "vtkRenderer.h"
-#include "vtkSphereSource.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "linkgi/Scenes.h"
@@ -27,53 +25,11 @@ using namespace linkgi_test;
 namespace
 {
 const double Origin[3] = { 0, 0, 0 };
-
-vtkSmartPointer<vtkGlobalIlluminationFilter> MakeFilter(vtkPolyData* input, int rays = 64)
-{
-  auto filter = vtkSmartPointer<vtkGlobalIlluminationFilter>::New();
-  filter->SetInputData(input);
-  filter->SetRaysPerVertex(rays);
-  return filter;
-}
-
-// A directional light travelling straight down (-z) with irradiance `e`.
-vtkSmartPointer<vtkLight> Sun(double e = 1.0)
-{
-  const double above[3] = { 0, 0, 1 };
-  return MakeLight(above, Origin, e, false);
-}
-
-// Sphere (radius 0.4) resting above a 4 x 4 floor, with the sources' point normals.
-vtkSmartPointer<vtkPolyData> SphereOnFloor()
-{
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(0, 0, 0.5);
-  sphere->SetRadius(0.4);
-  sphere->SetThetaResolution(24);
-  sphere->SetPhiResolution(12);
-  vtkNew<vtkAppendPolyData> append;
-  append->AddInputData(MakeFloor(2, 20));
-  append->AddInputConnection(sphere->GetOutputPort());
-  append->Update();
-  return append->GetOutput();
-}
-
-// Largest |a - b| over all components of two point arrays, relative to b's largest value.
-double RelativeDifference(vtkDataArray* a, vtkDataArray* b)
-{
-  double diff = 0, scale = 1e-12;
-  for (vtkIdType i = 0; i < b->GetNumberOfValues(); ++i)
-  {
-    diff = std::max(diff, std::abs(a->GetVariantValue(i).ToDouble() - b->GetVariantValue(i).ToDouble()));
-    scale = std::max(scale, std::abs(b->GetVariantValue(i).ToDouble()));
-  }
-  return diff / scale;
-}
 }
 
 TEST(GlobalIlluminationFilter, OutputIsTheInputGeometryWithFloatArraysAndCounters)
 {
-  vtkSmartPointer<vtkPolyData> input = SphereOnFloor();
+  vtkSmartPointer<vtkPolyData> input = MakeSphereOnFloor();
   const vtkIdType n = input->GetNumberOfPoints();
   vtkNew<vtkFloatArray> temperature; // a user's array that must survive
   temperature->SetName("Temperature");
@@ -179,135 +135,6 @@ TEST(GlobalIlluminationFilter, AgreesWithTheEngineOnTheCornellBox)
     EXPECT_LT(RelativeDifference(PointArray(out, a.first), expected), 1e-5) << a.first;
   }
   EXPECT_GT(PointArray(out, "IndirectIrradiance")->GetRange(1)[1], 0.0);
-}
-
-TEST(GlobalIlluminationFilter, LightOrAlbedoChangesReuseTheLinks)
-{
-  auto filter = MakeFilter(SphereOnFloor());
-  const double lamp[3] = { 0.5, 0.5, 4 };
-  vtkSmartPointer<vtkLight> light = MakeLight(lamp, Origin, 16);
-  filter->AddLight(light);
-  filter->Update();
-  vtkPolyData* out = filter->GetOutput();
-  const double direct0 = Value(out, "DirectIrradiance", 0);
-
-  light->SetPosition(-1, 0.5, 3); // the filter's MTime includes the light's
-  filter->Update();
-  EXPECT_EQ(Stat(out, "LinkBuilds"), 1.0);
-  EXPECT_EQ(Stat(out, "BvhBuilds"), 1.0);
-  EXPECT_EQ(Stat(out, "LightLinkBuilds"), 2.0);
-  EXPECT_EQ(Stat(out, "BounceRuns"), 2.0);
-  EXPECT_EQ(Stat(out, "MsLinks"), 0.0);
-  EXPECT_NE(Value(out, "DirectIrradiance", 0), direct0);
-
-  filter->SetAlbedo(0.3, 0.5, 0.7);
-  filter->Update();
-  EXPECT_EQ(Stat(out, "LinkBuilds"), 1.0);
-  EXPECT_EQ(Stat(out, "LightLinkBuilds"), 2.0);
-  EXPECT_EQ(Stat(out, "BounceRuns"), 3.0);
-  for (int c = 0; c < 3; ++c) // the new albedo is used (the colours are gathered again)
-  {
-    const double e = Value(out, "DirectIrradiance", 0, c) + Value(out, "IndirectIrradiance", 0, c);
-    EXPECT_GT(e, 0.0);
-    EXPECT_NEAR(Value(out, "Radiance", 0, c), (0.3 + 0.2 * c) / vtkMath::Pi() * e, 1e-5 * e);
-  }
-
-  filter->Update(); // nothing changed: no execution at all
-  EXPECT_EQ(Stat(out, "BounceRuns"), 3.0);
-
-  filter->SetNumberOfBounces(5);
-  filter->Update();
-  EXPECT_EQ(Stat(out, "LinkBuilds"), 1.0);
-  EXPECT_EQ(Stat(out, "BounceRuns"), 4.0);
-
-  filter->SetRaysPerVertex(16); // new directions: new links
-  filter->Update();
-  EXPECT_EQ(Stat(out, "LinkBuilds"), 2.0);
-}
-
-// A new data object of the same surface (a colour map's shallow copy with its new albedo
-// array) keeps the triangulation and takes its own colours; the points or the cells changed
-// in place (their storage only, as VTK 9.1's cell arrays do not see that) are a new surface.
-// Each result equals a fresh filter's.
-TEST(GlobalIlluminationFilter, TheSurfaceFollowsItsGeometryNotItsDataObject)
-{
-  vtkSmartPointer<vtkPolyData> scene = SphereOnFloor();
-  scene->GetPointData()->SetNormals(nullptr); // normals from the winding
-  const vtkIdType points = scene->GetNumberOfPoints();
-  const auto grey = [points](float value)
-  {
-    auto albedo = vtkSmartPointer<vtkFloatArray>::New();
-    albedo->SetName("Albedo");
-    albedo->SetNumberOfComponents(3);
-    albedo->SetNumberOfTuples(points);
-    albedo->Fill(value);
-    return albedo;
-  };
-  scene->GetPointData()->AddArray(grey(0.3f));
-  const auto configure = [](vtkGlobalIlluminationFilter* f)
-  {
-    f->SetAlbedoArrayName("Albedo");
-    f->AddLight(Sun());
-  };
-  auto filter = MakeFilter(scene);
-  configure(filter);
-  filter->Update();
-  vtkPolyData* out = filter->GetOutput();
-  const auto expectAsFresh = [&](vtkPolyData* input)
-  {
-    vtkNew<vtkPolyData> copy;
-    copy->DeepCopy(input);
-    auto fresh = MakeFilter(copy);
-    configure(fresh);
-    fresh->Update();
-    for (const char* name : { "DirectIrradiance", "IndirectIrradiance" })
-    {
-      EXPECT_LT(RelativeDifference(out->GetPointData()->GetArray(name),
-                  fresh->GetOutput()->GetPointData()->GetArray(name)), 1e-5)
-        << name;
-    }
-  };
-
-  auto copy = vtkSmartPointer<vtkPolyData>::New();
-  copy->ShallowCopy(scene);
-  copy->GetPointData()->AddArray(grey(0.6f)); // replaces the copy's own "Albedo"
-  filter->SetInputData(copy);
-  filter->Update();
-  EXPECT_EQ(Stat(out, "LinkBuilds"), 1.0);
-  EXPECT_NEAR(Value(out, "Radiance", 0), 0.6 / vtkMath::Pi() *
-      (Value(out, "DirectIrradiance", 0) + Value(out, "IndirectIrradiance", 0)), 1e-6);
-  expectAsFresh(copy);
-
-  // The floor (the first 20 x 20 quads) turned over through its connectivity array alone:
-  // it faces away from the sun now.
-  ASSERT_GT(Value(out, "DirectIrradiance", 0), 0.5);
-  vtkCellArray* polys = copy->GetPolys();
-  vtkDataArray* ids = polys->GetConnectivityArray();
-  for (vtkIdType cell = 0; cell < 400; ++cell)
-  {
-    ASSERT_EQ(polys->GetCellSize(cell), 4);
-    const vtkIdType first = polys->GetOffsetsArray()->GetComponent(cell, 0);
-    const double second = ids->GetComponent(first + 1, 0);
-    ids->SetComponent(first + 1, 0, ids->GetComponent(first + 3, 0));
-    ids->SetComponent(first + 3, 0, second);
-  }
-  ids->Modified();
-  copy->Modified(); // what makes the pipeline run again
-  filter->Update();
-  EXPECT_EQ(Value(out, "DirectIrradiance", 0), 0.0);
-  expectAsFresh(copy);
-
-  // The sphere raised through its points, in place.
-  vtkPoints* xyz = copy->GetPoints();
-  for (vtkIdType p = 21 * 21; p < points; ++p)
-  {
-    double x[3];
-    xyz->GetPoint(p, x);
-    xyz->SetPoint(p, x[0], x[1], x[2] + 0.2);
-  }
-  xyz->Modified();
-  filter->Update();
-  expectAsFresh(copy);
 }
 
 TEST(GlobalIlluminationFilter, PolygonsAndStripsAreLitLinesAndVerticesPassThrough)
