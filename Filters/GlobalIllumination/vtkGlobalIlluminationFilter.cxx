@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -109,31 +110,46 @@ int vtkGlobalIlluminationFilter::GetAsynchronousStages()
 //------------------------------------------------------------------------------
 vtkStandardNewMacro(vtkGlobalIlluminationFilter);
 
+namespace
+{
+/// The engine's defaults: the one place the options' default values are decided.
+const linkgi::SolverOptions& EngineDefaults()
+{
+  static const linkgi::SolverOptions defaults;
+  return defaults;
+}
+
+int ToInt(std::uint32_t value)
+{
+  return static_cast<int>(value);
+}
+}
+
 //------------------------------------------------------------------------------
 vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
-  : RaysPerVertex(256)
-  , NumberOfBounces(3)
+  : RaysPerVertex(ToInt(EngineDefaults().raysPerVertex))
+  , NumberOfBounces(ToInt(EngineDefaults().bounces))
   , Method(LINKS)
-  , NumberOfVPLs(1024)
-  , VPLClampDistance(0.01)
-  , VPLInterleaving(1)
-  , VPLCompensationRays(64)
-  , ProxyVisibility(0)
-  , ProxyResolution(32)
-  , ImplicitVisibilityBins(12)
+  , NumberOfVPLs(ToInt(EngineDefaults().instantRadiosity.vplCount))
+  , VPLClampDistance(0.01) // the engine's 0.01f, as a user types it (the float is not 0.01)
+  , VPLInterleaving(ToInt(EngineDefaults().instantRadiosity.interleave))
+  , VPLCompensationRays(ToInt(EngineDefaults().instantRadiosity.compensationRays))
+  , ProxyVisibility(EngineDefaults().instantRadiosity.proxyVisibility ? 1 : 0)
+  , ProxyResolution(ToInt(EngineDefaults().instantRadiosity.proxyResolution))
+  , ImplicitVisibilityBins(ToInt(EngineDefaults().implicitVisibility.binsPerSide))
   , MaterialArrayName(nullptr)
   , IndexOfRefractionArrayName(nullptr)
-  , NumberOfPhotons(262144)
-  , NumberOfClusters(12288)
-  , FinalGatherRays(144)
+  , NumberOfPhotons(ToInt(EngineDefaults().photonMapping.photons))
+  , NumberOfClusters(ToInt(EngineDefaults().photonMapping.clusters))
+  , FinalGatherRays(ToInt(EngineDefaults().photonMapping.gatherRays))
   , MemoryBudget(0.0)
   , ProxyVertices(0)
   , Refinement(0)
   , RefinementTolerance(0.1)
   , RefinementMaxVertices(0)
   , RefinementRounds(3)
-  , FeatureAngle(30.0)
-  , Smoothing(0)
+  , FeatureAngle(EngineDefaults().featureAngleDegrees)
+  , Smoothing(EngineDefaults().smoothing ? 1 : 0)
   , ComputeNormals(0)
   , Backend(AUTO)
   , AlbedoArrayName(nullptr)
@@ -144,10 +160,10 @@ vtkGlobalIlluminationFilter::vtkGlobalIlluminationFilter()
   , EmissionArrayAssociation(vtkDataObject::FIELD_ASSOCIATION_POINTS)
   , EnvironmentColor{ 0.0, 0.0, 0.0 }
   , EnvironmentTexture(nullptr)
-  , TwoSided(0)
-  , Seed(0)
-  , LightOversampling(1)
-  , Twist(1)
+  , TwoSided(EngineDefaults().twoSided ? 1 : 0)
+  , Seed(ToInt(EngineDefaults().seed))
+  , LightOversampling(EngineDefaults().lightOversampling ? 1 : 0)
+  , Twist(EngineDefaults().twist ? 1 : 0)
   , LightIntensityScale(1.0)
   , Asynchronous(0)
   , TemporalBlend(1.0)

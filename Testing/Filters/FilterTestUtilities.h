@@ -301,14 +301,19 @@ inline vtkSmartPointer<vtkLight> Sun(double e = 1.0)
   return MakeLight(above, origin, e, false);
 }
 
-/// Largest |a - b| over all components of two arrays, relative to b's largest value.
+/// Largest |a - b| over all components of two arrays of b's shape, relative to b's largest
+/// value.
 inline double RelativeDifference(vtkDataArray* a, vtkDataArray* b)
 {
   double diff = 0, scale = 1e-12;
-  for (vtkIdType i = 0; i < b->GetNumberOfValues(); ++i)
+  for (vtkIdType t = 0; t < b->GetNumberOfTuples(); ++t)
   {
-    diff = std::max(diff, std::abs(a->GetVariantValue(i).ToDouble() - b->GetVariantValue(i).ToDouble()));
-    scale = std::max(scale, std::abs(b->GetVariantValue(i).ToDouble()));
+    for (int c = 0; c < b->GetNumberOfComponents(); ++c)
+    {
+      const double x = a->GetComponent(t, c), y = b->GetComponent(t, c);
+      diff = std::max(diff, std::abs(x - y));
+      scale = std::max(scale, std::abs(y));
+    }
   }
   return diff / scale;
 }

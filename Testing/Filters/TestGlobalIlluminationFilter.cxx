@@ -490,6 +490,32 @@ TEST(GlobalIlluminationFilter, PropertiesHaveTheirDocumentedDefaults)
   EXPECT_EQ(filter->GetFeatureAngle(), 180.0);
 }
 
+// The filter's options start where the engine's do (SolverOptions holds the defaults).
+TEST(GlobalIlluminationFilter, OptionDefaultsAreTheEngines)
+{
+  vtkNew<vtkGlobalIlluminationFilter> filter;
+  const linkgi::SolverOptions engine;
+  EXPECT_EQ(filter->GetRaysPerVertex(), int(engine.raysPerVertex));
+  EXPECT_EQ(filter->GetNumberOfBounces(), int(engine.bounces));
+  EXPECT_EQ(filter->GetNumberOfVPLs(), int(engine.instantRadiosity.vplCount));
+  EXPECT_EQ(float(filter->GetVPLClampDistance()), engine.instantRadiosity.clampDistance);
+  EXPECT_EQ(filter->GetVPLInterleaving(), int(engine.instantRadiosity.interleave));
+  EXPECT_EQ(filter->GetVPLCompensationRays(), int(engine.instantRadiosity.compensationRays));
+  EXPECT_EQ(filter->GetProxyVisibility() != 0, engine.instantRadiosity.proxyVisibility);
+  EXPECT_EQ(filter->GetProxyResolution(), int(engine.instantRadiosity.proxyResolution));
+  EXPECT_EQ(filter->GetImplicitVisibilityBins(), int(engine.implicitVisibility.binsPerSide));
+  EXPECT_EQ(filter->GetNumberOfPhotons(), int(engine.photonMapping.photons));
+  EXPECT_EQ(filter->GetNumberOfClusters(), int(engine.photonMapping.clusters));
+  EXPECT_EQ(filter->GetFinalGatherRays(), int(engine.photonMapping.gatherRays));
+  EXPECT_EQ(filter->GetReferencePathsPerVertex(), int(engine.reference.pathsPerVertex));
+  EXPECT_EQ(filter->GetFeatureAngle(), double(engine.featureAngleDegrees));
+  EXPECT_EQ(filter->GetSmoothing() != 0, engine.smoothing);
+  EXPECT_EQ(filter->GetTwoSided() != 0, engine.twoSided);
+  EXPECT_EQ(filter->GetSeed(), int(engine.seed));
+  EXPECT_EQ(filter->GetLightOversampling() != 0, engine.lightOversampling);
+  EXPECT_EQ(filter->GetTwist() != 0, engine.twist);
+}
+
 TEST(GlobalIlluminationFilter, CudaRequestFallsBackToTheCpuWithAWarning)
 {
   auto filter = MakeFilter(MakeFloor(1, 4));
