@@ -162,8 +162,8 @@ public:
   /**
    * INSTANT_RADIOSITY: the minimum distance of the paper's smoothstep bound on the geometry
    * term, as a fraction of the bounding-box diagonal: VPLs nearer than 0.8 times it give a
-   * vertex nothing, so they cannot spike (at the price of a little light in corners).
-   * The default value is 0.01.
+   * vertex nothing, so they cannot spike; VPLCompensationRays take the light of those short
+   * paths back. The default value is 0.02.
    */
   vtkSetClampMacro(VPLClampDistance, double, 0.0, 1.0);
   vtkGetMacro(VPLClampDistance, double);

@@ -76,7 +76,7 @@ TEST(TestGlobalIlluminationMethod, DefaultIsLinks)
     EXPECT_STREQ(filter->GetMethodAsString(), linkgi::methodName(m)) << "every registered method";
   }
   EXPECT_EQ(filter->GetNumberOfVPLs(), 1024);
-  EXPECT_DOUBLE_EQ(filter->GetVPLClampDistance(), 0.01);
+  EXPECT_DOUBLE_EQ(filter->GetVPLClampDistance(), 0.02);
 }
 
 TEST(TestGlobalIlluminationMethod, SwitchingMethodsGivesTheSameArraysAndSimilarLight)

@@ -47,7 +47,7 @@ Args parse(int argc, char** argv)
     {
       throw Error("Usage: linkgi-validate [--scenes a,b] [--method " + methodNames("|") + "] "
                   "[--rays 256] [--bounces 3] [--smoothing 0] [--oversampling 1] "
-                  "[--reference-factor 16] [--vpls 1024] [--clamp 0.01] [--interleave 1] [--compensation 64] [--photons 262144] [--clusters 12288] [--gather-rays 144] [--caustic-paths 16777216] "
+                  "[--reference-factor 16] [--vpls 1024] [--clamp 0.02] [--interleave 1] [--compensation 64] [--photons 262144] [--clusters 12288] [--gather-rays 144] [--caustic-paths 16777216] "
                   "[--proxy 0|N] [--bins 12] [--seed 0] [--refine-from CELL] [--refine-tolerance 0.1] "
                   "[--refine-vertices N] [--refine-rounds 3]; " + arg +
         " needs a value.");
