@@ -252,13 +252,18 @@ TEST(TestGlobalIlluminationRealData, TheBudgetsProxyHoldsWhileOnlyTheLightsMove)
     GTEST_SKIP() << "This build has no OpenMesh.";
   }
   // The automatic budget (MemoryBudget 0) is what the machine has available less a margin
-  // of 512 MiB: 536 MiB available leave 24 MiB, not enough for ~5.3k points at 256 rays
-  // (estimated at ~39 MiB).
+  // of 512 MiB: 512 MiB and 85% of the estimate of ~5.3k points at 256 rays available leave
+  // too little for them (but more than their ray structures alone need).
   struct Available
   {
-    explicit Available(std::uint64_t mib) { linkgi::overrideAvailableHostBytes(mib << 20); }
+    explicit Available(std::uint64_t bytes) { linkgi::overrideAvailableHostBytes(bytes); }
     ~Available() { linkgi::overrideAvailableHostBytes(0); }
   };
+  auto probe = MakeSphereOnFloorFilter(70);
+  probe->SetRaysPerVertex(256);
+  probe->Update();
+  const auto estimate = std::uint64_t(Stat(probe->GetOutput(), "HostBytesEstimated"));
+  ASSERT_GT(estimate, 0u);
   auto filter = MakeSphereOnFloorFilter(70);
   filter->SetRaysPerVertex(256);
   const auto proxyOf = [&filter]() {
@@ -273,7 +278,7 @@ TEST(TestGlobalIlluminationRealData, TheBudgetsProxyHoldsWhileOnlyTheLightsMove)
     return 0ul;
   };
   {
-    Available tight(536);
+    Available tight((std::uint64_t(512) << 20) + estimate * 85 / 100);
     filter->Update();
   }
   const unsigned long first = proxyOf();
@@ -281,7 +286,7 @@ TEST(TestGlobalIlluminationRealData, TheBudgetsProxyHoldsWhileOnlyTheLightsMove)
   EXPECT_FALSE(MessageCapture::Contains(Warnings(filter->GetOutput()), "previous result is kept"));
 
   // More memory frees up, and a light moves: the same proxy.
-  Available roomier(546);
+  Available roomier((std::uint64_t(512) << 20) + estimate * 95 / 100);
   const double moved[3] = { 0.7, 0.1, 2.2 }, at[3] = { 0, 0, 0 };
   filter->RemoveAllLights();
   filter->AddLight(MakeLight(moved, at, 4.0));

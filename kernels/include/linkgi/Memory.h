@@ -25,6 +25,10 @@ struct MemoryShape
 {
   std::uint64_t vertices = 0, triangles = 0;
   std::uint64_t texels = 1; ///< environment texels (1 for a constant colour)
+  /// What the method's CPU backend measured per element on this geometry by sampling it
+  /// (MethodBackend::sampleMemory; the link method: links per row), 0 where nothing was
+  /// measured and the estimate takes its bound.
+  double sampledPerElement = 0.0;
   static MemoryShape of(const Scene& scene);
 };
 

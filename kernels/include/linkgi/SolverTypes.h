@@ -347,5 +347,8 @@ struct SolverStats
   /// The method's estimate of the last update's peak memory (host, GPUs), and the host
   /// budget it was checked against (linkgi/Memory.h).
   std::uint64_t hostBytesEstimated = 0, deviceBytesEstimated = 0, memoryBudget = 0;
+  /// What that estimate took from a sample of the mesh (MemoryShape::sampledPerElement; the
+  /// link method on the CPU: links per row), 0 where it came from the sizes alone.
+  double memorySampledPerElement = 0.0;
 };
 }

@@ -36,7 +36,8 @@ MemoryVerdict judgeMemory(const MethodSpec& spec, const MemoryShape& shape,
     }
   }
   // A smaller mesh: the estimate grows with the vertex count, so bisect on the fraction of
-  // this mesh's vertices and triangles that fits.
+  // this mesh's vertices and triangles that fits, with what this mesh sampled (a proxy's
+  // own update is judged again with its own sample).
   double lo = 0.0, hi = 1.0;
   for (int i = 0; i < 40; ++i)
   {
@@ -59,15 +60,20 @@ std::uint64_t memoryLeft(const SolverStats& stats)
   return stats.memoryBudget > stats.hostBytesEstimated ? stats.memoryBudget - stats.hostBytesEstimated : 0;
 }
 
-void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverOptions& options,
-  std::uint32_t stale, bool cuda, SolverStats& stats)
+void checkMemoryBudget(const MethodSpec& spec, const MemoryShape& shape, const SolverOptions& options,
+  std::uint32_t stale, bool cuda, SolverStats& stats, std::uint32_t first)
 {
-  const MemoryShape shape = MemoryShape::of(scene);
   const std::uint64_t own = hostMemoryBudget(options.memoryBudget);
   // Under MPI every process takes the smallest budget, so all give the same verdict.
   const std::uint64_t budget = options.partition ? options.partition->smallest(own) : own;
-  const MemoryVerdict v = judgeMemory(spec, shape, options, stale, cuda, budget);
+  MemoryVerdict v = judgeMemory(spec, shape, options, stale & first, cuda, budget);
+  if (!v.fits && (stale & first) != stale)
+  {
+    // The whole update needs more than its first stages: what would fit is what fits all.
+    v = judgeMemory(spec, shape, options, stale, cuda, budget);
+  }
   stats.hostBytesEstimated = v.estimate.hostBytes;
+  stats.memorySampledPerElement = shape.sampledPerElement;
   stats.deviceBytesEstimated = v.estimate.deviceBytes;
   stats.memoryBudget = v.budget;
   if (v.fits)

@@ -26,10 +26,12 @@ MemoryVerdict judgeMemory(const MethodSpec& spec, const MemoryShape& shape,
 
 /// Before a backend runs the stages `stale`: records the estimate and the budget
 /// (options.memoryBudget, or what is available less a margin) in `stats`, and throws
-/// OutOfMemoryBudget saying what would fit when the estimate is over the budget. Nothing has been allocated
-/// or freed at that point, so the previous result stays.
-void checkMemoryBudget(const MethodSpec& spec, const Scene& scene, const SolverOptions& options,
-  std::uint32_t stale, bool cuda, SolverStats& stats);
+/// OutOfMemoryBudget saying what would fit when the estimate is over the budget. The
+/// solution has not been written at that point, so the previous result stays. With `first`,
+/// only the stages `stale & first` are judged now (those before a method samples its
+/// memory; it is judged again then); a refusal still says what would fit the whole update.
+void checkMemoryBudget(const MethodSpec& spec, const MemoryShape& shape, const SolverOptions& options,
+  std::uint32_t stale, bool cuda, SolverStats& stats, std::uint32_t first = ~0u);
 
 /// What the budget leaves beyond the update's estimate (as checkMemoryBudget recorded them
 /// in `stats`): the most that a stage may allocate for what only tracing can tell (a second

@@ -116,6 +116,10 @@ public:
   /// After a commit: "cpu" / "cuda", what it ran on, the GPUs used (0 on the CPU) and the
   /// sizes of its current structures into `stats`.
   virtual void describe(SolverStats& stats) const = 0;
+  /// Before stage MethodSpec::memorySampleStage() runs, the stages before it having run:
+  /// measures on a sample of the elements what that stage allocates per element
+  /// (MemoryShape::sampledPerElement), allocating little and keeping nothing.
+  virtual double sampleMemory(const StageContext& /*context*/) { return 0.0; }
 };
 
 /// One stage's result in a backend: what the last commit kept, and what this update staged.
@@ -182,14 +186,20 @@ public:
   /// one runs on the CPU under Backend::Auto without a warning (engine/CudaFactory.h asks).
   virtual bool hasCudaBackend() const { return false; }
   /// Peak bytes that running the stages `stale` (bit i: stages()[i]) allocate on a mesh of
-  /// `shape`, on the host and on the GPU(s), from the sizes alone: nothing has been traced
-  /// yet. An upper bound rather than a guess: the orchestrator refuses an update whose host
-  /// estimate is over the memory budget (engine/MemoryBudget.h). 0 = nothing to declare.
+  /// `shape`, on the host and on the GPU(s), from the sizes and what the backend sampled
+  /// (shape.sampledPerElement) alone. An upper bound where nothing was sampled, rather than
+  /// a guess: the orchestrator refuses an update whose host estimate is over the memory
+  /// budget (engine/MemoryBudget.h). 0 = nothing to declare.
   virtual MemoryEstimate estimateMemory(const MemoryShape& /*shape*/,
     const SolverOptions& /*options*/, std::uint32_t /*stale*/, bool /*cuda*/) const
   {
     return {};
   }
+  /// The stage whose memory the method's CPU backend measures on a sample of the elements
+  /// before it runs (MethodBackend::sampleMemory), because its sizes alone bound it only
+  /// loosely; -1: none. The orchestrator then checks the budget twice: before the update for
+  /// the stages before that one, and before that one for all, with what was sampled.
+  virtual int memorySampleStage() const { return -1; }
   /// Progressive updates (AsyncSolver): the work of the sampling that `options` asks for on
   /// `elements` elements, in the method's own unit (rays traced, vertex-VPL pairs): what
   /// coarser() scales and what time is predicted from. 0: the method has no coarser solution.

@@ -305,7 +305,14 @@ void Solver::Impl::runStages(BackendSlot& slot, bool onCuda, const engine::Metho
   // every stage; the budget is checked before the old backend's memory is given up.
   const engine::Changes seen = slot.fits(opt, onCuda) && slot.synced ? changes : engine::kEverything;
   const std::uint32_t stale = engine::staleStages(spec.stages(), seen);
-  engine::checkMemoryBudget(spec, s, opt, stale, onCuda, st);
+  // A method that samples a stage's memory (on the CPU; a partition's processes would each
+  // sample their own rows and might disagree) is judged for the stages before it first, and
+  // for all of them before that stage, with what it sampled: the solution is written by
+  // the last stage only, so a refusal there keeps the previous result too.
+  const int sampled = onCuda || opt.partition ? -1 : spec.memorySampleStage();
+  const bool samples = sampled >= 0 && (stale >> sampled & 1u);
+  MemoryShape shape = MemoryShape::of(s);
+  engine::checkMemoryBudget(spec, shape, opt, stale, onCuda, st, samples ? (1u << sampled) - 1u : ~0u);
   if (!slot.fits(opt, onCuda))
   {
     slot.impl.reset(); // frees the old one's memory before the new one allocates
@@ -341,6 +348,12 @@ void Solver::Impl::runStages(BackendSlot& slot, bool onCuda, const engine::Metho
       const std::size_t partsBefore = st.stages.size();
       const auto start = std::chrono::steady_clock::now();
       context.check(0.0);
+      if (samples && int(i) == sampled)
+      {
+        shape.sampledPerElement = slot.impl->sampleMemory(context);
+        context.part("MemorySample", msSince(start));
+        engine::checkMemoryBudget(spec, shape, opt, stale, onCuda, st);
+      }
       slot.impl->run(i, context);
       double ms = msSince(start);
       for (std::size_t p = partsBefore; p < st.stages.size(); ++p)

@@ -18,6 +18,11 @@ enum Stage : std::size_t
 /// LinksPerElement::bound for a mesh of this shape under these options.
 LinksPerElement linksPerElement(const MemoryShape& shape, const SolverOptions& options);
 
+/// The links (transport and environment) per row that the CPU backend's peak is estimated
+/// with: what a sample of rows made (shape.sampledPerElement) with a margin for the
+/// sample's error, within the bound; the bound where nothing was sampled.
+double estimatedLinksPerRow(const MemoryShape& shape, const SolverOptions& options);
+
 /// The CPU backend's peak bytes for the stages `stale` (LinksCpu.cpp, beside what it allocates).
 MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& options, std::uint32_t stale);
 
