@@ -411,6 +411,26 @@ Clusters clusterVertices(const Scene& s, std::uint32_t k, float alpha, int itera
       }
     }
   });
+  // A vertex none of whose interpolants shares its tangent plane (sharesTangentPlane, as
+  // interpolateVertex reads them: a plate under a table top, whose cluster's and neighbours'
+  // samples lie on the top above it or the floor below) gathers itself, as irradiance caching
+  // computes a new record where no cached one is valid.
+  for (std::size_t v = 0; v < nv; ++v)
+  {
+    Index* row = &out.neighbours[v * m];
+    bool served = false;
+    for (int i = 0; i < m && row[i] != kInvalidIndex && !served; ++i)
+    {
+      const Index sv = out.sample[row[i]];
+      served = dot(s.normals[v], s.normals[sv]) > 0.f &&
+        sharesTangentPlane(s.positions[v], s.normals[v], s.positions[sv], s.normals[sv]);
+    }
+    if (!served)
+    {
+      out.assignment[v] = row[0] = Index(out.sample.size());
+      out.sample.push_back(Index(v));
+    }
+  }
   return out;
 }
 

@@ -14,6 +14,23 @@ namespace linkgi::pm
 constexpr float kEstimateCos = 0.8f;
 /// Interpolants per vertex: its own cluster's sample and up to five more (Clusters).
 constexpr int kInterpolants = 6;
+/// A sample serves a vertex only where the offset between them leans at most this much
+/// (sin 6 degrees) out of their mean tangent plane: see sharesTangentPlane.
+constexpr float kPlaneSin = 0.1f;
+
+/// Whether a sample at s (normal ns) may light the point x (normal n): whether each lies
+/// near the other's tangent plane, against their mean normal n + ns. Ward's test of irradiance
+/// caching (Ward, Rubinstein & Clear 1988) rejects samples in front of x, which see a
+/// hemisphere x may not see (the top of a table over what lies under it); a sample behind x
+/// across a gap (the floor under that table) sees one just as foreign, so both sides are
+/// rejected. The mean normal makes the offset square to it on a sphere; the tolerance absorbs
+/// vertex normals that differ from the surface's.
+LINKGI_HOST_DEVICE inline bool sharesTangentPlane(const Vec3f& x, const Vec3f& n, const Vec3f& s, const Vec3f& ns)
+{
+  const Vec3f d = s - x, m = n + ns;
+  const float along = dot(d, m);
+  return along * along <= kPlaneSin * kPlaneSin * dot(d, d) * dot(m, m);
+}
 
 /// The photon map's arrays, borrowed (host or device).
 struct PhotonsView
@@ -162,8 +179,9 @@ LINKGI_HOST_DEVICE inline GatherHit shadeGatherRay(const paths::PathScene& s, co
 
 /// Vertex v's irradiance from its interpolants' samples (row: kInterpolants clusters, its
 /// own first, kInvalidIndex past the last), weighted as in irradiance caching:
-/// w = 1 / (|x - s| / R + sqrt(2 - 2 n.n_s)) over samples facing the same way; its own
-/// cluster's when none does.
+/// w = 1 / (|x - s| / R + sqrt(2 - 2 n.n_s)) over samples facing the same way and not
+/// off its tangent plane (sharesTangentPlane); its own cluster's when none qualifies, which
+/// clusterVertices makes the vertex's own sample.
 LINKGI_HOST_DEVICE inline Vec3f interpolateVertex(const Vec3f* positions, const Vec3f* normals, Index v,
   const Index* row, const Index* sample, const Vec3f* irradiance, const float* harmonicDistance)
 {
@@ -173,7 +191,7 @@ LINKGI_HOST_DEVICE inline Vec3f interpolateVertex(const Vec3f* positions, const 
   {
     const Index j = row[i], sv = sample[j];
     const float c = dot(normals[v], normals[sv]);
-    if (c <= 0.f)
+    if (c <= 0.f || !sharesTangentPlane(positions[v], normals[v], positions[sv], normals[sv]))
     {
       continue;
     }
