@@ -214,6 +214,30 @@ TEST(TestMemoryBudget, EstimateBoundsTheMeasuredPeak)
   EXPECT_LE(double(estimated), kMostOver * double(measured));
 }
 
+TEST(TestMemoryBudget, TheSampledRowsLinkAsTheWholeMeshDoes)
+{
+  // The link method estimates its links from every 64th row (at least 256) with a margin of
+  // 10% (LinksCpu.cpp): on rooms, a model in no room and a lamp over a floor, the sample's
+  // mean stays within that of the whole mesh's.
+  for (const char* name : { "cornell", "torso", "tearoom", "colorlamp" })
+  {
+    const Scene s = makeStandardScene(name);
+    SolverOptions o;
+    o.backend = Backend::Cpu;
+    Solver solver;
+    solver.update(s, o);
+    const double sampled = solver.stats().memorySampledPerElement;
+    auto tracer = createCpuRayTracer();
+    tracer->build(s.positions, s.triangles);
+    const LinkOptions lo{ o.raysPerVertex, o.twoSided, o.twist, o.seed };
+    const LinkStructure all = buildLinks(s, rayOrigins(s, Topology::build(s.vertexCount(), s.triangles)), *tracer,
+      frontFaceNormals(s), lo);
+    const double whole = double(all.transport.nonZeros() + all.environment.nonZeros()) / double(s.vertexCount());
+    std::cout << name << ": " << sampled << " links per sampled row, " << whole << " per row\n";
+    EXPECT_NEAR(sampled / whole, 1.0, 0.1) << name;
+  }
+}
+
 TEST(TestMemoryBudget, LinksBuiltElementByElementAreTheTwoPassLinks)
 {
   // The CPU links are traced and compressed element by element (no buffer of every hit);
