@@ -159,6 +159,36 @@ TEST(TestInstantRadiosity, CompensationTakesBackTheClampsLight)
   }
 }
 
+TEST(TestInstantRadiosity, CompensationReachesTheGrazingNeighboursOfAConcaveSurface)
+{
+  // Inside an emitting sphere (Le = 1) that reflects nothing, every point receives pi. With
+  // 1.2 dmin = 0.83 R, the sphere nearer than that lies below an elevation of 24.5 degrees,
+  // which the centres of the 8 x 8 grid of 64 compensation rays never reach (their lowest
+  // is 29 degrees): those rays found nothing, and the clamp's loss stayed. Jittered within
+  // their cells they reach it.
+  Scene s = makeStandardScene("furnace");
+  std::fill(s.albedo.begin(), s.albedo.end(), Vec3f(0.f));
+  SolverOptions o = instantRadiosity(4096, 0.2f);
+  o.bounces = 1;
+  o.instantRadiosity.compensationRays = 0;
+  const std::vector<float> area = vertexAreas(s);
+  const auto meanIrradiance = [&](const Solution& sol) {
+    double e = 0, a = 0;
+    for (std::size_t v = 0; v < s.vertexCount(); ++v)
+    {
+      e += area[v] * sol.indirect[v].x;
+      a += area[v];
+    }
+    return e / a;
+  };
+  const double lost = 1.0 - meanIrradiance(Solver().update(s, o)) / kPi;
+  o.instantRadiosity.compensationRays = 64;
+  const double left = 1.0 - meanIrradiance(Solver().update(s, o)) / kPi;
+  std::printf("emitting sphere, clamp 0.2: bias %.4f without compensation, %.4f with\n", lost, left);
+  EXPECT_GT(lost, 0.05) << "the clamp loses light here";
+  EXPECT_LT(std::abs(left), 0.01);
+}
+
 TEST(TestInstantRadiosity, AgreesWithReference)
 {
   // A room with a block, a point light, colour: total irradiance against per-vertex path

@@ -100,7 +100,7 @@ std::vector<Vec3f> compensateCpu(const Scene& s, const std::vector<RayOrigin>& o
       const Vec3f origin = elementRayOrigin(s.positions[v], n, origins[v]);
       for (std::uint32_t i = 0; i < rays; ++i)
       {
-        batch[i] = compensationRay(origin, frame, i, k, inputs.dmin);
+        batch[i] = compensationRay(origin, frame, i, k, inputs.dmin, seed, Index(e));
       }
       tracer.trace(batch.data(), hits.data(), rays);
       Vec3f sum(0.f);

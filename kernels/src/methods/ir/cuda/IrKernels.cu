@@ -75,7 +75,7 @@ __global__ void compensateKernel(CompensationLaunch p, cuda::Rgba* out)
   Vec3f sum(0.f);
   for (std::uint32_t i = 0; i < rays; ++i)
   {
-    const Ray ray = compensationRay(origin, frame, i, k, c.dmin);
+    const Ray ray = compensationRay(origin, frame, i, k, c.dmin, p.seed, e);
     Hit h;
     bvh::traverse<false>(p.mesh, ray, h);
     sum += compensationSample(c, ray, h, indirectAt);
