@@ -16,41 +16,44 @@
 
 namespace linkgi::iv
 {
-/// The cube-map bin (face * N * N + row * N + column) of a nonzero direction d. Faces:
-/// +x, -x, +y, -y, +z, -z.
-LINKGI_HOST_DEVICE inline int cubeBin(const Vec3f& d, int n)
+/// The cube face of a nonzero direction d (+x, -x, +y, -y, +z, -z) and its coordinates
+/// on it, u and v in [-1, 1] (a NaN for d = 0).
+LINKGI_HOST_DEVICE inline int cubeFace(const Vec3f& d, float& u, float& v)
 {
   const float ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
-  int face;
-  float u, v, m;
   if (ax >= ay && ax >= az)
   {
-    face = d.x > 0.f ? 0 : 1;
-    m = ax;
-    u = d.y;
-    v = d.z;
+    u = d.y / ax;
+    v = d.z / ax;
+    return d.x > 0.f ? 0 : 1;
   }
-  else if (ay >= az)
+  if (ay >= az)
   {
-    face = d.y > 0.f ? 2 : 3;
-    m = ay;
-    u = d.x;
-    v = d.z;
+    u = d.x / ay;
+    v = d.z / ay;
+    return d.y > 0.f ? 2 : 3;
   }
-  else
-  {
-    face = d.z > 0.f ? 4 : 5;
-    m = az;
-    u = d.x;
-    v = d.y;
-  }
-  // Clamped by comparisons (a NaN gives 0), not fminf/fmaxf: on the host those are libm
-  // calls, and this runs for every link.
+  u = d.x / az;
+  v = d.y / az;
+  return d.z > 0.f ? 4 : 5;
+}
+
+/// The column or row (0 to n - 1) of a cube-face coordinate in [-1, 1]. Clamped by
+/// comparisons (a NaN gives 0), not fminf/fmaxf: on the host those are libm calls, and
+/// this runs for every link.
+LINKGI_HOST_DEVICE inline int cubeCell(float u, int n)
+{
   const float last = float(n - 1);
-  const float x = (u / m + 1.f) * 0.5f * n, y = (v / m + 1.f) * 0.5f * n;
-  const int col = static_cast<int>(x > 0.f ? (x < last ? x : last) : 0.f);
-  const int row = static_cast<int>(y > 0.f ? (y < last ? y : last) : 0.f);
-  return (face * n + row) * n + col;
+  const float x = (u + 1.f) * 0.5f * n;
+  return static_cast<int>(x > 0.f ? (x < last ? x : last) : 0.f);
+}
+
+/// The cube-map bin (face * N * N + row * N + column) of a nonzero direction d.
+LINKGI_HOST_DEVICE inline int cubeBin(const Vec3f& d, int n)
+{
+  float u, v;
+  const int face = cubeFace(d, u, v);
+  return (face * n + cubeCell(v, n)) * n + cubeCell(u, n);
 }
 
 /// The 6 N^2 bins: unit centre directions and exact solid angles (they sum to 4 pi; a
