@@ -511,3 +511,34 @@ TEST(TestImplicitVisibility, ConvexCreasesSeeTheWholeSky)
     EXPECT_NEAR(darkest, kPi, 1e-3f * kPi) << n << " bins per side";
   }
 }
+
+TEST(TestImplicitVisibility, SurfacesSeenFromBehindHideTheSky)
+{
+  // A small floor patch inside a closed sphere whose faces point outward (a vertex enclosed
+  // by a scan's self-intersection, or a part folded into another): every direction from
+  // the patch meets the back of a face, which blocks it and is black, so no sky reaches
+  // it: E = 0, as the path tracer finds. The sphere's leaves are wider than a bin as seen
+  // from the patch; as their centres alone they would leave most bins empty and the sky in.
+  MeshBuilder b;
+  b.addIcosphere({ 0.f, 0.f, 0.f }, 0.5f, 1, Vec3f(0.f));
+  const Index sphereVertices = b.vertexCount();
+  b.addQuadGrid({ -0.05f, 0.f, 0.05f }, { 0.1f, 0.f, 0.f }, { 0.f, 0.f, -0.1f }, 1, 1, Vec3f(0.f)); // faces +y
+  Scene s = b.take();
+  s.environment.color = Vec3f(1.f);
+  ReferenceOptions ro;
+  ro.pathsPerVertex = 256;
+  ro.bounces = 1;
+  const ReferenceSolution reference = solveReference(s, ro);
+  for (const std::uint32_t n : { 8u, 12u })
+  {
+    SolverOptions o = ivOptions(n, 1);
+    o.smoothing = false;
+    Solver solver;
+    const Solution& sol = solver.update(s, o);
+    for (std::size_t v = sphereVertices; v < s.vertexCount(); ++v)
+    {
+      EXPECT_NEAR(reference.indirect[v].x, 0.f, 1e-6f) << "vertex " << v;
+      EXPECT_NEAR(sol.indirect[v].x, reference.indirect[v].x, 1e-3f * kPi) << "vertex " << v << ", " << n << " bins per side";
+    }
+  }
+}

@@ -56,6 +56,15 @@ LINKGI_HOST_DEVICE inline int cubeBin(const Vec3f& d, int n)
   return (face * n + cubeCell(v, n)) * n + cubeCell(u, n);
 }
 
+/// Each vertex's adjacent triangles (CSR): the surface of its element, which a leaf near
+/// the receiver is drawn from (IvShared.h leafReach).
+struct ElementTriangles
+{
+  std::vector<Index> offsets;   ///< vertexCount + 1
+  std::vector<Index> triangles; ///< ids into Scene::triangles
+  static ElementTriangles of(const Scene& scene);
+};
+
 /// The 6 N^2 bins: unit centre directions and exact solid angles (they sum to 4 pi; a
 /// corner bin is about a fifth of a centre bin).
 struct CubeBins
@@ -123,15 +132,19 @@ struct LeafLinks
 /// disc to the source), and the shortest wins. This is what the paper's top-down
 /// refinement (a shorter link further down removes a parent's link in its bin, a longer
 /// one is removed) followed by pushing every receiving end to the leaves leaves at a leaf.
-/// Leaf discs too close to fit a bin are drawn into every bin they cover. Bins of the
-/// leaf's hemisphere are weighted by solid angle x cosine at their centre, scaled so that
-/// the whole hemisphere weighs pi (a closed surface gathers exactly). `receiverOffsets`
-/// (per leaf, or empty): where a leaf looks from, relative to its vertex (the ray-origin
-/// shift towards its one-ring, so a vertex on a contact line looks from inside the room).
+/// Leaves wider than a bin are splatted as discs, or, where a disc would misplace their
+/// surface (near, or seen from behind), drawn from their triangles of `scene` (`elements`)
+/// into every bin whose centre ray meets them; a back so met occupies its bin and gives
+/// black. Bins of the leaf's hemisphere are weighted by solid angle x cosine at their
+/// centre, scaled so that the whole hemisphere weighs pi (a closed surface gathers
+/// exactly); empty bins see `scene`'s environment. `receivers` (per leaf, or empty): where
+/// a leaf looks from, relative to its vertex (the ray-origin shift towards its one-ring, so
+/// a vertex on a contact line looks from inside the room; its surface rays also leave from
+/// the origin's offset along the normal, as link rays do).
 /// `rows` (per leaf, or null for all): the leaves to push to; the others get empty rows
 /// (a process's share under MPI, SolverOptions::partition).
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
-  const Environment& environment, const std::vector<RayOrigin>& receivers,
+  const Scene& scene, const ElementTriangles& elements, const std::vector<RayOrigin>& receivers,
   const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 
 /// (Each function reports its own fraction in [0, 1] through `progress`.)

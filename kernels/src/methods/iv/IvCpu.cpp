@@ -78,6 +78,7 @@ private:
     if ((c.changes & kTopology) || tree.leafCount != s.vertexCount())
     {
       tree = ClusterTree::build(s, areas);
+      elements = ElementTriangles::of(s);
       c.part("HierarchyBuild", msSince(t));
     }
     else
@@ -104,7 +105,7 @@ private:
     const NodeLinks created = createNodeLinks(tree, bins, lo, within(0.0, 0.6), rows);
     const auto t = std::chrono::steady_clock::now();
     Links& next = links.stage();
-    next.leaves = pushToLeaves(tree, created, bins, c.scene.environment, geometry.origins, within(0.6, 1.0), rows);
+    next.leaves = pushToLeaves(tree, created, bins, c.scene, elements, geometry.origins, within(0.6, 1.0), rows);
     next.nodeLinks = created.byReceiver.nonZeros();
     c.part("RefinePush", msSince(t));
   }
@@ -151,6 +152,7 @@ private:
   CpuGeometry geometry;
   std::vector<float> areas;
   ClusterTree tree;
+  ElementTriangles elements;
   CubeBins bins;
   bool geometryTouched = false;
   /// The link stage's results: the leaves' links, and how many node links made them.

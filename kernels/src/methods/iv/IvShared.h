@@ -163,47 +163,76 @@ LINKGI_HOST_DEVICE void splatDisc(const Vec3f& center, const Vec3f& normal, floa
   }
 }
 
-/// How a source leaf disc at squared distance r2 from the receiver enters its bins: near
-/// (closer than twice its radius: drawn into every bin whose centre ray hits it), splatted
-/// (wider than a bin: points on rings), or as its centre alone.
-enum class DiscReach
+/// How a source leaf at squared distance r2 from the receiver enters its bins: as its
+/// centre alone (narrower than a bin), splatted as a disc (wider than a bin, showing the
+/// receiver its front), or drawn from its own surface (closer than twice its radius, or
+/// wider than a bin and showing the receiver its back).
+enum class LeafReach
 {
   Centre,
   Splat,
-  Near
+  Surface
 };
 
-/// `facing` = n_disc . (receiver - centre). A disc that shows the receiver its back is its
-/// centre alone: the centre is a point of the surface (its vertex), the rest of the disc
-/// its tangent plane, which reaches past the surface wherever that bends away from the
-/// receiver's side: over a convex edge or bump, and most of all at a vertex split along a
-/// crease, whose twin at the same position covers up to half of the other's hemisphere
-/// from behind. Seen from outside a closed surface, what lies first along a ray is a front
-/// face, so such a rim only blackens bins.
-LINKGI_HOST_DEVICE inline DiscReach discReach(float radius, float r2, float binAngle, float facing)
+/// `facing` = n_disc . (receiver - centre). A disc is its vertex's tangent plane; the
+/// surface bends away from it by about curvature x radius^2, so where a leaf is near
+/// (within twice its radius) its disc misplaces the surface by as much as the distance
+/// itself: at a crease the disc of a split twin at the same position covers up to the
+/// whole hemisphere from in front or from behind, whichever way the surface really turns;
+/// over a convex edge a rim reaches past the neighbouring faces. Such a leaf is drawn from
+/// its surface (surfaceHit). So is one seen from behind that spans several bins: its back
+/// hides what lies beyond it (a surface enclosing the receiver hides the sky), where the
+/// centre alone would let it through and its disc would blacken bins its surface does not
+/// reach. A leaf narrower than a bin fills it whole (the paper's Eq. 5), whichever side
+/// it shows.
+LINKGI_HOST_DEVICE inline LeafReach leafReach(float radius, float r2, float binAngle, float facing)
 {
-  return !(facing > 0.f) ? DiscReach::Centre
-    : 4.f * radius * radius > r2 ? DiscReach::Near
-    : radius * radius > 0.25f * binAngle * binAngle * r2 ? DiscReach::Splat
-                                                         : DiscReach::Centre;
+  const bool wide = radius * radius > 0.25f * binAngle * binAngle * r2;
+  return 4.f * radius * radius > r2 || (wide && !(facing > 0.f)) ? LeafReach::Surface
+    : wide                                                       ? LeafReach::Splat
+                                                                 : LeafReach::Centre;
 }
 
-/// The squared distance along `dir` from p to the disc (centre c, normal nc, radius), or a
-/// negative value when the ray misses it.
-LINKGI_HOST_DEVICE inline float nearDiscHit(const Vec3f& p, const Vec3f& dir, const Vec3f& c, const Vec3f& nc, float radius)
+/// A bin's source drawn from its surface (surfaceHit) carries this bit, and its back the
+/// next: such a source is the side of the surface hit, not the side its disc faces.
+constexpr Index kSurfaceHit = Index(1) << 31;
+constexpr Index kSurfaceBack = Index(1) << 30;
+constexpr Index kSourceMask = kSurfaceBack - 1;
+
+/// Where the ray o + t dir meets the element of the vertex at `corner` of triangle
+/// (p0, p1, p2): the part of the triangle where that vertex's barycentric coordinate is
+/// the largest (a third of its area; over its adjacent triangles, the vertex's area as
+/// vertexAreas counts it). Returns t > 0, or a negative value when it misses; `back` tells
+/// whether the ray meets the triangle's back (p0, p1, p2 counter-clockwise seen from its
+/// front).
+LINKGI_HOST_DEVICE inline float surfaceHit(const Vec3f& o, const Vec3f& dir, const Vec3f& p0, const Vec3f& p1,
+  const Vec3f& p2, int corner, bool& back)
 {
-  const float denom = dot(dir, nc);
-  if (denom == 0.f)
+  const Vec3f e1 = p1 - p0, e2 = p2 - p0;
+  const Vec3f pv = cross(dir, e2);
+  const float det = dot(e1, pv);
+  if (det == 0.f)
   {
     return -1.f;
   }
-  const float along = dot(c - p, nc) / denom;
-  const Vec3f off = p + dir * along - c;
-  if (!(along > 0.f) || dot(off, off) > radius * radius)
+  const float inv = 1.f / det;
+  const Vec3f tv = o - p0;
+  const float u = dot(tv, pv) * inv;
+  const Vec3f qv = cross(tv, e1);
+  const float v = dot(dir, qv) * inv;
+  const float w = 1.f - u - v;
+  if (!(u >= 0.f && v >= 0.f && w >= 0.f))
   {
     return -1.f;
   }
-  return along * along;
+  const float mine = corner == 0 ? w : corner == 1 ? u : v;
+  if (mine < w || mine < u || mine < v)
+  {
+    return -1.f;
+  }
+  back = det < 0.f;
+  const float t = dot(e2, qv) * inv;
+  return t > 0.f ? t : -1.f;
 }
 
 /// A bin's candidate as one ordered key: the shorter distance wins, then the smaller

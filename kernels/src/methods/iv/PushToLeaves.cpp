@@ -62,46 +62,111 @@ void concatenate(const std::vector<RowSlice>& slices, bool environment, SparseMa
   }
 }
 
-/// Leaf discs nearer than twice their radius (neighbours; a disc across a contact) cover
-/// many bins of the receiver at p: each is drawn into every bin whose centre ray hits it, at
-/// the hit's distance, so that the bins beside close neighbours and across a contact do
-/// not stay empty and see through the surface.
-void rasterizeNearDiscs(const ClusterTree& t, const std::vector<Index>& discs, const Vec3f& p,
-  const Vec3f& n, const CubeBins& bins, std::vector<float>& bestDistance, std::vector<Index>& bestSource)
+/// Offers the hit `source` (flagged kSurfaceHit, and kSurfaceBack for a back) at distance
+/// t to bin b.
+inline void offerHit(std::size_t b, float t, Index source, std::vector<float>& bestDistance,
+  std::vector<Index>& bestSource)
 {
-  if (discs.empty())
+  const float d2 = t * t;
+  if (bestSource[b] == kInvalidIndex || d2 < bestDistance[b] || (d2 == bestDistance[b] && source < bestSource[b]))
   {
-    return;
+    bestDistance[b] = d2;
+    bestSource[b] = source;
   }
-  for (std::size_t b = 0; b < bins.count(); ++b)
+}
+
+/// Leaves whose discs would misplace their surface (leafReach: near ones, wide ones seen
+/// from behind) drawn from their triangles: every bin of the hemisphere about n whose
+/// centre ray from o meets one takes it at the hit's distance, its back as such. A
+/// triangle whose corners all lie on one cube face covers only bins within their columns
+/// and rows there (central projection keeps it a triangle); others are tried on every bin.
+void drawSurfaces(const Scene& scene, const ElementTriangles& elements, const std::vector<Index>& leaves,
+  const Vec3f& o, const Vec3f& n, const CubeBins& bins, std::vector<float>& bestDistance,
+  std::vector<Index>& bestSource)
+{
+  const int side = bins.n;
+  for (Index src : leaves)
   {
-    const Vec3f& dir = bins.center[b];
-    if (dot(dir, n) <= 0.f)
+    for (Index k = elements.offsets[src]; k < elements.offsets[src + 1]; ++k)
     {
-      continue;
-    }
-    for (Index src : discs)
-    {
-      const float d2 = nearDiscHit(p, dir, t.position[src], t.normal[src], t.radius[src]);
-      if (d2 < 0.f)
+      const Triangle& tri = scene.triangles[elements.triangles[k]];
+      const Vec3f p[3] = { scene.positions[tri.v[0]], scene.positions[tri.v[1]], scene.positions[tri.v[2]] };
+      const int corner = tri.v[0] == src ? 0 : tri.v[1] == src ? 1 : 2;
+      const auto tryBin = [&](std::size_t b) {
+        const Vec3f& dir = bins.center[b];
+        bool back = false;
+        const float t = dot(dir, n) > 0.f ? surfaceHit(o, dir, p[0], p[1], p[2], corner, back) : -1.f;
+        if (t > 0.f)
+        {
+          offerHit(b, t, src | kSurfaceHit | (back ? kSurfaceBack : 0u), bestDistance, bestSource);
+        }
+      };
+      float u[3], v[3];
+      int face[3];
+      for (int i = 0; i < 3; ++i)
       {
+        face[i] = cubeFace(p[i] - o, u[i], v[i]);
+      }
+      if (face[0] != face[1] || face[0] != face[2])
+      {
+        for (std::size_t b = 0; b < bins.count(); ++b)
+        {
+          tryBin(b);
+        }
         continue;
       }
-      if (bestSource[b] == kInvalidIndex || d2 < bestDistance[b] || (d2 == bestDistance[b] && src < bestSource[b]))
+      const int c0 = cubeCell(std::min({ u[0], u[1], u[2] }), side), c1 = cubeCell(std::max({ u[0], u[1], u[2] }), side);
+      const int r0 = cubeCell(std::min({ v[0], v[1], v[2] }), side), r1 = cubeCell(std::max({ v[0], v[1], v[2] }), side);
+      for (int row = r0; row <= r1; ++row)
       {
-        bestDistance[b] = d2;
-        bestSource[b] = src;
+        for (int col = c0; col <= c1; ++col)
+        {
+          tryBin((std::size_t(face[0]) * side + row) * side + col);
+        }
       }
     }
   }
 }
 }
 
+ElementTriangles ElementTriangles::of(const Scene& scene)
+{
+  ElementTriangles e;
+  e.offsets.assign(scene.vertexCount() + 1, 0);
+  for (const Triangle& t : scene.triangles)
+  {
+    for (Index v : t.v)
+    {
+      ++e.offsets[v + 1];
+    }
+  }
+  for (std::size_t v = 0; v < scene.vertexCount(); ++v)
+  {
+    e.offsets[v + 1] += e.offsets[v];
+  }
+  e.triangles.resize(e.offsets.back());
+  std::vector<Index> next(e.offsets.begin(), e.offsets.end() - 1);
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i)
+  {
+    for (Index v : scene.triangles[i].v)
+    {
+      e.triangles[next[v]++] = Index(i);
+    }
+  }
+  return e;
+}
+
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
-  const Environment& environment, const std::vector<RayOrigin>& receivers,
+  const Scene& scene, const ElementTriangles& elements, const std::vector<RayOrigin>& receivers,
   const ProgressCallback& progress, const std::uint8_t* rows)
 {
   const std::size_t leaves = tree.leafCount, nb = bins.count();
+  if (tree.nodeCount() > kSourceMask)
+  {
+    throw Error("The implicit-visibility method holds at most " + std::to_string(kSourceMask / 2) +
+      " vertices; the scene has " + std::to_string(leaves) + ".");
+  }
+  const Environment& environment = scene.environment;
   const std::size_t sliceCount = std::min<std::size_t>(leaves, std::size_t(workerCount()) * 16);
   std::vector<RowSlice> slices(sliceCount);
   std::vector<std::uint64_t> occupied(sliceCount, 0), empty(sliceCount, 0);
@@ -129,7 +194,7 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
     std::vector<float> bestDistance(nb);
     std::vector<Index> bestSource(nb, kInvalidIndex);
     std::vector<std::pair<Index, float>> row, envRow;
-    std::vector<Index> nearDiscs;
+    std::vector<Index> surfaces;
     for (std::size_t s = first; s < last; ++s)
     {
       RowSlice& out = slices[s];
@@ -178,12 +243,12 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
             {
               const Vec3f toSource = tree.position[src] - p;
               const float r2 = dot(toSource, toSource), radius = tree.radius[src];
-              const DiscReach reach = discReach(radius, r2, binAngle, -dot(tree.normal[src], toSource));
-              if (reach == DiscReach::Near)
+              const LeafReach reach = leafReach(radius, r2, binAngle, -dot(tree.normal[src], toSource));
+              if (reach == LeafReach::Surface)
               {
-                nearDiscs.push_back(src); // a neighbour, or a disc across a contact
+                surfaces.push_back(src); // a neighbour, a twin, a surface across a contact or behind
               }
-              else if (reach == DiscReach::Splat)
+              else if (reach == LeafReach::Splat)
               {
                 auto point = [&](const Vec3f& q) { offer(q, -1); };
                 splatDisc(tree.position[src], tree.normal[src], radius, std::sqrt(r2), binAngle, point);
@@ -191,8 +256,12 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
             }
           }
         }
-        rasterizeNearDiscs(tree, nearDiscs, p, n, bins, bestDistance, bestSource);
-        nearDiscs.clear();
+        // A leaf linked from several of its ancestors is drawn once.
+        std::sort(surfaces.begin(), surfaces.end());
+        surfaces.erase(std::unique(surfaces.begin(), surfaces.end()), surfaces.end());
+        const Vec3f origin = receivers.empty() ? p : p + n * receivers[leaf].offset;
+        drawSurfaces(scene, elements, surfaces, origin, n, bins, bestDistance, bestSource);
+        surfaces.clear();
         float hemisphere = 0.f;
         for (std::size_t b = 0; b < nb; ++b)
         {
@@ -212,9 +281,12 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
             continue;
           }
           ++occupiedHere;
-          if (dot(tree.normal[src], p - tree.position[src]) > 0.f)
+          // A surface hit shows the side it was met on; otherwise the side the disc faces.
+          const bool front = (src & kSurfaceHit) ? !(src & kSurfaceBack)
+                                                 : dot(tree.normal[src], p - tree.position[src]) > 0.f;
+          if (front)
           {
-            row.emplace_back(src, w);
+            row.emplace_back(src & kSourceMask, w);
           }
         }
         const float scale = hemisphere > 0.f ? kPi / hemisphere : 0.f;

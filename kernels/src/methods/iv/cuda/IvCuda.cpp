@@ -67,6 +67,9 @@ private:
     {
       tree = ClusterTree::build(s, areas);
       uploadStructure();
+      const ElementTriangles elements = ElementTriangles::of(s);
+      elementOffsets.upload(elements.offsets, stream);
+      elementTriangles.upload(elements.triangles, stream);
       c.part("HierarchyBuild", msSince(t));
     }
     else
@@ -175,6 +178,11 @@ private:
     }
     gpu::keepShortestPerBin(links.data(), linkCount, nodes.data(), tree.nodeCount(), n, nodeRows, stream);
 
+    if (tree.nodeCount() > kSourceMask)
+    {
+      throw Error("The implicit-visibility method holds at most " + std::to_string(kSourceMask / 2) +
+        " vertices; the scene has " + std::to_string(tree.leafCount) + ".");
+    }
     gpu::PushParams p;
     p.nodes = nodes.data();
     p.parent = parent.data();
@@ -182,6 +190,10 @@ private:
     p.rowCounts = nodeRows.rowCounts.data();
     p.columns = nodeRows.columns.data();
     p.receivers = mesh.origins.data();
+    p.positions = mesh.positions.data();
+    p.triangles = mesh.triangles.data();
+    p.elementOffsets = elementOffsets.data();
+    p.elementTriangles = elementTriangles.data();
     p.binCenters = binCenters.data();
     p.binSolidAngles = binSolidAngles.data();
     p.binTexels = binTexels.data();
@@ -193,7 +205,7 @@ private:
     stride = bins.count();
     gpu::pushToLeaves(p, stride, leafRows, totals.data(), stream);
     // The totals say how long the rows are (the bounces' threads per row) and whether a
-    // leaf had more near discs than the push holds.
+    // leaf had more leaves to draw from their surface than the push holds.
     LINKGI_CUDA_CHECK(cudaMemcpyAsync(device.counters + kTotalsSlot, totals.data(), 5 * sizeof(unsigned long long),
       cudaMemcpyDeviceToHost, stream));
     Offset lastStart = 0;
@@ -209,7 +221,7 @@ private:
     const unsigned long long* t = device.counters + kTotalsSlot;
     if (t[4])
     {
-      throw CudaError(std::to_string(t[4]) + " leaves had more near discs than the GPU's push holds.", false);
+      throw CudaError(std::to_string(t[4]) + " leaves had more neighbours to draw from their surface than the GPU's push holds.", false);
     }
     nodeLinks = lastStart + lastCount;
     transportEntries = t[2];
@@ -305,7 +317,7 @@ private:
   std::vector<Index> levelOffsets;
   GPUBuffer<NodeBounds> nodes;
   GPUBuffer<float> area, binSolidAngles;
-  GPUBuffer<Index> left, right, parent, levelNodes, binTexels;
+  GPUBuffer<Index> left, right, parent, levelNodes, binTexels, elementOffsets, elementTriangles;
   GPUBuffer<Vec3f> binCenters, albedo, emission;
   GPUBuffer<gpu::NodePair> frontier, next, links;
   GPUBuffer<unsigned long long> counters, totals;

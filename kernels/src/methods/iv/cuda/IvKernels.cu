@@ -15,8 +15,9 @@ using cuda::toVec;
 constexpr int kThreads = cuda::kBlockThreads;
 /// Threads of the push's block per leaf.
 constexpr int kPushThreads = 128;
-/// Near discs a leaf keeps (its neighbours through every ancestor's links; duplicates too).
-constexpr int kMaxNearDiscs = 512;
+/// Leaves a leaf draws from their surface (near ones and wide ones seen from behind, through
+/// every ancestor's links; duplicates too).
+constexpr int kMaxSurfaceLeaves = 512;
 
 using cuda::gridBlocks;
 
@@ -207,7 +208,7 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
   std::uint64_t* keys = shared;                   // binCount
   std::uint64_t* sortKeys = shared + binCount;    // padded
   float* binWeights = reinterpret_cast<float*>(sortKeys + padded); // binCount
-  Index* near = reinterpret_cast<Index*>(binWeights + binCount);   // kMaxNearDiscs
+  Index* near = reinterpret_cast<Index*>(binWeights + binCount);   // kMaxSurfaceLeaves
   __shared__ int nearCount;
   __shared__ float hemisphere;
   __shared__ unsigned occupied, empty;
@@ -249,16 +250,18 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
       {
         const Vec3f toSource = s.position - bins.at;
         const float r2 = dot(toSource, toSource);
-        const DiscReach reach = discReach(s.radius, r2, p.binAngle, -dot(s.normal, toSource));
-        if (reach == DiscReach::Near)
+        const LeafReach reach = leafReach(s.radius, r2, p.binAngle, -dot(s.normal, toSource));
+        if (reach == LeafReach::Surface)
         {
-          const int slot = atomicAdd(&nearCount, 1); // a neighbour, or a disc across a contact
-          if (slot < kMaxNearDiscs)
+          // A neighbour, a twin, a surface across a contact or behind (a leaf linked from
+          // several ancestors is listed, and drawn, once per link: the same hits).
+          const int slot = atomicAdd(&nearCount, 1);
+          if (slot < kMaxSurfaceLeaves)
           {
             near[slot] = src;
           }
         }
-        else if (reach == DiscReach::Splat)
+        else if (reach == LeafReach::Splat)
         {
           splatDisc(s.position, s.normal, s.radius, std::sqrt(r2), p.binAngle, bins);
         }
@@ -266,7 +269,7 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
     }
   }
   __syncthreads();
-  if (nearCount > kMaxNearDiscs)
+  if (nearCount > kMaxSurfaceLeaves)
   {
     if (threadIdx.x == 0)
     {
@@ -274,7 +277,9 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
     }
     return; // the host refuses the result (the CPU runs the update)
   }
-  // Near discs: drawn into every bin whose centre ray hits them (one thread per bin).
+  // Leaves drawn from their surface: every bin whose centre ray meets one of their
+  // triangles' parts takes them at the hit's distance, a back as such (one thread per bin).
+  const Vec3f origin = p.receivers ? bins.at + bins.normal * p.receivers[leaf].offset : bins.at;
   for (int b = threadIdx.x; b < binCount; b += blockDim.x)
   {
     const Vec3f dir = p.binCenters[b];
@@ -282,16 +287,25 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
     {
       continue;
     }
+    std::uint64_t best = keys[b];
     for (int i = 0; i < nearCount; ++i)
     {
-      const NodeBounds& s = p.nodes[near[i]];
-      const float d2 = nearDiscHit(bins.at, dir, s.position, s.normal, s.radius);
-      if (d2 >= 0.f)
+      const Index src = near[i];
+      for (Index k = p.elementOffsets[src]; k < p.elementOffsets[src + 1]; ++k)
       {
-        const std::uint64_t key = binKey(d2, near[i]);
-        keys[b] = key < keys[b] ? key : keys[b];
+        const Triangle tri = p.triangles[p.elementTriangles[k]];
+        const int corner = tri.v[0] == src ? 0 : tri.v[1] == src ? 1 : 2;
+        bool back = false;
+        const float t = surfaceHit(origin, dir, p.positions[tri.v[0]], p.positions[tri.v[1]], p.positions[tri.v[2]],
+          corner, back);
+        if (t > 0.f)
+        {
+          const std::uint64_t key = binKey(t * t, src | kSurfaceHit | (back ? kSurfaceBack : 0u));
+          best = key < best ? key : best;
+        }
       }
     }
+    keys[b] = best;
   }
   __syncthreads();
   // Weights: solid angle x cosine at the bin's centre, the hemisphere summed in bin order
@@ -330,10 +344,12 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
       {
         atomicAdd(&occupied, 1u);
         const Index src = Index(keys[b] & 0xffffffffu);
-        const NodeBounds& s = p.nodes[src];
-        if (dot(s.normal, bins.at - s.position) > 0.f)
+        const NodeBounds& s = p.nodes[src & kSourceMask];
+        // A surface hit shows the side it was met on; otherwise the side the disc faces.
+        const bool front = (src & kSurfaceHit) ? !(src & kSurfaceBack) : dot(s.normal, bins.at - s.position) > 0.f;
+        if (front)
         {
-          key = (std::uint64_t(src) << 32) | std::uint32_t(b);
+          key = (std::uint64_t(src & kSourceMask) << 32) | std::uint32_t(b);
         }
       }
     }
@@ -480,7 +496,7 @@ void pushToLeaves(const PushParams& p, std::size_t stride, LeafRows& rows, unsig
     padded <<= 1;
   }
   const std::size_t shared = (binCount + padded) * sizeof(std::uint64_t) + binCount * sizeof(float) +
-    kMaxNearDiscs * sizeof(Index);
+    kMaxSurfaceLeaves * sizeof(Index);
   pushKernel<<<unsigned(leaves), kPushThreads, shared, stream>>>(p, stride, rows.rowStarts.data(),
     rows.counts.data(), rows.envCounts.data(), rows.columns.data(), rows.weights.data(), rows.envColumns.data(),
     rows.envWeights.data(), totals);

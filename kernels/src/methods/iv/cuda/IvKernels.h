@@ -55,7 +55,11 @@ struct PushParams
   const Offset* rowStarts = nullptr; ///< the node links' rows
   const Index* rowCounts = nullptr;
   const Index* columns = nullptr;
-  const RayOrigin* receivers = nullptr; ///< per leaf: where it looks from (its shift)
+  const RayOrigin* receivers = nullptr; ///< per leaf: where it looks from (its shift and offset)
+  const Vec3f* positions = nullptr;     ///< the mesh, for the leaves drawn from their surface
+  const Triangle* triangles = nullptr;
+  const Index* elementOffsets = nullptr; ///< ElementTriangles: each vertex's triangles
+  const Index* elementTriangles = nullptr;
   const Vec3f* binCenters = nullptr;
   const float* binSolidAngles = nullptr;
   const Index* binTexels = nullptr; ///< the environment texel each bin's centre sees
@@ -66,8 +70,8 @@ struct PushParams
 
 /// Each leaf's rows of the transport and environment matrices (ImplicitLinks.h
 /// pushToLeaves), `stride` entries of room per leaf (rowStarts[leaf] = leaf * stride).
-/// totals: [occupied bins, empty bins, transport entries, environment entries, near-disc
-/// overflows], added to.
+/// totals: [occupied bins, empty bins, transport entries, environment entries, overflows
+/// of the leaves drawn from their surface], added to.
 struct LeafRows
 {
   cuda::GPUBuffer<Offset> rowStarts;
