@@ -2,7 +2,8 @@
 // on the models) on real scanned models (Testing/Data/Models), each standing on the floor
 // of a room lit by a lamp under its ceiling: the whole room within 10% for every method,
 // the model's own indirect light unbiased for all but instant radiosity, and the link
-// method and photon mapping within 10% on what a camera sees of the model.
+// method, implicit visibility and photon mapping within 10% on what a camera sees of the
+// model.
 #include "FilterTestUtilities.h"
 
 #include "vtkGlobalIlluminationSceneBuilder.h"
@@ -145,12 +146,8 @@ TEST(TestGlobalIlluminationAgreement, EveryMethodAgreesWithThePathTracerOnRealMo
         100.f * bias, solver.stats().msTotal, double(solver.stats().hostBytesEstimated) / (1 << 20));
       EXPECT_LT(direct, 1e-4f) << model.File << ", method " << int(method); // the same shadow rays
       EXPECT_LT(room, 0.10f) << model.File << ", method " << int(method);
-      if (method != linkgi::Method::ImplicitVisibility)
-      {
-        // Within 10% where a camera sees the model (Documentation/Methods.md, real models:
-        // implicit visibility is not yet).
-        EXPECT_LT(onSeen, 0.10f) << model.File << ", method " << int(method);
-      }
+      // Within 10% where a camera sees the model (Documentation/Methods.md, real models).
+      EXPECT_LT(onSeen, 0.10f) << model.File << ", method " << int(method);
       // Unbiased on the model itself (instant radiosity's clamp loses the light of short
       // paths, which its compensation takes back).
       EXPECT_LT(std::abs(bias), 0.10f) << model.File << ", method " << int(method);
