@@ -62,18 +62,19 @@ class ShortestPerBin
 {
 public:
   explicit ShortestPerBin(const CubeBins& bins)
-    : BestDistance(bins.count())
+    : BinAngle(std::sqrt(bins.meanSolidAngle()))
+    , BestDistance(bins.count())
     , BestSource(bins.count(), kInvalidIndex)
   {
   }
 
-  /// Offers the link from `source` to `node`; false for a link without a direction, which
-  /// the caller keeps as it is.
+  /// Offers the link from `source` to `node`; false for a link without a direction, or one
+  /// to a leaf the push draws from its surface (keptWhole), which the caller keeps as it is.
   bool offer(const ClusterTree& t, const CubeBins& bins, Index node, Index source)
   {
     const Vec3f d = t.position[source] - t.position[node];
     const float d2 = dot(d, d);
-    if (!(d2 > 0.f))
+    if (!(d2 > 0.f) || keptWhole(t.isLeaf(source), t.radius[source], t.normal[source], d, d2, this->BinAngle))
     {
       return false;
     }
@@ -105,6 +106,7 @@ public:
   }
 
 private:
+  float BinAngle;
   std::vector<float> BestDistance;
   std::vector<Index> BestSource;
   std::vector<int> Touched;

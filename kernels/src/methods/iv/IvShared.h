@@ -193,6 +193,16 @@ LINKGI_HOST_DEVICE inline LeafReach leafReach(float radius, float r2, float binA
                                                                  : LeafReach::Centre;
 }
 
+/// Whether a node's link to `source` (d = its position - the node's, d2 = |d|^2) stays
+/// whatever its bin's shortest is: a leaf the push draws from its surface covers bins
+/// beside its centre's, so a nearer link in its centre's bin hides only part of it (a
+/// split twin at a box's edge shares its bin and distance with the other face's vertex).
+LINKGI_HOST_DEVICE inline bool keptWhole(bool sourceIsLeaf, float radius, const Vec3f& normal, const Vec3f& d,
+  float d2, float binAngle)
+{
+  return sourceIsLeaf && leafReach(radius, d2, binAngle, -dot(normal, d)) == LeafReach::Surface;
+}
+
 /// A bin's source drawn from its surface (surfaceHit) carries this bit, and its back the
 /// next: such a source is the side of the surface hit, not the side its disc faces.
 constexpr Index kSurfaceHit = Index(1) << 31;

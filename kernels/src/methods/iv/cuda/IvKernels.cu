@@ -46,7 +46,7 @@ __global__ void visitKernel(PairRules rules, const NodePair* frontier, std::size
 }
 
 __global__ void binKernel(const NodePair* links, std::size_t count, const NodeBounds* nodes, int n, int binCount,
-  std::uint64_t* best, Index* zeroCounts, NodePair* zero, unsigned long long* zeroCount)
+  float binAngle, std::uint64_t* best, Index* zeroCounts, NodePair* zero, unsigned long long* zeroCount)
 {
   const std::size_t i = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
   if (i >= count)
@@ -56,9 +56,11 @@ __global__ void binKernel(const NodePair* links, std::size_t count, const NodeBo
   const NodePair l = links[i];
   const Vec3f d = nodes[l.b].position - nodes[l.a].position;
   const float d2 = dot(d, d);
-  if (!(d2 > 0.f))
+  const NodeBounds& source = nodes[l.b];
+  if (!(d2 > 0.f) || keptWhole(source.firstChild == kInvalidIndex, source.radius, source.normal, d, d2, binAngle))
   {
-    // No direction: kept. (Same-place nodes: the row's order does not matter to the push.)
+    // No direction, or a leaf the push draws from its surface: kept. (The row's order does
+    // not matter to the push.)
     atomicAdd(&zeroCounts[l.a], 1u);
     zero[atomicAdd(zeroCount, 1ull)] = l;
     return;
@@ -445,8 +447,10 @@ void keepShortestPerBin(const NodePair* links, std::size_t linkCount, const Node
   rows.zero.resize(std::max<std::size_t>(linkCount, 1));
   if (linkCount)
   {
+    // CubeBins::meanSolidAngle's square root, as the CPU takes it.
+    const float binAngle = std::sqrt(4.f * kPi / float(binCount));
     binKernel<<<gridBlocks(linkCount), kThreads, 0, stream>>>(links, linkCount, nodes, binsPerSide, binCount,
-      rows.best.data(), rows.zeroCounts.data(), rows.zero.data(), rows.zeroCount.data());
+      binAngle, rows.best.data(), rows.zeroCounts.data(), rows.zero.data(), rows.zeroCount.data());
     LINKGI_CUDA_CHECK_LAUNCH("binKernel");
   }
   rows.binCounts.resize(nodeCount);
