@@ -16,8 +16,8 @@ constexpr int kThreads = cuda::kBlockThreads;
 /// Threads of the push's block per leaf.
 constexpr int kPushThreads = 128;
 /// Leaves a leaf draws from their surface (near ones and wide ones seen from behind, through
-/// every ancestor's links; duplicates too).
-constexpr int kMaxSurfaceLeaves = 512;
+/// every ancestor's links, each once).
+constexpr int kMaxSurfaceLeaves = 2048;
 
 using cuda::gridBlocks;
 
@@ -235,6 +235,9 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
   {
     bins.node = node;
     const Offset first = p.rowStarts[node];
+    // What the nearer ancestors listed (a node's row names a source once; its ancestors may
+    // name it again).
+    const int listedBefore = nearCount < kMaxSurfaceLeaves ? nearCount : kMaxSurfaceLeaves;
     for (Index e = threadIdx.x; e < p.rowCounts[node]; e += blockDim.x)
     {
       const Index src = p.columns[first + e];
@@ -253,10 +256,14 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
         const Vec3f toSource = s.position - bins.at;
         const float r2 = dot(toSource, toSource);
         const LeafReach reach = leafReach(s.radius, r2, p.binAngle, -dot(s.normal, toSource));
-        if (reach == LeafReach::Surface)
+        bool listed = false;
+        for (int i = 0; reach == LeafReach::Surface && i < listedBefore && !listed; ++i)
         {
-          // A neighbour, a twin, a surface across a contact or behind (a leaf linked from
-          // several ancestors is listed, and drawn, once per link: the same hits).
+          listed = near[i] == src;
+        }
+        if (reach == LeafReach::Surface && !listed)
+        {
+          // A neighbour, a twin, a surface across a contact or behind.
           const int slot = atomicAdd(&nearCount, 1);
           if (slot < kMaxSurfaceLeaves)
           {
@@ -269,8 +276,8 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
         }
       }
     }
+    __syncthreads(); // this node's list complete before the next one reads it
   }
-  __syncthreads();
   if (nearCount > kMaxSurfaceLeaves)
   {
     if (threadIdx.x == 0)
