@@ -144,8 +144,8 @@ struct LeafLinks
 /// `rows` (per leaf, or null for all): the leaves to push to; the others get empty rows
 /// (a process's share under MPI, SolverOptions::partition).
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
-  const Scene& scene, const ElementTriangles& elements, const std::vector<RayOrigin>& receivers,
-  const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
+  const Scene& scene, const std::vector<Vec3f>& faceNormals, const ElementTriangles& elements,
+  const std::vector<RayOrigin>& receivers, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 
 /// (Each function reports its own fraction in [0, 1] through `progress`.)
 /// n_B gather iterations: L at the leaves, pulled up the tree (area-weighted), gathered at

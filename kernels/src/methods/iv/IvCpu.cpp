@@ -105,7 +105,7 @@ private:
     const NodeLinks created = createNodeLinks(tree, bins, lo, within(0.0, 0.6), rows);
     const auto t = std::chrono::steady_clock::now();
     Links& next = links.stage();
-    next.leaves = pushToLeaves(tree, created, bins, c.scene, elements, geometry.origins, within(0.6, 1.0), rows);
+    next.leaves = pushToLeaves(tree, created, bins, c.scene, geometry.faceNormals, elements, geometry.origins, within(0.6, 1.0), rows);
     next.nodeLinks = created.byReceiver.nonZeros();
     c.part("RefinePush", msSince(t));
   }

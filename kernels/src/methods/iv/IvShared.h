@@ -213,10 +213,10 @@ constexpr Index kSourceMask = kSurfaceBack - 1;
 /// (p0, p1, p2): the part of the triangle where that vertex's barycentric coordinate is
 /// the largest (a third of its area; over its adjacent triangles, the vertex's area as
 /// vertexAreas counts it). Returns t > 0, or a negative value when it misses; `back` tells
-/// whether the ray meets the triangle's back (p0, p1, p2 counter-clockwise seen from its
-/// front).
+/// whether the ray meets the triangle's back: the side its `front` normal (frontFaceNormals:
+/// the side the vertex normals point to, whatever the winding) points away from.
 LINKGI_HOST_DEVICE inline float surfaceHit(const Vec3f& o, const Vec3f& dir, const Vec3f& p0, const Vec3f& p1,
-  const Vec3f& p2, int corner, bool& back)
+  const Vec3f& p2, int corner, const Vec3f& front, bool& back)
 {
   const Vec3f e1 = p1 - p0, e2 = p2 - p0;
   const Vec3f pv = cross(dir, e2);
@@ -240,7 +240,7 @@ LINKGI_HOST_DEVICE inline float surfaceHit(const Vec3f& o, const Vec3f& dir, con
   {
     return -1.f;
   }
-  back = det < 0.f;
+  back = dot(dir, front) > 0.f;
   const float t = dot(e2, qv) * inv;
   return t > 0.f ? t : -1.f;
 }

@@ -80,9 +80,9 @@ inline void offerHit(std::size_t b, float t, Index source, std::vector<float>& b
 /// centre ray from o meets one takes it at the hit's distance, its back as such. A
 /// triangle whose corners all lie on one cube face covers only bins within their columns
 /// and rows there (central projection keeps it a triangle); others are tried on every bin.
-void drawSurfaces(const Scene& scene, const ElementTriangles& elements, const std::vector<Index>& leaves,
-  const Vec3f& o, const Vec3f& n, const CubeBins& bins, std::vector<float>& bestDistance,
-  std::vector<Index>& bestSource)
+void drawSurfaces(const Scene& scene, const std::vector<Vec3f>& faceNormals, const ElementTriangles& elements,
+  const std::vector<Index>& leaves, const Vec3f& o, const Vec3f& n, const CubeBins& bins,
+  std::vector<float>& bestDistance, std::vector<Index>& bestSource)
 {
   const int side = bins.n;
   for (Index src : leaves)
@@ -90,12 +90,13 @@ void drawSurfaces(const Scene& scene, const ElementTriangles& elements, const st
     for (Index k = elements.offsets[src]; k < elements.offsets[src + 1]; ++k)
     {
       const Triangle& tri = scene.triangles[elements.triangles[k]];
+      const Vec3f& front = faceNormals[elements.triangles[k]];
       const Vec3f p[3] = { scene.positions[tri.v[0]], scene.positions[tri.v[1]], scene.positions[tri.v[2]] };
       const int corner = tri.v[0] == src ? 0 : tri.v[1] == src ? 1 : 2;
       const auto tryBin = [&](std::size_t b) {
         const Vec3f& dir = bins.center[b];
         bool back = false;
-        const float t = dot(dir, n) > 0.f ? surfaceHit(o, dir, p[0], p[1], p[2], corner, back) : -1.f;
+        const float t = dot(dir, n) > 0.f ? surfaceHit(o, dir, p[0], p[1], p[2], corner, front, back) : -1.f;
         if (t > 0.f)
         {
           offerHit(b, t, src | kSurfaceHit | (back ? kSurfaceBack : 0u), bestDistance, bestSource);
@@ -157,8 +158,8 @@ ElementTriangles ElementTriangles::of(const Scene& scene)
 }
 
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
-  const Scene& scene, const ElementTriangles& elements, const std::vector<RayOrigin>& receivers,
-  const ProgressCallback& progress, const std::uint8_t* rows)
+  const Scene& scene, const std::vector<Vec3f>& faceNormals, const ElementTriangles& elements,
+  const std::vector<RayOrigin>& receivers, const ProgressCallback& progress, const std::uint8_t* rows)
 {
   const std::size_t leaves = tree.leafCount, nb = bins.count();
   if (tree.nodeCount() > kSourceMask)
@@ -260,7 +261,7 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
         std::sort(surfaces.begin(), surfaces.end());
         surfaces.erase(std::unique(surfaces.begin(), surfaces.end()), surfaces.end());
         const Vec3f origin = receivers.empty() ? p : p + n * receivers[leaf].offset;
-        drawSurfaces(scene, elements, surfaces, origin, n, bins, bestDistance, bestSource);
+        drawSurfaces(scene, faceNormals, elements, surfaces, origin, n, bins, bestDistance, bestSource);
         surfaces.clear();
         float hemisphere = 0.f;
         for (std::size_t b = 0; b < nb; ++b)

@@ -192,6 +192,7 @@ private:
     p.receivers = mesh.origins.data();
     p.positions = mesh.positions.data();
     p.triangles = mesh.triangles.data();
+    p.faceNormals = mesh.faceNormals.data();
     p.elementOffsets = elementOffsets.data();
     p.elementTriangles = elementTriangles.data();
     p.binCenters = binCenters.data();

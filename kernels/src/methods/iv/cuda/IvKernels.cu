@@ -306,7 +306,7 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
         const int corner = tri.v[0] == src ? 0 : tri.v[1] == src ? 1 : 2;
         bool back = false;
         const float t = surfaceHit(origin, dir, p.positions[tri.v[0]], p.positions[tri.v[1]], p.positions[tri.v[2]],
-          corner, back);
+          corner, p.faceNormals[p.elementTriangles[k]], back);
         if (t > 0.f)
         {
           const std::uint64_t key = binKey(t * t, src | kSurfaceHit | (back ? kSurfaceBack : 0u));

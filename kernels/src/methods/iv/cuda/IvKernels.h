@@ -58,6 +58,7 @@ struct PushParams
   const RayOrigin* receivers = nullptr; ///< per leaf: where it looks from (its shift and offset)
   const Vec3f* positions = nullptr;     ///< the mesh, for the leaves drawn from their surface
   const Triangle* triangles = nullptr;
+  const Vec3f* faceNormals = nullptr; ///< frontFaceNormals: which side of a triangle is its front
   const Index* elementOffsets = nullptr; ///< ElementTriangles: each vertex's triangles
   const Index* elementTriangles = nullptr;
   const Vec3f* binCenters = nullptr;
