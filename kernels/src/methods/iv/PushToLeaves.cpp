@@ -75,11 +75,68 @@ inline void offerHit(std::size_t b, float t, Index source, std::vector<float>& b
   }
 }
 
+/// The bounds of what the pyramid of cube face `face` (about the cube's centre) holds of
+/// the triangle q, in that face's coordinates (cubeFace's u, v): the triangle clipped by the
+/// pyramid's four planes (Sutherland-Hodgman; at most seven corners). False where it holds
+/// none of it.
+bool faceBounds(const Vec3f q[3], int face, float& u0, float& u1, float& v0, float& v1)
+{
+  const int a = face / 2, b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2;
+  const float s = face % 2 == 0 ? 1.f : -1.f;
+  Vec3f poly[8] = { q[0], q[1], q[2] }, next[8];
+  int count = 3;
+  const int planes[4][2] = { { b, 1 }, { b, -1 }, { c, 1 }, { c, -1 } };
+  for (const auto& plane : planes)
+  {
+    // Inside: s p[a] - sign p[axis] >= 0.
+    const auto g = [&](const Vec3f& x) { return s * x[a] - float(plane[1]) * x[plane[0]]; };
+    int kept = 0;
+    for (int i = 0; i < count; ++i)
+    {
+      const Vec3f& p = poly[i];
+      const Vec3f& q2 = poly[(i + 1) % count];
+      const float gp = g(p), gq = g(q2);
+      if (gp >= 0.f)
+      {
+        next[kept++] = p;
+      }
+      if ((gp >= 0.f) != (gq >= 0.f))
+      {
+        next[kept++] = p + (q2 - p) * (gp / (gp - gq));
+      }
+    }
+    count = kept;
+    std::copy(next, next + count, poly);
+    if (count == 0)
+    {
+      return false;
+    }
+  }
+  u0 = v0 = 1.f;
+  u1 = v1 = -1.f;
+  for (int i = 0; i < count; ++i)
+  {
+    const float m = s * poly[i][a];
+    if (!(m > 0.f))
+    {
+      u0 = v0 = -1.f; // a corner at the cube's centre: the whole face
+      u1 = v1 = 1.f;
+      return true;
+    }
+    const float u = poly[i][b] / m, v = poly[i][c] / m;
+    u0 = std::min(u0, u);
+    u1 = std::max(u1, u);
+    v0 = std::min(v0, v);
+    v1 = std::max(v1, v);
+  }
+  return true;
+}
+
 /// Leaves whose discs would misplace their surface (leafReach: near ones, wide ones seen
 /// from behind) drawn from their triangles: every bin of the hemisphere about n whose
-/// centre ray from o meets one takes it at the hit's distance, its back as such. A
-/// triangle whose corners all lie on one cube face covers only bins within their columns
-/// and rows there (central projection keeps it a triangle); others are tried on every bin.
+/// centre ray from o meets one takes it at the hit's distance, its back as such. Only the
+/// bins within the columns and rows that the triangle's central projection covers on each
+/// cube face are tried (faceBounds).
 void drawSurfaces(const Scene& scene, const std::vector<Vec3f>& faceNormals, const ElementTriangles& elements,
   const std::vector<Index>& leaves, const Vec3f& o, const Vec3f& n, const CubeBins& bins,
   std::vector<float>& bestDistance, std::vector<Index>& bestSource)
@@ -102,27 +159,32 @@ void drawSurfaces(const Scene& scene, const std::vector<Vec3f>& faceNormals, con
           offerHit(b, t, src | kSurfaceHit | (back ? kSurfaceBack : 0u), bestDistance, bestSource);
         }
       };
+      const Vec3f q[3] = { p[0] - o, p[1] - o, p[2] - o };
       float u[3], v[3];
-      int face[3];
+      int faces[3];
       for (int i = 0; i < 3; ++i)
       {
-        face[i] = cubeFace(p[i] - o, u[i], v[i]);
+        faces[i] = cubeFace(q[i], u[i], v[i]);
       }
-      if (face[0] != face[1] || face[0] != face[2])
+      // Corners on one face: the face's pyramid is convex, so it holds the whole triangle,
+      // whose projection is the triangle of the corners' projections.
+      const bool oneFace = faces[0] == faces[1] && faces[0] == faces[2];
+      for (int face = oneFace ? faces[0] : 0; face < (oneFace ? faces[0] + 1 : 6); ++face)
       {
-        for (std::size_t b = 0; b < bins.count(); ++b)
+        float u0 = std::min({ u[0], u[1], u[2] }), u1 = std::max({ u[0], u[1], u[2] });
+        float v0 = std::min({ v[0], v[1], v[2] }), v1 = std::max({ v[0], v[1], v[2] });
+        if (!oneFace && !faceBounds(q, face, u0, u1, v0, v1))
         {
-          tryBin(b);
+          continue;
         }
-        continue;
-      }
-      const int c0 = cubeCell(std::min({ u[0], u[1], u[2] }), side), c1 = cubeCell(std::max({ u[0], u[1], u[2] }), side);
-      const int r0 = cubeCell(std::min({ v[0], v[1], v[2] }), side), r1 = cubeCell(std::max({ v[0], v[1], v[2] }), side);
-      for (int row = r0; row <= r1; ++row)
-      {
-        for (int col = c0; col <= c1; ++col)
+        const int c0 = cubeCell(u0, side), c1 = cubeCell(u1, side);
+        const int r0 = cubeCell(v0, side), r1 = cubeCell(v1, side);
+        for (int row = r0; row <= r1; ++row)
         {
-          tryBin((std::size_t(face[0]) * side + row) * side + col);
+          for (int col = c0; col <= c1; ++col)
+          {
+            tryBin((std::size_t(face) * side + row) * side + col);
+          }
         }
       }
     }
