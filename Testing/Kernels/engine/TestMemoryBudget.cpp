@@ -48,6 +48,22 @@ std::uint64_t firstUpdateEstimate(const Scene& s, SolverOptions o, MemoryShape* 
   return solver.stats().hostBytesEstimated;
 }
 
+/// The vertices that a fresh solver's refusal of `o` on `s` says would fit; a test failure
+/// (and 0) where it is not refused.
+std::uint64_t verticesThatFitOnRefusal(const Scene& s, const SolverOptions& o)
+{
+  try
+  {
+    Solver().update(s, o);
+  }
+  catch (const OutOfMemoryBudget& e)
+  {
+    return e.verticesThatFit();
+  }
+  ADD_FAILURE() << "not refused";
+  return 0;
+}
+
 std::string refusal(Solver& solver, const Scene& s, const SolverOptions& o)
 {
   try
@@ -277,18 +293,10 @@ TEST(TestMemoryBudget, TheRefusalCarriesTheVerticesThatFit)
   ASSERT_GT(sampled.sampledPerElement, 0.0) << "the link method samples its rows";
   const engine::MemoryVerdict v =
     engine::judgeMemory(engine::methodSpec(o.method), sampled, o, kAllStages, false, o.memoryBudget);
-  Solver solver;
-  try
-  {
-    solver.update(s, o);
-    FAIL() << "not refused";
-  }
-  catch (const OutOfMemoryBudget& e)
-  {
-    EXPECT_EQ(e.verticesThatFit(), v.verticesThatFit);
-    EXPECT_GT(e.verticesThatFit(), 0u);
-    EXPECT_LT(e.verticesThatFit(), s.vertexCount());
-  }
+  const std::uint64_t fit = verticesThatFitOnRefusal(s, o);
+  EXPECT_EQ(fit, v.verticesThatFit);
+  EXPECT_GT(fit, 0u);
+  EXPECT_LT(fit, s.vertexCount());
 }
 
 namespace
@@ -416,20 +424,12 @@ TEST(TestMemoryBudget, ARefusalBeforeTheSampleSaysWhatFitsTheWholeUpdate)
   o.memoryBudget = spec.estimateMemory(shape, o, 1u, false).hostBytes * 9 / 10; // stage 0: Geometry
   const engine::MemoryVerdict whole = engine::judgeMemory(spec, shape, o, kAllStages, false, o.memoryBudget);
   ASSERT_GT(whole.verticesThatFit, 0u);
-  Solver solver;
-  try
-  {
-    solver.update(s, o);
-    FAIL() << "not refused";
-  }
-  catch (const OutOfMemoryBudget& e)
-  {
-    EXPECT_EQ(e.verticesThatFit(), whole.verticesThatFit);
-    MemoryShape advised = shape;
-    advised.vertices = e.verticesThatFit();
-    advised.triangles = shape.triangles * advised.vertices / shape.vertices;
-    EXPECT_LE(spec.estimateMemory(advised, o, kAllStages, false).hostBytes, o.memoryBudget);
-  }
+  const std::uint64_t fit = verticesThatFitOnRefusal(s, o);
+  EXPECT_EQ(fit, whole.verticesThatFit);
+  MemoryShape advised = shape;
+  advised.vertices = fit;
+  advised.triangles = shape.triangles * advised.vertices / shape.vertices;
+  EXPECT_LE(spec.estimateMemory(advised, o, kAllStages, false).hostBytes, o.memoryBudget);
 }
 
 TEST(TestMemoryBudget, EveryMethodIsRefusedOverTheBudget)
