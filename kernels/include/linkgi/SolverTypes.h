@@ -132,9 +132,9 @@ struct InstantRadiosityOptions
   /// bounding-box diagonal: a VPL's contribution fades from full at 1.2 d_min to none at
   /// 0.8 d_min, so VPLs next to a vertex do not spike (this loses the light of short
   /// paths, which `compensationRays` take back; see Documentation/Methods.md). In [0, 1].
-  /// Default 0.02: with the compensation on, a larger clamp only removes 1/d^2 noise (the
-  /// scanned models' error falls from 10-13% at 0.01 to 7-10%), until corners lose light
-  /// the compensation cannot take back (the tearoom: 4.8% at 0.02, 9.1% at 0.05).
+  /// Default 0.02: with the compensation on, a larger clamp only removes 1/d^2 noise (what
+  /// is seen of the scanned models: 10% at 0.01, 7-7.5% at 0.02), until corners lose light
+  /// the compensation cannot take back (the tearoom: 2.8% at 0.02, 8.4% at 0.05).
   float clampDistance = 0.02f;
   /// Interleaved sampling: the VPLs are split into this many subsets and each vertex gathers
   /// one of them (times the count); the feature-aware one-ring smoothing recombines them.
