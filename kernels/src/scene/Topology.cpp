@@ -7,9 +7,7 @@
 
 namespace linkgi
 {
-namespace
-{
-/// Vertex -> incident triangles, in CSR form (counting sort: linear, no global sort).
+// A counting sort: linear, no global sort.
 void incidentTriangles(std::size_t vertexCount, const std::vector<Triangle>& triangles,
   std::vector<Index>& offsets, std::vector<Index>& incident)
 {
@@ -31,7 +29,6 @@ void incidentTriangles(std::size_t vertexCount, const std::vector<Triangle>& tri
       incident[fill[v]++] = t;
     }
   }
-}
 }
 
 // Each one-ring is gathered from the vertex's triangles and sorted on its own, in parallel.

@@ -21,4 +21,9 @@ struct Topology
   static Topology build(std::size_t vertexCount, const std::vector<Triangle>& triangles);
   std::size_t vertexCount() const { return neighbourOffsets.empty() ? 0 : neighbourOffsets.size() - 1; }
 };
+
+/// Vertex -> incident triangles, in CSR form: vertex v's triangles (indices into
+/// `triangles`, ascending) are incident[offsets[v]] to incident[offsets[v + 1] - 1].
+void incidentTriangles(std::size_t vertexCount, const std::vector<Triangle>& triangles,
+  std::vector<Index>& offsets, std::vector<Index>& incident);
 }

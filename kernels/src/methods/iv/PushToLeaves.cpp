@@ -2,6 +2,7 @@
 // environment matrices from the node links of its ancestors, keeping the shortest link per
 // direction bin. Split from ImplicitLinks.cpp, which creates the node links.
 #include "methods/iv/ImplicitLinks.h"
+#include "scene/Topology.h"
 
 #include "linkgi/Error.h"
 
@@ -195,27 +196,7 @@ void drawSurfaces(const Scene& scene, const std::vector<Vec3f>& faceNormals, con
 ElementTriangles ElementTriangles::of(const Scene& scene)
 {
   ElementTriangles e;
-  e.offsets.assign(scene.vertexCount() + 1, 0);
-  for (const Triangle& t : scene.triangles)
-  {
-    for (Index v : t.v)
-    {
-      ++e.offsets[v + 1];
-    }
-  }
-  for (std::size_t v = 0; v < scene.vertexCount(); ++v)
-  {
-    e.offsets[v + 1] += e.offsets[v];
-  }
-  e.triangles.resize(e.offsets.back());
-  std::vector<Index> next(e.offsets.begin(), e.offsets.end() - 1);
-  for (std::size_t i = 0; i < scene.triangles.size(); ++i)
-  {
-    for (Index v : scene.triangles[i].v)
-    {
-      e.triangles[next[v]++] = Index(i);
-    }
-  }
+  incidentTriangles(scene.vertexCount(), scene.triangles, e.offsets, e.triangles);
   return e;
 }
 
