@@ -98,9 +98,10 @@ std::vector<Vec3f> compensateCpu(const Scene& s, const std::vector<RayOrigin>& o
       const Vec3f n = s.normals[v] * elements.sideSign(e);
       const Frame frame = vertexFrame(n, true, seed, Index(e));
       const Vec3f origin = elementRayOrigin(s.positions[v], n, origins[v]);
+      const std::uint32_t key = compensationKey(seed, Index(e));
       for (std::uint32_t i = 0; i < rays; ++i)
       {
-        batch[i] = compensationRay(origin, frame, i, k, inputs.dmin, seed, Index(e));
+        batch[i] = compensationRay(origin, frame, i, k, inputs.dmin, key);
       }
       tracer.trace(batch.data(), hits.data(), rays);
       Vec3f sum(0.f);

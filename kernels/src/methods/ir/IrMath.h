@@ -103,15 +103,21 @@ struct CompensationInputs
   float dmin = 0.f;
 };
 
-/// Ray i of element e's k x k compensation rays from `origin` in `frame`.
+/// What jitters `element`'s compensation rays (compensationRay), for the seed.
+LINKGI_HOST_DEVICE inline std::uint32_t compensationKey(std::uint32_t seed, Index element)
+{
+  return hash32(hash32(element) ^ (seed + 0x632be5abu));
+}
+
+/// Ray i of an element's k x k compensation rays from `origin` in `frame`; `key`: its
+/// compensationKey.
 LINKGI_HOST_DEVICE inline Ray compensationRay(const Vec3f& origin, const Frame& frame, std::uint32_t i,
-  std::uint32_t k, float dmin, std::uint32_t seed, Index element)
+  std::uint32_t k, float dmin, std::uint32_t key)
 {
   // Jittered within its cell, not at the cell's centre: the surface nearer than 1.2 dmin
   // lies at grazing angles where the surface is concave (the inside of a lamp's shade, a
   // fold), and the centres of a k x k grid leave the band below an elevation of
   // acos(1 - 1/k) empty (29 degrees at 64 rays): there the compensation found nothing.
-  const std::uint32_t key = hash32(hash32(element) ^ (seed + 0x632be5abu));
   const float u = (float(i % k) + hashToUnit(key, 2 * i)) / float(k);
   const float v = (float(i / k) + hashToUnit(key, 2 * i + 1)) / float(k);
   return Ray{ origin, 0.f, frame.toWorld(cosineHemisphere(u, v)), 1.2f * dmin };

@@ -67,7 +67,7 @@ __global__ void compensateKernel(CompensationLaunch p, cuda::Rgba* out)
   const Vec3f n = p.normals[v] * (e < c.vertexCount ? 1.f : -1.f);
   const Frame frame = vertexFrame(n, true, p.seed, e);
   const Vec3f origin = elementRayOrigin(p.positions[v], n, p.origins[v]);
-  const std::uint32_t k = p.side, rays = k * k;
+  const std::uint32_t k = p.side, rays = k * k, key = compensationKey(p.seed, e);
   const auto indirectAt = [&p](Index i) {
     const cuda::Rgba x = p.indirect[i];
     return Vec3f(x.r, x.g, x.b);
@@ -75,7 +75,7 @@ __global__ void compensateKernel(CompensationLaunch p, cuda::Rgba* out)
   Vec3f sum(0.f);
   for (std::uint32_t i = 0; i < rays; ++i)
   {
-    const Ray ray = compensationRay(origin, frame, i, k, c.dmin, p.seed, e);
+    const Ray ray = compensationRay(origin, frame, i, k, c.dmin, key);
     Hit h;
     bvh::traverse<false>(p.mesh, ray, h);
     sum += compensationSample(c, ray, h, indirectAt);
