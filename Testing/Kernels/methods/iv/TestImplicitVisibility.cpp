@@ -34,6 +34,14 @@ SolverOptions ivOptions(std::uint32_t binsPerSide, std::uint32_t bounces = 3)
   return o;
 }
 
+/// One bounce of `s`'s sky at N = binsPerSide, without the smoothing: what each vertex sees.
+Solution oneBounceUnsmoothed(const Scene& s, std::uint32_t binsPerSide)
+{
+  SolverOptions o = ivOptions(binsPerSide, 1);
+  o.smoothing = false;
+  return Solver().update(s, o);
+}
+
 std::vector<Vec3f> total(const std::vector<Vec3f>& a, const std::vector<Vec3f>& b)
 {
   std::vector<Vec3f> t(a.size());
@@ -499,10 +507,7 @@ TEST(TestImplicitVisibility, ConvexCreasesSeeTheWholeSky)
   s.environment.color = Vec3f(1.f);
   for (const std::uint32_t n : { 8u, 12u })
   {
-    SolverOptions o = ivOptions(n, 1);
-    o.smoothing = false;
-    Solver solver;
-    const Solution& sol = solver.update(s, o);
+    const Solution sol = oneBounceUnsmoothed(s, n);
     float darkest = kPi;
     for (std::size_t v = 0; v < s.vertexCount(); ++v)
     {
@@ -531,10 +536,7 @@ TEST(TestImplicitVisibility, SurfacesSeenFromBehindHideTheSky)
   const ReferenceSolution reference = solveReference(s, ro);
   for (const std::uint32_t n : { 8u, 12u })
   {
-    SolverOptions o = ivOptions(n, 1);
-    o.smoothing = false;
-    Solver solver;
-    const Solution& sol = solver.update(s, o);
+    const Solution sol = oneBounceUnsmoothed(s, n);
     for (std::size_t v = sphereVertices; v < s.vertexCount(); ++v)
     {
       EXPECT_NEAR(reference.indirect[v].x, 0.f, 1e-6f) << "vertex " << v;
@@ -561,10 +563,7 @@ TEST(TestImplicitVisibility, TwinsAlongAnEnclosingBoxsEdgesHideTheSky)
   s.environment.color = Vec3f(1.f);
   for (const std::uint32_t n : { 8u, 12u })
   {
-    SolverOptions o = ivOptions(n, 1);
-    o.smoothing = false;
-    Solver solver;
-    const Solution& sol = solver.update(s, o);
+    const Solution sol = oneBounceUnsmoothed(s, n);
     for (std::size_t v = boxVertices; v < s.vertexCount(); ++v)
     {
       EXPECT_LT(sol.indirect[v].x, 0.05f * kPi) << "vertex " << v << ", " << n << " bins per side";
