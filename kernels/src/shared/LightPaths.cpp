@@ -172,6 +172,7 @@ VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32
     return h;
   };
   const std::uint32_t target = setup.targetVpls;
+  std::uint64_t taken = 0;
   for (int pass = 0; pass < 2; ++pass)
   {
     slots.resize(std::size_t(view.paths) * slotsPerPath);
@@ -203,7 +204,10 @@ VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32
         0);
     }
     view.paths = more;
+    taken = bytes;
   }
-  return packVpls(slots, counts, slotsPerPath, subsets);
+  VplSet set = packVpls(slots, counts, slotsPerPath, subsets);
+  set.secondPassBytes = taken;
+  return set;
 }
 }

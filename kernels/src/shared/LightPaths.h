@@ -396,6 +396,9 @@ struct VplSet
   std::vector<Vpl> vpls;
   std::vector<std::uint32_t> subsetOffsets;
   std::vector<float> subsetScale;
+  /// Bytes of the second pass's path slots (0 without one): memory that the update's
+  /// estimate, made before the first pass, did not count.
+  std::uint64_t secondPassBytes = 0;
   std::size_t count() const { return vpls.size(); }
 };
 
@@ -412,7 +415,8 @@ VplSet packVpls(const std::vector<Vpl>& slots, const std::vector<int>& counts,
 /// Every light path of `setup` traced against `tracer` (the mesh), split into `subsets`.
 /// A scene whose paths mostly leave it gets a second pass of more paths (secondPassPaths);
 /// when that pass's slots would take more than `secondPassBytes`, OutOfMemoryBudget says so
-/// before they are allocated (the update's estimate counts the first pass only).
+/// before they are allocated (the update's estimate counts the first pass only), and
+/// otherwise VplSet::secondPassBytes says what they took.
 VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32_t subsets,
   const ProgressCallback& progress = {}, std::uint64_t secondPassBytes = UINT64_MAX);
 }

@@ -196,6 +196,8 @@ private:
     const PathSetup setup = buildPathSetup(c.scene, geometry.faceNormals, geometry.origins, c.options);
     vpls.stage() = traceVplsCpu(setup, *geometry.tracer, c.options.instantRadiosity.interleave, c.progress,
       memoryLeft(c.stats));
+    // A second pass is charged to the update's estimate once it is known (and fits).
+    c.stats.hostBytesEstimated += vpls.stage().secondPassBytes;
   }
 
   void gather(const StageContext& c)

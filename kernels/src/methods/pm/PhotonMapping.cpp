@@ -78,7 +78,7 @@ RadianceSitesView PhotonMap::sitesView() const
   return { sites.view(), siteNormals.data(), siteRadiance.data(), maxDistance2 };
 }
 
-void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals,
+std::uint64_t tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals,
   const std::vector<RayOrigin>& origins, const RayTracer& tracer,
   const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress, std::uint64_t secondPassBytes)
 {
@@ -107,6 +107,7 @@ void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals,
       map.causticFlux.push_back(vpl.flux);
     }
   }
+  return hits.secondPassBytes;
 }
 
 std::vector<Vec3f> causticReference(const Scene& s, const std::vector<Vec3f>& faceNormals,

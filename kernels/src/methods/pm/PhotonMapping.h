@@ -72,8 +72,8 @@ paths::PathSetup pathSetup(const Scene& scene, const std::vector<Vec3f>& faceNor
 /// The photons of `options` (PhotonMappingOptions::photons, bounces, seed, sides): instant
 /// radiosity's light paths from every source, with Russian roulette by albedo, into `map`'s
 /// positions, normals and flux (its estimates are estimateRadiance's). `secondPassBytes`:
-/// as traceVplsCpu's.
-void tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals,
+/// as traceVplsCpu's; returns what a second pass took (VplSet::secondPassBytes).
+std::uint64_t tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals,
   const std::vector<RayOrigin>& origins, const RayTracer& tracer,
   const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress = {},
   std::uint64_t secondPassBytes = UINT64_MAX);

@@ -91,8 +91,9 @@ private:
       return [&c, lo](const char*, double f) { return !c.progress || c.progress("Photons", lo + 0.5 * f); };
     };
     PhotonMap& next = map.stage();
-    linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, geometry.origins, *geometry.tracer, c.options, next, half(0.0),
-      memoryLeft(c.stats));
+    // A second pass is charged to the update's estimate once it is known (and fits).
+    c.stats.hostBytesEstimated += linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, geometry.origins,
+      *geometry.tracer, c.options, next, half(0.0), memoryLeft(c.stats));
     estimateRadiance(next, c.options.photonMapping.estimatePhotons, siteStride(next.count()),
       kEstimateRadius * boundingDiagonal(c.scene.positions), half(0.5));
   }
