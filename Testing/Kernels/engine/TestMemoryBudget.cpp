@@ -334,6 +334,27 @@ PeakAndEstimate measureInChild(Method method, const std::string& scene = {})
   pclose(pipe);
   return out;
 }
+
+/// Every method's first update on `scene` (as measureInChild) estimated within 1.3 of its
+/// measured peak either way.
+void expectEveryMethodEstimatesItsMeasuredPeak(const std::string& scene)
+{
+  if (!resetPeakResident() || residentBytes() == 0)
+  {
+    GTEST_SKIP() << "The peak resident set cannot be reset or read here (/proc/self).";
+  }
+  for (const Method method : { Method::Links, Method::InstantRadiosity, Method::ImplicitVisibility, Method::PhotonMapping })
+  {
+    const char* name = engine::methodSpec(method).name();
+    const PeakAndEstimate m = measureInChild(method, scene);
+    ASSERT_GT(m.peak, 0.0) << name << ": the child process reported nothing";
+    const double ratio = m.estimate / m.peak;
+    std::cout << name << ": measured peak " << formatBytes(std::uint64_t(m.peak)) << ", estimated "
+              << formatBytes(std::uint64_t(m.estimate)) << " (" << ratio << "x)\n";
+    EXPECT_GE(ratio, 1.0 / 1.3) << name;
+    EXPECT_LE(ratio, 1.3) << name;
+  }
+}
 }
 
 TEST(TestMemoryBudget, DISABLED_FirstUpdateOfOneMethod)
@@ -357,45 +378,22 @@ TEST(TestMemoryBudget, DISABLED_FirstUpdateOfOneMethod)
 TEST(TestMemoryBudget, EveryMethodEstimatesItsMeasuredPeak)
 {
   // Each method's estimate against the peak of its first update in a fresh process, on a
-  // room of 9.2k vertices (Documentation/Methods.md, "Memory"): never under by more than
-  // 1.3, and over by at most 1.3 but for implicit visibility, whose node links depend on
-  // the scene and on the threads (allocator arenas). Measured: links 1.10 (1.24 and 1.25
-  // at the links' bound, before they were sampled), instant radiosity 1.06 and 1.05,
-  // implicit visibility 1.27 and 1.34, photon mapping 1.10 and 1.18 (2-core VM with TBB and
-  // Embree; 16-core GPU machine with neither).
-  if (!resetPeakResident() || residentBytes() == 0)
-  {
-    GTEST_SKIP() << "The peak resident set cannot be reset or read here (/proc/self).";
-  }
-  const std::pair<Method, double> methods[] = { { Method::Links, 1.3 }, { Method::InstantRadiosity, 1.3 },
-    { Method::ImplicitVisibility, 1.6 }, { Method::PhotonMapping, 1.3 } };
-  for (const auto& [method, mostOver] : methods)
-  {
-    const PeakAndEstimate m = measureInChild(method);
-    ASSERT_GT(m.peak, 0.0) << "method " << int(method) << ": the child process reported nothing";
-    const double ratio = m.estimate / m.peak;
-    std::cout << engine::methodSpec(method).name() << ": measured peak " << formatBytes(std::uint64_t(m.peak))
-              << ", estimated " << formatBytes(std::uint64_t(m.estimate)) << " (" << ratio << "x)\n";
-    EXPECT_GE(ratio, 1.0 / 1.3) << engine::methodSpec(method).name();
-    EXPECT_LE(ratio, mostOver) << engine::methodSpec(method).name();
-  }
+  // room of 9.2k vertices (Documentation/Methods.md, "Memory"): within 1.3 either way.
+  // Measured on the 2-core VM (TBB, Embree): links 1.11, instant radiosity 1.05, implicit
+  // visibility 0.94 (1.34 on the 16-core GPU machine before it sampled its links), photon
+  // mapping 1.10.
+  expectEveryMethodEstimatesItsMeasuredPeak({});
 }
 
-TEST(TestMemoryBudget, TheLinkMethodEstimatesAModelInNoRoomsMeasuredPeak)
+TEST(TestMemoryBudget, EveryMethodEstimatesAModelInNoRoomsMeasuredPeak)
 {
-  // The torso stands in no room: most link rays leave it, so its rows keep a fraction of
-  // the links three per ray would make. Estimated from the sizes alone the first update was
-  // 4.9 times its peak; from a sample of its rows within 1.3 either way.
-  if (!resetPeakResident() || residentBytes() == 0)
-  {
-    GTEST_SKIP() << "The peak resident set cannot be reset or read here (/proc/self).";
-  }
-  const PeakAndEstimate m = measureInChild(Method::Links, "torso");
-  ASSERT_GT(m.peak, 0.0) << "the child process reported nothing";
-  std::cout << "torso, links: measured peak " << formatBytes(std::uint64_t(m.peak)) << ", estimated "
-            << formatBytes(std::uint64_t(m.estimate)) << " (" << m.estimate / m.peak << "x)\n";
-  EXPECT_GE(m.estimate / m.peak, 1.0 / 1.3);
-  EXPECT_LE(m.estimate / m.peak, 1.3);
+  // The torso stands in no room: most rays and light paths leave it. The link method's rows
+  // keep a fraction of the links three per ray would make, and implicit visibility's leaves
+  // see few nodes (from the sizes alone they were estimated at 4.9 and 4.3 times their
+  // peaks; from a sample 1.01 and 1.07); the light paths take a second pass of more paths,
+  // which the estimate adds once it is known (photon mapping was at 0.17 without it, now
+  // 1.09; instant radiosity 1.14).
+  expectEveryMethodEstimatesItsMeasuredPeak("torso");
 }
 
 TEST(TestMemoryBudget, ABudgetBetweenTheSampledEstimateAndTheBoundLetsTheUpdateRun)

@@ -6,6 +6,7 @@
 
 #include "methods/iv/ClusterTree.h"
 #include "methods/iv/ImplicitLinks.h"
+#include "methods/iv/IvBackends.h"
 
 #include "cuda/Cuda.h"
 #include "linkgi/Error.h"
@@ -305,6 +306,36 @@ TEST(TestImplicitVisibility, AgreesWithTheReference)
     // Measured: 4.5% / 10.2% at N = 8, 4.1% / 9.3% at N = 16.
     EXPECT_LE(all.relRmseLuminance, 0.06) << "N " << n;
     EXPECT_LE(indirect.relRmseLuminance, 0.13) << "N " << n;
+  }
+}
+
+TEST(TestImplicitVisibility, TheSampledLeavesEstimateTheWholeTreesLinks)
+{
+  // The CPU backend estimates its link stage's memory from the links of a 64th of the
+  // leaves (at least 256; IvCpu::sampleMemory), weighting each node's by one over the
+  // chance that a leaf below it was drawn: on rooms, a model in no room and a lamp over a
+  // floor, within 10% of what the whole tree's links take.
+  for (const char* name : { "cornell", "torso", "tearoom", "colorlamp" })
+  {
+    const Scene s = makeStandardScene(name);
+    SolverOptions o;
+    o.method = Method::ImplicitVisibility;
+    o.backend = Backend::Cpu;
+    Solver solver;
+    solver.update(s, o);
+    const SolverStats& st = solver.stats();
+    const double nv = double(s.vertexCount());
+    const iv::LinkCounts whole{ double(st.counter("LinksCreated")) / nv, double(st.counter("LinksRaw")) / nv,
+      double(st.counter("LinksCompressed") + st.counter("LinksEnvironment")) / nv };
+    const double sampled = st.memorySampledPerElement, all = iv::linkStageBytesPerVertex(whole);
+    std::printf("%s: %.0f bytes per vertex from the sample, %.0f from all links\n", name, sampled, all);
+    EXPECT_NEAR(sampled / all, 1.0, 0.1) << name;
+    // A deformation refits the tree: its estimate is what the last build took, unsampled.
+    Scene moved = s;
+    moved.positions[0].x += 1e-3f;
+    solver.update(moved, o);
+    EXPECT_TRUE(solver.stats().ran("ImplicitLinks")) << name;
+    EXPECT_EQ(solver.stats().memorySampledPerElement, all) << name;
   }
 }
 

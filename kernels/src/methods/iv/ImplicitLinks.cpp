@@ -283,7 +283,8 @@ CubeBins CubeBins::make(int n)
 }
 
 NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
-  const LinkCreationOptions& options, const ProgressCallback& progress, const std::uint8_t* rows)
+  const LinkCreationOptions& options, const ProgressCallback& progress, const std::uint8_t* rows,
+  std::vector<Index>* createdPerReceiver)
 {
   const std::vector<NodeBounds> nodes = nodeBounds(tree);
   PairRules rules = pairRules(nodes.data(), tree.left.data(), tree.right.data(), tree.leafCount, bins, options);
@@ -362,6 +363,15 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
   }
   out.byReceiver = rowsOf(parts, tree.nodeCount());
   out.created = out.byReceiver.nonZeros();
+  if (createdPerReceiver)
+  {
+    const std::vector<Offset>& r = out.byReceiver.rowOffsets;
+    createdPerReceiver->resize(tree.nodeCount());
+    for (std::size_t node = 0; node < tree.nodeCount(); ++node)
+    {
+      (*createdPerReceiver)[node] = Index(r[node + 1] - r[node]);
+    }
+  }
   keepShortestPerBin(tree, bins, out.byReceiver, progress);
   return out;
 }

@@ -110,9 +110,12 @@ PairRules pairRules(const NodeBounds* nodes, const Index* left, const Index* rig
   const CubeBins& bins, const LinkCreationOptions& options);
 
 /// `rows` (per leaf, or null for all): only the links that reach these leaves' ancestors
-/// (a process's share under MPI); pairs of which neither holds such a leaf are not followed.
+/// (a process's share under MPI, or a sample's); pairs of which neither holds such a leaf
+/// are not followed. `createdPerReceiver` (if not null): per node, the links gathered for
+/// the final pass that receives it (NodeLinks::created, row by row).
 NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
-  const LinkCreationOptions& options, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
+  const LinkCreationOptions& options, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr,
+  std::vector<Index>* createdPerReceiver = nullptr);
 
 /// What the leaves gather after refinement and push-down.
 struct LeafLinks

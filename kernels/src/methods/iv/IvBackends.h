@@ -15,6 +15,19 @@ enum Stage : std::size_t
   kBounceStage     ///< E_env, gather / pull-up iterations, smoothing, outgoing radiance
 };
 
+/// Links the link stage holds at its peak, per vertex: node links gathered for the final
+/// pass that keeps each receiving node's shortest per bin, the node links it keeps, and the
+/// leaves' entries (transport and environment).
+struct LinkCounts
+{
+  double created = 0.0, kept = 0.0, leafEntries = 0.0;
+};
+
+/// Host bytes per vertex that the link stage adds at its peak with `perVertex` links
+/// (IvMethod.cpp): what the CPU backend's sample of the mesh returns
+/// (MemoryShape::sampledPerElement), so that the estimate and the sample share one model.
+double linkStageBytesPerVertex(const LinkCounts& perVertex);
+
 std::unique_ptr<engine::MethodBackend> createCpuBackend(const SolverOptions& options);
 #if LINKGI_HAVE_CUDA
 /// One GPU (cuda/IvCuda.cpp); built with CUDA only.

@@ -30,28 +30,27 @@ using namespace engine;
 /// (Documentation/Methods.md, "Memory").
 constexpr double kKeptLinks = 42.0;
 
+/// Bytes of a node: 3 indices, 2 vectors and 4 floats.
+constexpr std::uint64_t kNodeBytes = 3 * sizeof(Index) + 2 * sizeof(Vec3f) + 4 * sizeof(float);
+
 /// Host bytes of an update: the geometry and the cluster tree (two nodes per vertex); at
-/// the link stage the node links (a pair while kept by a task, a CSR column after; see
-/// kKeptLinks), each leaf's hemisphere of bins at most (transport or environment, column
-/// and weight) and the nodes' bounds; per element the vectors of the bounces. Not a bound:
-/// the node links depend on the scene.
+/// the link stage its links (linkStageBytesPerVertex): sampled on the CPU, elsewhere at
+/// kKeptLinks node links and a leaf's hemisphere of bins; per element the vectors of the
+/// bounces. Not a bound where nothing was sampled: the node links depend on the scene.
 MemoryEstimate estimateIvMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)
 {
   const std::uint64_t v = shape.vertices, n = o.implicitVisibility.binsPerSide;
-  constexpr std::uint64_t nodeBytes = 3 * sizeof(Index) + 2 * sizeof(Vec3f) + 4 * sizeof(float);
   MemoryEstimate m;
-  m.hostBytes = cpuSolutionBytes(shape, o) + 2 * v * nodeBytes;
+  m.hostBytes = cpuSolutionBytes(shape, o) + 2 * v * kNodeBytes;
   if (!cuda && (stale & (1u << kElementStage)))
   {
     m.hostBytes += cpuGeometryBytes(shape);
   }
   if (stale & (1u << kLinkStage))
   {
-    // Each worker's tasks hold links not yet reduced, and its allocator arena keeps what
-    // they free: tearoom peaks 1.6x higher on 16 cores than on 2 (Methods.md, "Memory").
-    const double kept = kKeptLinks * double(n) * double(v) * (1.0 + workerCount() / 32.0);
-    m.hostBytes += std::uint64_t(kept * (sizeof(std::pair<Index, Index>) + sizeof(Index))) +
-      v * (3 * n * n + 6 * n) * (sizeof(Index) + sizeof(float)) + 2 * v * 2 * nodeBytes;
+    const LinkCounts unsampled{ kKeptLinks * double(n), kKeptLinks * double(n), double(3 * n * n + 6 * n) };
+    const double perVertex = shape.sampledPerElement > 0.0 ? shape.sampledPerElement : linkStageBytesPerVertex(unsampled);
+    m.hostBytes += std::uint64_t(perVertex * double(v));
   }
   return m;
 }
@@ -122,7 +121,19 @@ public:
   {
     return estimateIvMemory(shape, o, stale, cuda);
   }
+  // The node links depend on how much of the scene each part sees, more than on its size:
+  // the CPU backend links a sample of the leaves first (IvCpu::sampleMemory).
+  int memorySampleStage() const override { return kLinkStage; }
 };
+}
+
+double linkStageBytesPerVertex(const LinkCounts& l)
+{
+  // Each worker's tasks hold links not yet reduced, and its allocator arena keeps what
+  // they free: tearoom peaks 1.6x higher on 16 cores than on 2 (Methods.md, "Memory").
+  const double created = l.created * (1.0 + workerCount() / 32.0);
+  return created * double(sizeof(std::pair<Index, Index>) + sizeof(Index)) +
+    l.leafEntries * double(sizeof(Index) + sizeof(float)) + 2.0 * 2.0 * double(kNodeBytes);
 }
 
 const MethodSpec& implicitVisibilityMethod()
