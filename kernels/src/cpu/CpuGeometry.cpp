@@ -62,6 +62,11 @@ std::uint64_t cpuSolutionBytes(const MemoryShape& shape, const SolverOptions& o)
   return shape.vertices * (o.twoSided ? 2 : 1) * sizeof(Vec3f) * 10;
 }
 
+std::uint64_t lightPathsHeldBytes(const StageContext& c)
+{
+  return cpuGeometryBytes(MemoryShape::of(c.scene));
+}
+
 void CpuGeometry::describe(SolverStats& st) const
 {
   st.backend = "cpu";

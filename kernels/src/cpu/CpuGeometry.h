@@ -40,6 +40,13 @@ std::uint64_t cpuGeometryBytes(const MemoryShape& shape);
 /// smoothed E_ind and the solution's three arrays.
 std::uint64_t cpuSolutionBytes(const MemoryShape& shape, const SolverOptions& options);
 
+/// What a CPU method holds while it traces its light paths, the first stage after the
+/// geometry: the geometry (and on a later update the previous solution, three vectors per
+/// element, which a second pass dwarfs). A second pass of paths (traceVplsCpu) may take
+/// what the budget leaves beyond it (memoryLeft), and the update's estimate is then at
+/// least this and that pass (raiseEstimate).
+std::uint64_t lightPathsHeldBytes(const StageContext& context);
+
 /// The end of every CPU method's update, from its E_ind and E_d per element: feature-aware
 /// smoothing where smoothingOn (the part "Smoothing"), then writeSolution.
 void finishSolution(const StageContext& context, const Topology& topology, std::vector<Vec3f> indirect,

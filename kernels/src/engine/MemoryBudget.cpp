@@ -3,6 +3,7 @@
 #include "linkgi/Error.h"
 #include "shared/Sampling.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -51,13 +52,18 @@ MemoryVerdict judgeMemory(const MethodSpec& spec, const MemoryShape& shape,
   return v;
 }
 
-std::uint64_t memoryLeft(const SolverStats& stats)
+std::uint64_t memoryLeft(const SolverStats& stats, std::uint64_t held)
 {
   if (stats.memoryBudget == 0)
   {
     return std::numeric_limits<std::uint64_t>::max();
   }
-  return stats.memoryBudget > stats.hostBytesEstimated ? stats.memoryBudget - stats.hostBytesEstimated : 0;
+  return stats.memoryBudget > held ? stats.memoryBudget - held : 0;
+}
+
+void raiseEstimate(SolverStats& stats, std::uint64_t bytes)
+{
+  stats.hostBytesEstimated = std::max(stats.hostBytesEstimated, bytes);
 }
 
 void checkMemoryBudget(const MethodSpec& spec, const MemoryShape& shape, const SolverOptions& options,

@@ -33,8 +33,12 @@ MemoryVerdict judgeMemory(const MethodSpec& spec, const MemoryShape& shape,
 void checkMemoryBudget(const MethodSpec& spec, const MemoryShape& shape, const SolverOptions& options,
   std::uint32_t stale, bool cuda, SolverStats& stats, std::uint32_t first = ~0u);
 
-/// What the budget leaves beyond the update's estimate (as checkMemoryBudget recorded them
-/// in `stats`): the most that a stage may allocate for what only tracing can tell (a second
+/// What the budget (as checkMemoryBudget recorded it in `stats`) leaves beyond `held` bytes:
+/// the most that a stage holding them may allocate for what only tracing can tell (a second
 /// pass of light paths). UINT64_MAX when no budget was recorded.
-std::uint64_t memoryLeft(const SolverStats& stats);
+std::uint64_t memoryLeft(const SolverStats& stats, std::uint64_t held);
+
+/// Raises the update's estimate in `stats` to `bytes` where that is more: what a stage found
+/// it holds at once (`held` and what it allocated beyond it).
+void raiseEstimate(SolverStats& stats, std::uint64_t bytes);
 }

@@ -193,6 +193,8 @@ VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32
     {
       break;
     }
+    // The second pass traces every path anew: the first pass's slots go before its own are
+    // allocated.
     const std::uint64_t bytes = std::uint64_t(more) * (slotsPerPath * sizeof(Vpl) + sizeof(int));
     if (bytes > secondPassBytes)
     {
@@ -203,6 +205,8 @@ VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32
           "). Ask for fewer (NumberOfVPLs, NumberOfPhotons), or a larger MemoryBudget.",
         0);
     }
+    std::vector<Vpl>().swap(slots);
+    std::vector<int>().swap(counts);
     view.paths = more;
     taken = bytes;
   }

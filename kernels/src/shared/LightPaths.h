@@ -396,8 +396,9 @@ struct VplSet
   std::vector<Vpl> vpls;
   std::vector<std::uint32_t> subsetOffsets;
   std::vector<float> subsetScale;
-  /// Bytes of the second pass's path slots (0 without one): memory that the update's
-  /// estimate, made before the first pass, did not count.
+  /// Bytes of the second pass's path slots (0 without one; the first pass's are freed
+  /// before they are allocated): memory that the update's estimate, made before the first
+  /// pass, did not count.
   std::uint64_t secondPassBytes = 0;
   std::size_t count() const { return vpls.size(); }
 };

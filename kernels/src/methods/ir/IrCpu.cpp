@@ -194,10 +194,10 @@ private:
   void traceVpls(const StageContext& c)
   {
     const PathSetup setup = buildPathSetup(c.scene, geometry.faceNormals, geometry.origins, c.options);
+    const std::uint64_t held = lightPathsHeldBytes(c);
     vpls.stage() = traceVplsCpu(setup, *geometry.tracer, c.options.instantRadiosity.interleave, c.progress,
-      memoryLeft(c.stats));
-    // A second pass is charged to the update's estimate once it is known (and fits).
-    c.stats.hostBytesEstimated += vpls.stage().secondPassBytes;
+      memoryLeft(c.stats, held));
+    raiseEstimate(c.stats, held + vpls.stage().secondPassBytes);
   }
 
   void gather(const StageContext& c)

@@ -91,9 +91,10 @@ private:
       return [&c, lo](const char*, double f) { return !c.progress || c.progress("Photons", lo + 0.5 * f); };
     };
     PhotonMap& next = map.stage();
-    // A second pass is charged to the update's estimate once it is known (and fits).
-    c.stats.hostBytesEstimated += linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, geometry.origins,
-      *geometry.tracer, c.options, next, half(0.0), memoryLeft(c.stats));
+    const std::uint64_t held = lightPathsHeldBytes(c);
+    const std::uint64_t secondPass = linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, geometry.origins,
+      *geometry.tracer, c.options, next, half(0.0), memoryLeft(c.stats, held));
+    raiseEstimate(c.stats, held + secondPass);
     estimateRadiance(next, c.options.photonMapping.estimatePhotons, siteStride(next.count()),
       kEstimateRadius * boundingDiagonal(c.scene.positions), half(0.5));
   }
