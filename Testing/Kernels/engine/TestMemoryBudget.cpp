@@ -390,9 +390,9 @@ TEST(TestMemoryBudget, EveryMethodEstimatesAModelInNoRoomsMeasuredPeak)
   // The torso stands in no room: most rays and light paths leave it. The link method's rows
   // keep a fraction of the links three per ray would make, and implicit visibility's leaves
   // see few nodes (from the sizes alone they were estimated at 4.9 and 4.3 times their
-  // peaks; from a sample 1.01 and 1.07); the light paths take a second pass of more paths,
-  // which the estimate adds once it is known (photon mapping was at 0.17 without it, now
-  // 1.09; instant radiosity 1.14).
+  // peaks; from a sample 1.00 and 1.04-1.09); the light paths take a second pass of more
+  // paths, which the estimate takes in once it is known (photon mapping was at 0.17 without
+  // it, now 0.95; instant radiosity 0.97-1.13).
   expectEveryMethodEstimatesItsMeasuredPeak("torso");
 }
 
