@@ -10,6 +10,7 @@
 
 #include "cuda/Cuda.h"
 #include "linkgi/Error.h"
+#include "linkgi/Memory.h"
 #include "shared/Metrics.h"
 #include "methods/reference/Reference.h"
 #include "linkgi/Scenes.h"
@@ -430,6 +431,27 @@ TEST(TestImplicitVisibility, CpuAndCudaAgree)
         1e-3 * double(cpu.stats().counter("LinksCompressed"))) << name << " N = " << n;
     }
   }
+}
+
+TEST(TestImplicitVisibility, OnTheGpuTheHostBudgetDoesNotHoldTheLinks)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  // The GPU keeps the node links and the leaves' rows: a host budget that the CPU's links
+  // exceed still lets a GPU update run (its links are not the host's to hold), and the CPU
+  // is refused under it.
+  const Scene s = makeStandardScene("cornell");
+  SolverOptions o = test::onBackend(Backend::Cuda, ivOptions(12));
+  Solver gpu;
+  gpu.update(s, o);
+  ASSERT_EQ(gpu.stats().backend, "cuda");
+  const std::uint64_t hostOnGpu = gpu.stats().hostBytesEstimated;
+  EXPECT_GT(gpu.stats().deviceBytesEstimated, 0u);
+  o.memoryBudget = 2 * hostOnGpu;
+  Solver budgeted;
+  EXPECT_NO_THROW(budgeted.update(s, o));
+  EXPECT_EQ(budgeted.stats().backend, "cuda");
+  o.backend = Backend::Cpu;
+  EXPECT_THROW(Solver().update(s, o), OutOfMemoryBudget);
 }
 
 TEST(TestImplicitVisibility, CudaRefitsAndMatchesAFreshSolve)

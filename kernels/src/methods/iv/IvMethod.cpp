@@ -36,7 +36,10 @@ constexpr std::uint64_t kNodeBytes = 3 * sizeof(Index) + 2 * sizeof(Vec3f) + 4 *
 /// Host bytes of an update: the geometry and the cluster tree (two nodes per vertex); at
 /// the link stage its links (linkStageBytesPerVertex): sampled on the CPU, elsewhere at
 /// kKeptLinks node links and a leaf's hemisphere of bins; per element the vectors of the
-/// bounces. Not a bound where nothing was sampled: the node links depend on the scene.
+/// bounces. Not a bound where nothing was sampled: the node links depend on the scene. On
+/// the GPU the links are the device's (its leaf rows hold every bin); the host builds the
+/// tree and uploads its node records, and the backend falls back to the CPU when a GPU runs
+/// out.
 MemoryEstimate estimateIvMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)
 {
   const std::uint64_t v = shape.vertices, n = o.implicitVisibility.binsPerSide;
@@ -49,8 +52,17 @@ MemoryEstimate estimateIvMemory(const MemoryShape& shape, const SolverOptions& o
   if (stale & (1u << kLinkStage))
   {
     const LinkCounts unsampled{ kKeptLinks * double(n), kKeptLinks * double(n), double(3 * n * n + 6 * n) };
-    const double perVertex = shape.sampledPerElement > 0.0 ? shape.sampledPerElement : linkStageBytesPerVertex(unsampled);
-    m.hostBytes += std::uint64_t(perVertex * double(v));
+    if (cuda)
+    {
+      m.hostBytes += 2 * v * kNodeBytes;
+      m.deviceBytes += std::uint64_t(double(v) *
+        (unsampled.created * double(sizeof(std::pair<Index, Index>) + sizeof(Index)) + 6.0 * double(n * n) * double(sizeof(Index) + sizeof(float))));
+    }
+    else
+    {
+      const double perVertex = shape.sampledPerElement > 0.0 ? shape.sampledPerElement : linkStageBytesPerVertex(unsampled);
+      m.hostBytes += std::uint64_t(perVertex * double(v));
+    }
   }
   return m;
 }
