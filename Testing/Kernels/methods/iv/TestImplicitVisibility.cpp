@@ -445,7 +445,6 @@ TEST(TestImplicitVisibility, OnTheGpuTheHostBudgetDoesNotHoldTheLinks)
   gpu.update(s, o);
   ASSERT_EQ(gpu.stats().backend, "cuda");
   const std::uint64_t hostOnGpu = gpu.stats().hostBytesEstimated;
-  EXPECT_GT(gpu.stats().deviceBytesEstimated, 0u);
   o.memoryBudget = 2 * hostOnGpu;
   Solver budgeted;
   EXPECT_NO_THROW(budgeted.update(s, o));

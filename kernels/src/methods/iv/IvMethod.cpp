@@ -23,11 +23,11 @@ namespace
 using namespace engine;
 
 /// Node links that the link stage holds at its peak (each task's links after keeping
-/// each receiver's shortest per bin, and their CSR), per vertex and bin per side. Measured
-/// on the standard scenes and Testing/Data/Models: 28-40 on rooms from 8.6k to 121k
-/// vertices (the count depends on how much of the scene each part sees, not on sizes
-/// alone; tearoom, the most open, sets it), near 0 on small or roomless scenes
-/// (Documentation/Methods.md, "Memory").
+/// each receiver's shortest per bin, and their CSR), per vertex and bin per side, where
+/// nothing was sampled (under MPI): calibrated on the peaks of rooms from 8.6k to 121k
+/// vertices. The count depends on how much of the scene each part sees, not on sizes
+/// alone: the CPU backend's sample found 11 on the torso, 30 on colorlamp, 36 on cornell,
+/// 60 on iphi and 69 on tearoom (Documentation/Methods.md, "Memory").
 constexpr double kKeptLinks = 42.0;
 
 /// Bytes of a node: 3 indices, 2 vectors and 4 floats.
@@ -37,9 +37,10 @@ constexpr std::uint64_t kNodeBytes = 3 * sizeof(Index) + 2 * sizeof(Vec3f) + 4 *
 /// the link stage its links (linkStageBytesPerVertex): sampled on the CPU, elsewhere at
 /// kKeptLinks node links and a leaf's hemisphere of bins; per element the vectors of the
 /// bounces. Not a bound where nothing was sampled: the node links depend on the scene. On
-/// the GPU the links are the device's (its leaf rows hold every bin); the host builds the
-/// tree and uploads its node records, and the backend falls back to the CPU when a GPU runs
-/// out.
+/// the GPU the links are the device's: the host builds the tree and uploads its node
+/// records. The device's memory is not estimated (the pair recursion holds every link it
+/// creates before each bin keeps its shortest: 90-140 KB per vertex at N = 12 on an H200);
+/// the backend falls back to the CPU when a GPU runs out.
 MemoryEstimate estimateIvMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)
 {
   const std::uint64_t v = shape.vertices, n = o.implicitVisibility.binsPerSide;
@@ -51,15 +52,13 @@ MemoryEstimate estimateIvMemory(const MemoryShape& shape, const SolverOptions& o
   }
   if (stale & (1u << kLinkStage))
   {
-    const LinkCounts unsampled{ kKeptLinks * double(n), kKeptLinks * double(n), double(3 * n * n + 6 * n) };
     if (cuda)
     {
       m.hostBytes += 2 * v * kNodeBytes;
-      m.deviceBytes += std::uint64_t(double(v) *
-        (unsampled.created * double(sizeof(std::pair<Index, Index>) + sizeof(Index)) + 6.0 * double(n * n) * double(sizeof(Index) + sizeof(float))));
     }
     else
     {
+      const LinkCounts unsampled{ kKeptLinks * double(n), kKeptLinks * double(n), double(3 * n * n + 6 * n) };
       const double perVertex = shape.sampledPerElement > 0.0 ? shape.sampledPerElement : linkStageBytesPerVertex(unsampled);
       m.hostBytes += std::uint64_t(perVertex * double(v));
     }
