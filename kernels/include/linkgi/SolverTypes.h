@@ -320,8 +320,10 @@ struct SolverStats
   /// rays to VPLs) and shadow rays to the lights, in the current solution.
   std::uint64_t elements = 0, rays = 0, lightRays = 0;
   /// Sizes the method that ran reports of its own structures, by name (field data
-  /// LinkGI.<name>): "LinksRaw", "LinksCompressed", "LinkBytes" (the link methods), "Vpls"
-  /// (instant radiosity), "Photons", "Clusters" (photon mapping). Only the method's own.
+  /// LinkGI.<name>): "LinksRaw", "LinksCompressed", "LinkBytes" (the link methods;
+  /// implicit visibility on the CPU also "LinksCreated", its node links before each bin kept
+  /// its shortest, and "LinksEnvironment", its leaves' empty bins), "Vpls" (instant
+  /// radiosity), "Photons", "Clusters" (photon mapping). Only the method's own.
   std::vector<std::pair<std::string, std::uint64_t>> counters;
   /// The counter called `name`, 0 when the method reports none.
   std::uint64_t counter(const std::string& name) const;

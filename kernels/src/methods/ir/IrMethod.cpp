@@ -29,8 +29,8 @@ using namespace engine;
 
 /// Host bytes of an update: the geometry, the VPL stage's path slots (one Vpl per bounce
 /// and path of the first pass; a second pass, up to 64 times as many paths where most leave
-/// the scene, is checked against what the budget leaves when it is known, and then added
-/// to the estimate: traceVplsCpu),
+/// the scene, is checked against what the budget leaves beyond the geometry when it is
+/// known, and the estimate raised to hold both: lightPathsHeldBytes),
 /// the proxy's grid and BVH when visibility uses it, and the per-element vectors. On the GPU
 /// the host holds the per-element vectors only.
 MemoryEstimate estimateIrMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)

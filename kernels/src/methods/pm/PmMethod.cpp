@@ -25,8 +25,8 @@ using namespace engine;
 
 /// Host bytes of an update: the geometry; the photon stage's path slots (one Vpl per bounce
 /// and path of the first pass; a second pass, up to 64 times as many paths where most leave
-/// the scene, is checked against what the budget leaves when it is known, and then added to
-/// the estimate: traceVplsCpu) and the map (per photon: position, normal, flux, the
+/// the scene, is checked against what the budget leaves beyond the geometry when it is
+/// known, and the estimate raised to hold both: lightPathsHeldBytes) and the map (per photon: position, normal, flux, the
 /// kd-tree's order, the estimates at every siteStride-th); per vertex the clusters'
 /// assignment and interpolants; and the per-element vectors. On the GPU the host holds the
 /// per-element vectors and the map it reads back.
