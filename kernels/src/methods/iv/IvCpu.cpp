@@ -78,7 +78,7 @@ public:
     // are created where a leaf below it was drawn: near the root always, at a leaf with
     // probability p; each is weighted by one over that probability (Horvitz-Thompson), so
     // the sum estimates the whole tree's. The leaves' entries: their mean over those drawn.
-    // 4-11% over the whole tree's on the standard scenes, at 2-12% of the update's time
+    // 4-11% over the whole tree's on the standard scenes, at 2-25% of a first update's time
     // (TestImplicitVisibility.TheSampledLeavesEstimateTheWholeTreesLinks).
     const std::uint32_t n = c.options.implicitVisibility.binsPerSide;
     if (measured.bytesPerVertex > 0.0 && measured.binsPerSide == n)
