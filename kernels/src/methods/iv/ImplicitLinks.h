@@ -128,6 +128,8 @@ struct LeafLinks
   /// of the leaf's hemisphere that no link occupies.
   SparseMatrix environment;
   std::uint64_t occupiedBins = 0, emptyBins = 0;
+  /// The leaves' entries, transport and environment.
+  std::uint64_t entries() const { return transport.nonZeros() + environment.nonZeros(); }
 };
 
 /// Refinement and push-down in one pass: for each leaf, the links of every node on its path

@@ -125,7 +125,7 @@ public:
     }
     total.created /= double(nv);
     total.kept /= double(nv);
-    total.leafEntries = double(leaves.transport.nonZeros() + leaves.environment.nonZeros()) / double(drawn);
+    total.leafEntries = double(leaves.entries()) / double(drawn);
     return linkStageBytesPerVertex(total);
   }
 
@@ -183,7 +183,7 @@ private:
     {
       const double nv = double(c.scene.vertexCount());
       measured = { linkStageBytesPerVertex({ double(next.createdLinks) / nv, double(next.nodeLinks) / nv,
-                     double(next.leaves.transport.nonZeros() + next.leaves.environment.nonZeros()) / nv }),
+                     double(next.leaves.entries()) / nv }),
         c.options.implicitVisibility.binsPerSide };
     }
     c.part("RefinePush", msSince(t));
