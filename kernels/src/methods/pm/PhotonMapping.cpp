@@ -75,7 +75,7 @@ Vec3f PhotonMap::totalFlux() const
 
 RadianceSitesView PhotonMap::sitesView() const
 {
-  return { sites.view(), siteNormals.data(), siteRadiance.data(), maxDistance2 };
+  return { sites.view(), siteNormals.data(), siteRadiance.data(), siteRadius2.data(), maxDistance2 };
 }
 
 std::uint64_t tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNormals,
@@ -205,6 +205,7 @@ void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride,
   map.sitePositions.resize(siteCount);
   map.siteNormals.resize(siteCount);
   map.siteRadiance.resize(siteCount);
+  map.siteRadius2.resize(siteCount);
   const PointTree photons(map.positions);
   const PhotonsView view{ photons.view(), map.normals.data(), map.flux.data() };
   parallelFor("Photons", siteCount, 256, [&](std::size_t begin, std::size_t end) {
@@ -214,7 +215,7 @@ void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride,
       const std::size_t i = s * stride;
       map.sitePositions[s] = map.positions[i];
       map.siteNormals[s] = map.normals[i];
-      map.siteRadiance[s] = siteRadiance(view, Index(i), k, map.maxDistance2, heap.data());
+      map.siteRadiance[s] = siteRadiance(view, Index(i), k, map.maxDistance2, heap.data(), map.siteRadius2[s]);
     }
   }, progress);
   map.sites = PointTree(map.sitePositions);

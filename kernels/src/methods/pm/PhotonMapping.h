@@ -51,6 +51,7 @@ struct PhotonMap
   /// The radiance a diffuse surface reflects there (siteRadiance, PmMath.h: Jensen's
   /// estimate from the k nearest photons).
   std::vector<Vec3f> siteRadiance;
+  std::vector<float> siteRadius2; ///< the squared radius of the disc each estimate's photons came from
   PointTree sites;
   float maxDistance2 = 3.4e38f; ///< of the photons an estimate counts, of the estimate a gather ray reads
   /// The caustic map: the photons that met only mirrors and glass between their light and

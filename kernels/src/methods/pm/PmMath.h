@@ -45,9 +45,10 @@ struct PhotonsView
 /// degrees of its normal / (pi r^2) / pi, r the k-th one's distance, or sqrt(max2) where
 /// fewer are that near; zero from fewer than two. The search takes every photon, not only
 /// those facing its way: a photon on a thin part in a crowd of photons facing elsewhere would
-/// otherwise search all of them. `heap`: room for k.
+/// otherwise search all of them. `radius2` gets r^2, the disc the estimate speaks for. `heap`:
+/// room for k.
 LINKGI_HOST_DEVICE inline Vec3f siteRadiance(const PhotonsView& p, Index i, std::uint32_t k, float max2,
-  Neighbour* heap)
+  Neighbour* heap, float& radius2)
 {
   const Vec3f normal = p.normals[i];
   const Vec3f q = p.tree.points[i];
@@ -62,11 +63,12 @@ LINKGI_HOST_DEVICE inline Vec3f siteRadiance(const PhotonsView& p, Index i, std:
       ++facing;
     }
   }
+  const float r2 = found == k ? heap[0].d2 : max2;
+  radius2 = r2;
   if (facing < 2)
   {
     return Vec3f(0.f); // a lone photon says nothing about density
   }
-  const float r2 = found == k ? heap[0].d2 : max2;
   return r2 > 0.f ? sum * (1.f / (kPi * kPi * r2)) : Vec3f(0.f);
 }
 

@@ -27,7 +27,7 @@ using namespace engine;
 /// and path of the first pass; a second pass, up to 64 times as many paths where most leave
 /// the scene, is checked against what the budget leaves beyond the geometry when it is
 /// known, and the estimate raised to hold both: lightPathsHeldBytes) and the map (per photon: position, normal, flux, the
-/// kd-tree's order, the estimates at every siteStride-th); per vertex the clusters'
+/// kd-tree's order, the estimates and their radii at every siteStride-th); per vertex the clusters'
 /// assignment and interpolants; and the per-element vectors. On the GPU the host holds the
 /// per-element vectors and the map it reads back.
 MemoryEstimate estimatePmMemory(const MemoryShape& shape, const SolverOptions& o, std::uint32_t stale, bool cuda)
@@ -45,7 +45,7 @@ MemoryEstimate estimatePmMemory(const MemoryShape& shape, const SolverOptions& o
     paths.instantRadiosity.vplCount = o.photonMapping.photons;
     const std::uint64_t sites = std::min<std::uint64_t>(kMaxSites, photons / siteStride(photons) + 1);
     m.hostBytes += (cuda ? 0 : std::uint64_t(paths::pathCount(paths)) * (o.bounces + 1) * (sizeof(paths::Vpl) + sizeof(int))) +
-      photons * (3 * sizeof(Vec3f) + sizeof(Index)) + sites * (3 * sizeof(Vec3f) + sizeof(Index));
+      photons * (3 * sizeof(Vec3f) + sizeof(Index)) + sites * (3 * sizeof(Vec3f) + sizeof(float) + sizeof(Index));
   }
   if (stale & (1u << kClusterStage))
   {

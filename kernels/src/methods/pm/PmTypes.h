@@ -191,12 +191,19 @@ struct RadianceSitesView
   PointTreeView tree; ///< over the site positions
   const Vec3f* normals = nullptr;
   const Vec3f* radiance = nullptr;
+  /// Per estimate: the squared radius of the disc its photons were gathered from, the only
+  /// points it speaks for.
+  const float* radius2 = nullptr;
   float maxDistance2 = 3.4e38f; ///< a hit with no estimate this near sees none
 };
 
 /// The outgoing radiance a gather ray sees at surface point y (unit normal n): the nearest
 /// estimate within sqrt(maxDistance2) that faces within 60 degrees of n and lies within 30
-/// degrees of y's tangent plane; zero when there is none.
+/// degrees of y's tangent plane, where its photons' disc holds y; zero otherwise. An
+/// estimate is an average over its disc: read further out, where its photons say nothing, it
+/// lit the floor under an object resting on it, which no photon reaches, with the light of
+/// the floor around the object. (Where photons lie about y, the nearest estimate's disc holds
+/// it: every siteStride-th photon has one, and each disc holds estimatePhotons of them.)
 LINKGI_HOST_DEVICE inline Vec3f lookupRadiance(const RadianceSitesView& s, const Vec3f& y, const Vec3f& n)
 {
   if (s.tree.count == 0)
@@ -208,6 +215,11 @@ LINKGI_HOST_DEVICE inline Vec3f lookupRadiance(const RadianceSitesView& s, const
     const float h = dot(d, n);
     return dot(s.normals[j], n) > kLookupCos && h * h <= kLookupPlaneSin * kLookupPlaneSin * dot(d, d);
   });
-  return i == kInvalidIndex ? Vec3f(0.f) : s.radiance[i];
+  if (i == kInvalidIndex)
+  {
+    return Vec3f(0.f);
+  }
+  const Vec3f d = s.tree.points[i] - y;
+  return dot(d, d) <= s.radius2[i] ? s.radiance[i] : Vec3f(0.f);
 }
 }

@@ -108,15 +108,18 @@ private:
     {
       a->resize(std::max<std::uint32_t>(siteCount, 1));
     }
+    siteRadius2.resize(std::max<std::uint32_t>(siteCount, 1));
+    treeRadius2.resize(std::max<std::uint32_t>(siteCount, 1));
     const float radius = kEstimateRadius * mesh.extent.diagonal;
     estimateMax2 = radius * radius;
     gpu::estimateSites({ photonView, sorted.normals.data(), sorted.flux.data() }, photonTree.view().order, stride,
       o.photonMapping.estimatePhotons, estimateMax2, sitePositions.data(), siteNormals.data(), siteRadiance.data(),
-      flags, scan, temp, stream);
+      siteRadius2.data(), flags, scan, temp, stream);
     siteTree.build(sitePositions.data(), siteCount, stream);
     // The estimates in the site tree's order (their radiance in `flux`'s place).
     siteView = siteTree.inTreeOrder({ { sitePositions.data(), sites.positions.data() },
       { siteNormals.data(), sites.normals.data() }, { siteRadiance.data(), sites.flux.data() } }, stream);
+    siteTree.inTreeOrder(siteRadius2.data(), treeRadius2.data(), stream);
     causticTree.build(photons.causticPositions.data(), std::uint32_t(causticCount), stream);
   }
 
@@ -165,7 +168,7 @@ private:
     gpu::GatherLaunch g;
     g.scene = pathView; // the gather runs whenever the photons were traced again for its inputs
     g.bvh = mesh.bvh.view();
-    g.sites = { siteView, sites.normals.data(), sites.flux.data(), estimateMax2 };
+    g.sites = { siteView, sites.normals.data(), sites.flux.data(), treeRadius2.data(), estimateMax2 };
     g.samples = samples.data();
     g.clusters = std::uint32_t(clusterCount);
     g.vertexCount = nv;
@@ -247,6 +250,7 @@ private:
   gpu::DevicePointTree photonTree, siteTree, causticTree;
   gpu::DevicePhotons sorted, sites; ///< the photons and the estimates in their trees' orders
   GPUBuffer<Vec3f> sitePositions, siteNormals, siteRadiance;
+  GPUBuffer<float> siteRadius2, treeRadius2; ///< the estimates' discs, in site and in site-tree order
   PointTreeView siteView;
   std::uint32_t siteCount = 0;
   GPUBuffer<Index> samples, neighbours;

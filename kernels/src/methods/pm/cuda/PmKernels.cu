@@ -209,7 +209,7 @@ __global__ void siteOrderKernel(const Index* order, std::uint32_t n, std::uint32
 
 template <int K>
 __global__ void sitesKernel(PhotonsView photons, const Index* sitePhotons, std::uint32_t siteCount, std::uint32_t k,
-  float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance)
+  float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, float* siteRadius2)
 {
   const std::uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
   if (s >= siteCount)
@@ -220,10 +220,11 @@ __global__ void sitesKernel(PhotonsView photons, const Index* sitePhotons, std::
   const Index i = sitePhotons[s];
   sitePositions[s] = photons.tree.points[i];
   siteNormals[s] = photons.normals[i];
-  siteRadiance[s] = pm::siteRadiance(photons, i, k, max2, heap);
+  siteRadiance[s] = pm::siteRadiance(photons, i, k, max2, heap, siteRadius2[s]);
 }
 
-__global__ void permuteKernel(const Index* order, std::uint32_t n, const Vec3f* in, Vec3f* out)
+template <typename T>
+__global__ void permuteKernel(const Index* order, std::uint32_t n, const T* in, T* out)
 {
   const std::uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
   if (t < n)
@@ -271,10 +272,10 @@ template <int K>
 struct SitesLaunch
 {
   static void run(const PhotonsView& p, const Index* sitePhotons, std::uint32_t siteCount, std::uint32_t k,
-    float max2, Vec3f* positions, Vec3f* normals, Vec3f* radiance, cudaStream_t stream)
+    float max2, Vec3f* positions, Vec3f* normals, Vec3f* radiance, float* radius2, cudaStream_t stream)
   {
     sitesKernel<K><<<gridBlocks(siteCount), kThreads, 0, stream>>>(p, sitePhotons, siteCount, k, max2, positions,
-      normals, radiance);
+      normals, radiance, radius2);
     LINKGI_CUDA_CHECK_LAUNCH("sitesKernel");
   }
 };
@@ -463,6 +464,15 @@ PointTreeView DevicePointTree::inTreeOrder(std::initializer_list<std::pair<const
   return { points, nullptr, axes.data(), count };
 }
 
+void DevicePointTree::inTreeOrder(const float* in, float* out, cudaStream_t stream) const
+{
+  if (count)
+  {
+    permuteKernel<<<gridBlocks(count), kThreads, 0, stream>>>(order.data(), count, in, out);
+    LINKGI_CUDA_CHECK_LAUNCH("permuteKernel");
+  }
+}
+
 void splitPhotons(const paths::Vpl* hits, std::size_t count, DevicePhotons& out, cuda::GPUBuffer<Index>& flags,
   cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, Offset* totals, cudaStream_t stream)
 {
@@ -496,8 +506,9 @@ void splitPhotons(const paths::Vpl* hits, std::size_t count, DevicePhotons& out,
 }
 
 void estimateSites(const PhotonsView& photons, const Index* order, std::uint32_t stride, std::uint32_t k,
-  float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, cuda::GPUBuffer<Index>& scratch,
-  cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, cudaStream_t stream)
+  float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, float* siteRadius2,
+  cuda::GPUBuffer<Index>& scratch, cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp,
+  cudaStream_t stream)
 {
   const std::uint32_t n = photons.tree.count;
   const std::uint32_t siteCount = (n + stride - 1) / stride;
@@ -513,7 +524,7 @@ void estimateSites(const PhotonsView& photons, const Index* order, std::uint32_t
     siteOrderKernel<<<gridBlocks(n), kThreads, 0, stream>>>(order, n, stride, scan.data(), sitePhotons);
     LINKGI_CUDA_CHECK_LAUNCH("siteOrderKernel");
     withHeap<SitesLaunch>(k, photons, sitePhotons, siteCount, k, max2, sitePositions, siteNormals, siteRadiance,
-      stream);
+      siteRadius2, stream);
   }
 }
 

@@ -28,6 +28,8 @@ public:
   /// the positions first, and returns the view of the tree over the copied positions
   /// (without `order`): a search then reads neighbours from neighbouring memory. No wait.
   PointTreeView inTreeOrder(std::initializer_list<std::pair<const Vec3f*, Vec3f*>> arrays, cudaStream_t stream) const;
+  /// The same for one array of floats. No wait.
+  void inTreeOrder(const float* in, float* out, cudaStream_t stream) const;
   std::uint32_t size() const { return count; }
 
 private:
@@ -56,14 +58,16 @@ struct DevicePhotons
 void splitPhotons(const paths::Vpl* hits, std::size_t count, DevicePhotons& out, cuda::GPUBuffer<Index>& flags,
   cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, Offset* totals, cudaStream_t stream);
 
-/// Radiance estimates (siteRadiance) at every `stride`-th photon, with k (2 to 1024) photons
-/// each within sqrt(max2): ceil(count / stride) sites, written in the tree's order (so that a
+/// Radiance estimates (siteRadiance) and the squared radii of their discs at every `stride`-th
+/// photon, with k (2 to 1024) photons each within sqrt(max2): ceil(count / stride) sites,
+/// written in the tree's order (so that a
 /// warp searches one neighbourhood). `photons`: the map in tree order (inTreeOrder); `order`:
 /// the photon numbers at the tree positions (view().order), which say which are sites.
 /// `scratch`, `scan`, `temp`: scratch.
 void estimateSites(const PhotonsView& photons, const Index* order, std::uint32_t stride, std::uint32_t k,
-  float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, cuda::GPUBuffer<Index>& scratch,
-  cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp, cudaStream_t stream);
+  float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, float* siteRadius2,
+  cuda::GPUBuffer<Index>& scratch, cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp,
+  cudaStream_t stream);
 
 /// What the final gather reads on the device.
 struct GatherLaunch
