@@ -1,0 +1,20 @@
+import sys, os, importlib.util
+import numpy as np
+spec = importlib.util.spec_from_file_location("dra", "/work/main/Documentation/scripts/dining-room-agreement.py")
+dra = importlib.util.module_from_spec(spec); spec.loader.exec_module(dra)
+surface = dra.read("/tmp/dr/dining-room.vtp")
+areas = dra.vertex_areas(surface)
+part = dra.vtk_to_numpy(surface.GetPointData().GetArray("Part"))
+if not os.path.exists("/tmp/dr/ref.npz"):
+    d0, i0, _, _ = dra.solve(surface, "reference", 1024, 0)
+    d1, i1, _, _ = dra.solve(surface, "reference", 1024, 1)
+    np.savez("/tmp/dr/ref.npz", d=d0, i=(i0 + i1) / 2)
+r = np.load("/tmp/dr/ref.npz"); rd, ri = r["d"], r["i"]
+rest = part != dra.SHADE
+for method in sys.argv[1:]:
+    d, i, t, out = dra.solve(surface, method)
+    print("%s %s: total %.1f%% aside %.1f%% ind %.1f%% aside %.1f%% bias %+.1f%% aside %+.1f%% %.2f s" % (method, os.environ.get("XR"),
+        100*dra.rel_rmse(d+i, rd+ri, areas), 100*dra.rel_rmse((d+i)[rest], (rd+ri)[rest], areas[rest]),
+        100*dra.rel_rmse(i, ri, areas), 100*dra.rel_rmse(i[rest], ri[rest], areas[rest]),
+        100*(np.sum(areas*i)/np.sum(areas*ri)-1), 100*(np.sum((areas*i)[rest])/np.sum((areas*ri)[rest])-1), t))
+    np.save("/tmp/dr/%s_%s.npy" % (method, os.environ.get("XR", "0")), np.stack([d, i]))
