@@ -1,11 +1,15 @@
-// findInwardSurfaces, hasLightInside and litOnlyFromBehind on shapes whose inside and
-// outside are known: closed surfaces wound either way, surfaces with small holes, open
-// surfaces (a bowl, a tube) that have no inside, and a room with its lamp inside.
+// findInwardSurfaces, hasLightInside, litOnlyFromBehind and litShareOfFronts on shapes whose
+// inside and outside are known: closed surfaces wound either way, surfaces with small holes,
+// open surfaces (a bowl, a tube) that have no inside, and a room with its lamp inside.
 #include "linkgi/Orientation.h"
+#include "linkgi/Solver.h"
+#include "scene/MeshBuilder.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 using namespace linkgi;
 
@@ -242,4 +246,50 @@ TEST(TestOrientation, LitOnlyFromBehind)
   s.lights[0].position = { 0.f, 0.f, 0.5f };
   s.lights[0].intensity = Vec3f(0.f); // a black light lights no side
   EXPECT_FALSE(litOnlyFromBehind(s));
+}
+
+TEST(TestOrientation, FrontsInTheShadowOfTheirOwnSurfaceAreWarnedAbout)
+{
+  // A tube open at both ends has no inside to test (findInwardSurfaces never lists it), yet
+  // wound inside out and lit from outside its fronts that face the light are its inside's far
+  // wall, in the shadow of its near wall: the update says so. Wound outward it says nothing,
+  // and neither does a one-sided plane lit from above with a box shadowing most of it.
+  for (const bool inward : { false, true })
+  {
+    MeshBuilder b;
+    b.addCylinder({ 0.f, 0.f, -1.f }, { 0.f, 0.f, 1.f }, 1.f, 48, 8, false, Vec3f(0.5f), {}, inward);
+    Scene s = b.take();
+    Light light;
+    light.position = { 3.f, 1.f, 0.5f };
+    s.lights = { light };
+    SolverOptions o;
+    o.backend = Backend::Cpu;
+    o.raysPerVertex = 16;
+    Solver solver;
+    const Solution& sol = solver.update(s, o);
+    const float share = litShareOfFronts(s, sol.direct);
+    const auto& warnings = solver.stats().warnings;
+    const bool warned = std::any_of(warnings.begin(), warnings.end(),
+      [](const std::string& w) { return w.find("Shadows block") != std::string::npos; });
+    EXPECT_EQ(warned, inward) << (inward ? "inside out" : "outward") << ", lit share " << share;
+    EXPECT_LT(inward ? share : 0.f, 0.05f);
+    EXPECT_GT(inward ? 1.f : share, 0.9f); // outward nothing shadows the lit side
+  }
+  MeshBuilder b;
+  b.addQuadGrid({ -2.f, -2.f, 0.f }, { 4.f, 0.f, 0.f }, { 0.f, 4.f, 0.f }, 32, 32, Vec3f(0.5f));
+  b.addBox({ -1.9f, -1.9f, 0.1f }, { 1.9f, 1.9f, 0.3f }, 0.5f, Vec3f(0.5f)); // a roof over most of it
+  Scene s = b.take();
+  Light light;
+  light.position = { 0.f, 0.f, 3.f };
+  s.lights = { light };
+  SolverOptions o;
+  o.backend = Backend::Cpu;
+  o.raysPerVertex = 16;
+  Solver solver;
+  const Solution& sol = solver.update(s, o);
+  EXPECT_GT(litShareOfFronts(s, sol.direct), 0.05f) << "the roof's top is lit";
+  for (const std::string& w : solver.stats().warnings)
+  {
+    EXPECT_EQ(w.find("Shadows block"), std::string::npos) << w;
+  }
 }

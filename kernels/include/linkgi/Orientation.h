@@ -54,4 +54,14 @@ void flipNormals(Scene& scene, const InwardSurface& surface);
 /// light on the side its normal points to, and some vertex would on the other side (a
 /// surface whose normals face away from every light). Visibility is not traced.
 bool litOnlyFromBehind(const Scene& scene);
+
+/// How much of the light of the scene's lights that faces its front sides reaches them:
+/// the direct irradiance `direct` (shadows and all) over what the lights would give the same
+/// vertices unshadowed, summed in luminance over every k-th vertex (at most kLitShareSamples
+/// vertex-light pairs). Near 0 where the fronts that face the lights lie in the shadow of
+/// the rest: a surface wound inside out, open or not (its fronts face its inside, behind
+/// its near side), or lights shut away from what they face. 1 where no front faces a light.
+/// Emission and the environment are not counted: the caller asks only without them.
+float litShareOfFronts(const Scene& scene, const std::vector<Vec3f>& direct);
+constexpr std::size_t kLitShareSamples = 65536;
 }

@@ -330,6 +330,24 @@ void flipNormals(Scene& scene, const InwardSurface& surface)
   }
 }
 
+float litShareOfFronts(const Scene& scene, const std::vector<Vec3f>& direct)
+{
+  const std::size_t nv = std::min(scene.vertexCount(), direct.size());
+  const std::size_t pairs = nv * std::max<std::size_t>(scene.lights.size(), 1);
+  const std::size_t stride = std::max<std::size_t>(1, (pairs + kLitShareSamples - 1) / kLitShareSamples);
+  double lit = 0.0, facing = 0.0;
+  for (std::size_t v = 0; v < nv; v += stride)
+  {
+    for (const Light& light : scene.lights)
+    {
+      Vec3f toLight;
+      facing += luminance(unshadowedIrradiance(light, scene.positions[v], scene.normals[v], toLight));
+    }
+    lit += luminance(direct[v]);
+  }
+  return facing > 0.0 ? float(std::min(1.0, lit / facing)) : 1.f;
+}
+
 bool litOnlyFromBehind(const Scene& scene)
 {
   bool back = false;
