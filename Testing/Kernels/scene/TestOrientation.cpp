@@ -4,11 +4,13 @@
 #include "linkgi/Orientation.h"
 #include "linkgi/Solver.h"
 #include "scene/MeshBuilder.h"
+#include "shared/RayTracer.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 using namespace linkgi;
@@ -250,23 +252,50 @@ TEST(TestOrientation, LitOnlyFromBehind)
 
 namespace
 {
-/// The share of the light facing the fronts of `builder`'s scene, lit by a point light at
-/// `lamp`, that reaches them (litShareOfFronts), and whether an update warned about it.
-std::pair<float, bool> LitShareAndWarning(MeshBuilder& builder, const Vec3f& lamp)
+/// `builder`'s scene lit by a point light at `lamp`, solved on the CPU: the scene, its direct
+/// light and the update's warnings.
+struct Lit
 {
-  Scene s = builder.take();
+  Scene scene;
+  std::vector<Vec3f> direct;
+  std::vector<std::string> warnings;
+  bool warned(const char* what) const
+  {
+    return std::any_of(warnings.begin(), warnings.end(), [what](const std::string& w) { return w.find(what) != std::string::npos; });
+  }
+};
+Lit Solve(MeshBuilder& builder, const Vec3f& lamp)
+{
+  Lit out;
+  out.scene = builder.take();
   Light light;
   light.position = lamp;
-  s.lights = { light };
+  out.scene.lights = { light };
   SolverOptions o;
   o.backend = Backend::Cpu;
   o.raysPerVertex = 16;
   Solver solver;
-  const Solution& sol = solver.update(s, o);
-  const auto& warnings = solver.stats().warnings;
-  return { litShareOfFronts(s, sol.direct), std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
-            return w.find("Shadows block") != std::string::npos;
-          }) };
+  out.direct = solver.update(out.scene, o).direct;
+  out.warnings = solver.stats().warnings;
+  return out;
+}
+
+/// The share of the light facing the fronts of `builder`'s scene, lit by a point light at
+/// `lamp`, that reaches them (litShareOfFronts), and whether an update warned about it.
+std::pair<float, bool> LitShareAndWarning(MeshBuilder& builder, const Vec3f& lamp)
+{
+  const Lit lit = Solve(builder, lamp);
+  return { litShareOfFronts(lit.scene, lit.direct), lit.warned("Shadows block") };
+}
+
+/// The surfaces of `lit` lit only on their backs (litOnlyOnTheirBacks, with a tracer of its own).
+LitOnTheirBacks BackLit(const Lit& lit)
+{
+  std::size_t surfaces = 0;
+  const std::vector<Index> surfaceOf = surfaceLabels(lit.scene, surfaces);
+  const std::unique_ptr<RayTracer> tracer = createCpuRayTracer();
+  tracer->build(lit.scene.positions, lit.scene.triangles);
+  return litOnlyOnTheirBacks(lit.scene, surfaceOf, surfaces, lit.direct, *tracer);
 }
 }
 
@@ -291,4 +320,32 @@ TEST(TestOrientation, FrontsInTheShadowOfTheirOwnSurfaceAreWarnedAbout)
   const auto [share, warned] = LitShareAndWarning(b, { 0.f, 0.f, 3.f });
   EXPECT_GT(share, 0.05f) << "the roof's top is lit";
   EXPECT_FALSE(warned);
+}
+
+TEST(TestOrientation, SurfacesLitOnlyOnTheirBacksAmongLitOnesAreWarnedAbout)
+{
+  // Three tiles of a map under a light, the middle one wound the other way (GIS polygons of
+  // mixed orientation): it is lit only on its back, and the update says so.
+  MeshBuilder tiles;
+  for (int i = 0; i < 3; ++i)
+  {
+    const Vec3f origin(1.1f * float(i), 0.f, 0.f), x(1.f, 0.f, 0.f), y(0.f, 1.f, 0.f);
+    i == 1 ? tiles.addQuadGrid(origin, y, x, 4, 4, Vec3f(0.5f)) : tiles.addQuadGrid(origin, x, y, 4, 4, Vec3f(0.5f));
+  }
+  const Lit map = Solve(tiles, { 1.6f, 0.5f, 3.f });
+  const LitOnTheirBacks r = BackLit(map);
+  EXPECT_EQ(r.surfaces, 1u);
+  EXPECT_EQ(r.frontLit, 2u);
+  EXPECT_EQ(r.triangles, map.scene.triangleCount() / 3);
+  EXPECT_TRUE(map.warned("1 of 3 lit surfaces"));
+  // A box whose faces are surfaces of their own (split at its edges), lit from one side: its
+  // far faces face away from the light, but their backs look into the box.
+  MeshBuilder box;
+  box.addBox({ -1.f, -1.f, -1.f }, { 1.f, 1.f, 1.f }, 0.25f, Vec3f(0.5f));
+  const Lit lit = Solve(box, { 4.f, 1.f, 2.f });
+  std::size_t faces = 0;
+  surfaceLabels(lit.scene, faces);
+  EXPECT_EQ(faces, 6u);
+  EXPECT_EQ(BackLit(lit).surfaces, 0u);
+  EXPECT_FALSE(lit.warned("lit only on their backs"));
 }

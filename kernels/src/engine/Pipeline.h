@@ -16,6 +16,11 @@
 #include <utility>
 #include <vector>
 
+namespace linkgi
+{
+class RayTracer;
+}
+
 namespace linkgi::engine
 {
 /// Milliseconds since `start`: what stages, parts and the orchestrator time themselves with.
@@ -120,6 +125,9 @@ public:
   /// measures on a sample of the elements what that stage allocates per element
   /// (MemoryShape::sampledPerElement), allocating little and keeping nothing.
   virtual double sampleMemory(const StageContext& /*context*/) { return 0.0; }
+  /// After a commit: the host ray tracer over the committed scene, for checks of the result
+  /// (litOnlyOnTheirBacks); nullptr where the backend has none (the GPU's).
+  virtual const RayTracer* hostTracer() const { return nullptr; }
 };
 
 /// One stage's result in a backend: what the last commit kept, and what this update staged.

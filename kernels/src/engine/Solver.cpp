@@ -10,6 +10,7 @@
 #include "cuda/Cuda.h"
 #include "linkgi/Error.h"
 #include "linkgi/Orientation.h"
+#include "shared/RayTracer.h"
 #include "cpu/Parallel.h"
 
 #include <algorithm>
@@ -217,8 +218,15 @@ struct Solver::Impl
 
   BackendSlot cpu, cuda;
   int cudaDevicesFound = 0; // GPUs the CUDA backend was made for
+  // The committed scene's surfaces (surfaceLabels), for the orientation checks.
+  std::vector<Index> surfaceOf;
+  std::size_t surfaces = 0;
 
   void solve(const Scene& input, const SolverOptions& options, const ProgressCallback& progress);
+  /// Warns about the sides of a one-sided result (warnsAboutSides): fronts in the shadow of
+  /// their own surface, and surfaces lit only on their backs (with `tracer` over `s`).
+  void checkSides(const Scene& s, const Solution& sol, const SolverOptions& opt, engine::Changes changes,
+    const RayTracer* tracer, std::vector<std::string>& warnings);
   bool chooseCuda(const engine::MethodSpec& spec, const SolverOptions& opt, SolverStats& st);
   void runStages(BackendSlot& slot, bool onCuda, const engine::MethodSpec& spec,
     engine::Changes changes, const Scene& s, const SolverOptions& opt, Solution& sol,
@@ -390,15 +398,39 @@ namespace
 /// rooms, the dining room and 23 models alone 33-100% (Documentation/Guide.md).
 constexpr float kShadowedFronts = 0.05f;
 
-/// The warning for a one-sided scene lit by its lights alone (no emission, a black sky)
-/// whose fronts that face the lights lie almost all in shadow; empty otherwise.
-std::string shadowedFrontsWarning(const Scene& s, const Solution& sol, const SolverOptions& o)
+/// Whether the sides of the scene's surfaces are checked: one-sided, lit by its lights alone
+/// (no emission, a black sky), whose light the direct irradiance holds.
+bool warnsAboutSides(const Scene& s, const SolverOptions& o)
 {
   const bool emits = std::any_of(s.emission.begin(), s.emission.end(), [](const Vec3f& e) { return maxComponent(e) > 0.f; });
-  if (o.twoSided || s.lights.empty() || emits || !s.environment.isBlack())
+  return !o.twoSided && !s.lights.empty() && !emits && s.environment.isBlack();
+}
+
+/// From this share of the triangles on, surfaces lit only on their backs while others are lit
+/// in front are warned about: polygons of mixed orientation (GIS data) and an inside-out open
+/// part give about half; small parts of scanned and CAD models, whose backs see a light
+/// through the models' holes, at most 4% (Documentation/Guide.md).
+constexpr double kBackLitTriangles = 0.1;
+
+/// The warning for surfaces that the lights reach only on their backs while others are lit
+/// in front (litOnlyOnTheirBacks), where they hold kBackLitTriangles of the triangles.
+std::string backLitWarning(const LitOnTheirBacks& r)
+{
+  if (r.frontLit == 0 || r.surfaces == 0 || double(r.triangles) < kBackLitTriangles * double(r.knownTriangles))
   {
     return {};
   }
+  return std::to_string(r.surfaces) + " of " + std::to_string(r.surfaces + r.frontLit) + " lit surfaces (" +
+    std::to_string(r.triangles) + " triangles) are lit only on their backs (the sides their normals point away "
+    "from), which a one-sided solution leaves dark. Where their winding is reversed (polygons of mixed "
+    "orientation, as GIS data has them) or a sheet faces away from the lights, turn TwoSided on to light both "
+    "sides, or reverse those cells (vtkReverseSense).";
+}
+
+/// The warning for a scene whose fronts that face the lights lie almost all in shadow;
+/// empty otherwise.
+std::string shadowedFrontsWarning(const Scene& s, const Solution& sol)
+{
   const float share = litShareOfFronts(s, sol.direct);
   if (share >= kShadowedFronts)
   {
@@ -411,6 +443,33 @@ std::string shadowedFrontsWarning(const Scene& s, const Solution& sol, const Sol
     "(vtkReverseSense, or vtkPolyDataNormals with AutoOrientNormalsOn for a closed one), or turn TwoSided on "
     "to light both sides.";
 }
+}
+
+void Solver::Impl::checkSides(const Scene& s, const Solution& sol, const SolverOptions& opt,
+  engine::Changes changes, const RayTracer* tracer, std::vector<std::string>& warnings)
+{
+  if (!warnsAboutSides(s, opt))
+  {
+    return;
+  }
+  std::string shadowed = shadowedFrontsWarning(s, sol);
+  if (!shadowed.empty())
+  {
+    warnings.push_back(std::move(shadowed));
+  }
+  if (!tracer)
+  {
+    return;
+  }
+  if ((changes & engine::kTopology) || surfaceOf.size() != s.vertexCount())
+  {
+    surfaceOf = surfaceLabels(s, surfaces);
+  }
+  std::string backs = backLitWarning(litOnlyOnTheirBacks(s, surfaceOf, surfaces, sol.direct, *tracer));
+  if (!backs.empty())
+  {
+    warnings.push_back(std::move(backs));
+  }
 }
 
 void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const ProgressCallback& progress)
@@ -477,7 +536,7 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
   Solution sol = std::move(spare); // same sizes as a rule: no allocation, no page faults
   spare = Solution();
   sol.caustics.clear(); // only a method that makes caustics fills it
-  bool ran = false;
+  bool ran = false, onCpu = false;
   if (chooseCuda(spec, opt, st))
   {
     try
@@ -498,13 +557,10 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
   {
     runStages(cpu, false, spec, changes, s, opt, sol, st, progress);
     cuda.synced = false;
+    onCpu = true;
   }
 
-  std::string shadowed = shadowedFrontsWarning(s, sol, opt);
-  if (!shadowed.empty())
-  {
-    st.warnings.push_back(std::move(shadowed));
-  }
+  checkSides(s, sol, opt, changes, onCpu ? cpu.impl->hostTracer() : nullptr, st.warnings);
 
   // Commit: nothing below can fail.
   loan->commit();

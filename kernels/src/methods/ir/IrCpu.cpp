@@ -171,6 +171,8 @@ public:
     st.setCounter("Vpls", vpls.committed().count());
   }
 
+  const RayTracer* hostTracer() const override { return geometry.tracer.get(); }
+
 private:
   void buildProxyTracer(const StageContext& c)
   {

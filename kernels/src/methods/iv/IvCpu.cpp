@@ -70,6 +70,8 @@ public:
     st.lightRays = direct.committed().shadowRays;
   }
 
+  const RayTracer* hostTracer() const override { return geometry.tracer.get(); }
+
   double sampleMemory(const StageContext& c) override
   {
     // A tree refit to a new pose links much as it did: what its last build took, measured.

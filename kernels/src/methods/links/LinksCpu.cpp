@@ -71,6 +71,8 @@ public:
     st.lightRays = direct.shadowRays;
   }
 
+  const RayTracer* hostTracer() const override { return geometry.tracer.get(); }
+
   double sampleMemory(const StageContext& c) override
   {
     // Rows spread evenly over the mesh (a 64th of them, at least 256) linked as the stage

@@ -76,6 +76,8 @@ public:
     st.setCounter("Clusters", clusters.committed().count());
   }
 
+  const RayTracer* hostTracer() const override { return geometry.tracer.get(); }
+
 private:
   /// The gather stage's results: E_ind per element (caustics included), the caustics alone
   /// (front sides; empty without caustic photons) and the rays it traced.

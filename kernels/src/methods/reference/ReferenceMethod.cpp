@@ -49,6 +49,8 @@ public:
     st.setCounter("Paths", paths);
   }
 
+  const RayTracer* hostTracer() const override { return geometry.tracer.get(); }
+
 private:
   CpuGeometry geometry;
   std::uint64_t paths = 0;
