@@ -409,7 +409,7 @@ LitOnTheirBacks litOnlyOnTheirBacks(const Scene& scene, const std::vector<Index>
   // in order (every vertex of a small surface, the first ones of a large one), and at most
   // kBackSamples in all (a triangle soup is as many surfaces as triangles): the surfaces
   // past those are left unknown.
-  const float offset = 1e-4f * boundingDiagonal(scene.positions);
+  const float offset = 1e-4f * boundingDiagonal(scene.positions); // one for all: a check, not the light
   std::vector<int> cast(surfaces, 0);
   std::vector<Ray> rays;
   std::vector<Index> rayOf;
