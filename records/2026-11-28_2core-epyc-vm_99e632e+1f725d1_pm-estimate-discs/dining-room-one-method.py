@@ -1,3 +1,6 @@
+"""One method's update in the dining room against the reference of dining-room-agreement.py
+(cached in /tmp/dr/ref.npz): PYTHONPATH=build/lib/python3.11/dist-packages /usr/bin/python3
+THIS.py METHOD... with the scene at /tmp/dr/dining-room.vtp (dining-room-scene.py)."""
 import sys, os, importlib.util
 import numpy as np
 spec = importlib.util.spec_from_file_location("dra", "/work/main/Documentation/scripts/dining-room-agreement.py")
@@ -13,8 +16,8 @@ r = np.load("/tmp/dr/ref.npz"); rd, ri = r["d"], r["i"]
 rest = part != dra.SHADE
 for method in sys.argv[1:]:
     d, i, t, out = dra.solve(surface, method)
-    print("%s %s: total %.1f%% aside %.1f%% ind %.1f%% aside %.1f%% bias %+.1f%% aside %+.1f%% %.2f s" % (method, os.environ.get("XR"),
+    print("%s: total %.1f%% aside %.1f%% ind %.1f%% aside %.1f%% bias %+.1f%% aside %+.1f%% %.2f s" % (method,
         100*dra.rel_rmse(d+i, rd+ri, areas), 100*dra.rel_rmse((d+i)[rest], (rd+ri)[rest], areas[rest]),
         100*dra.rel_rmse(i, ri, areas), 100*dra.rel_rmse(i[rest], ri[rest], areas[rest]),
         100*(np.sum(areas*i)/np.sum(areas*ri)-1), 100*(np.sum((areas*i)[rest])/np.sum((areas*ri)[rest])-1), t))
-    np.save("/tmp/dr/%s_%s.npy" % (method, os.environ.get("XR", "0")), np.stack([d, i]))
+    np.save("/tmp/dr/%s.npy" % method, np.stack([d, i]))
