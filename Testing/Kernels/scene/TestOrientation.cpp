@@ -2,6 +2,7 @@
 // inside and outside are known: closed surfaces wound either way, surfaces with small holes,
 // open surfaces (a bowl, a tube) that have no inside, and a room with its lamp inside.
 #include "linkgi/Orientation.h"
+#include "scene/BackLit.h"
 #include "linkgi/Solver.h"
 #include "scene/MeshBuilder.h"
 #include "shared/RayTracer.h"

@@ -10,6 +10,7 @@
 #include "cuda/Cuda.h"
 #include "linkgi/Error.h"
 #include "linkgi/Orientation.h"
+#include "scene/BackLit.h"
 #include "shared/RayTracer.h"
 #include "cpu/Parallel.h"
 

@@ -1,7 +1,6 @@
 #include "linkgi/Orientation.h"
 
 #include "shared/DirectLight.h"
-#include "shared/RayTracer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -394,72 +393,5 @@ std::vector<Index> surfaceLabels(const Scene& scene, std::size_t& count)
     out[v] = l;
   }
   return out;
-}
-
-LitOnTheirBacks litOnlyOnTheirBacks(const Scene& scene, const std::vector<Index>& surfaceOf, std::size_t surfaces,
-  const std::vector<Vec3f>& direct, const RayTracer& tracer)
-{
-  const std::size_t nv = std::min({ scene.vertexCount(), direct.size(), surfaceOf.size() });
-  std::vector<std::uint8_t> front(surfaces, 0);
-  for (std::size_t v = 0; v < nv; ++v)
-  {
-    front[surfaceOf[v]] |= maxComponent(direct[v]) > 0.f ? 1 : 0;
-  }
-  // Up to kBackRays back shadow rays per surface without front light, from its vertices
-  // in order (every vertex of a small surface, the first ones of a large one), and at most
-  // kBackSamples in all (a triangle soup is as many surfaces as triangles): the surfaces
-  // past those are left unknown.
-  const float offset = 1e-4f * boundingDiagonal(scene.positions); // one for all: a check, not the light
-  std::vector<int> cast(surfaces, 0);
-  std::vector<Ray> rays;
-  std::vector<Index> rayOf;
-  for (std::size_t v = 0; v < nv && rays.size() < kBackSamples; ++v)
-  {
-    const Index k = surfaceOf[v];
-    if (front[k] || cast[k] >= kBackRays)
-    {
-      continue;
-    }
-    const Vec3f& p = scene.positions[v];
-    const Vec3f back = -normalize(scene.normals[v]);
-    for (const Light& light : scene.lights)
-    {
-      Vec3f toLight;
-      if (maxComponent(unshadowedIrradiance(light, p, back, toLight)) > 0.f)
-      {
-        Ray r;
-        r.origin = p + back * offset;
-        r.direction = directionToLight(light, r.origin);
-        r.tfar = light.type == LightType::Directional ? 3.0e38f : 1.f - 1e-4f;
-        rays.push_back(r);
-        rayOf.push_back(k);
-        ++cast[k];
-        break;
-      }
-    }
-  }
-  std::vector<std::uint8_t> blocked(rays.size());
-  tracer.occluded(rays.data(), blocked.data(), rays.size());
-  std::vector<int> reached(surfaces, 0);
-  for (std::size_t i = 0; i < rays.size(); ++i)
-  {
-    reached[rayOf[i]] += blocked[i] ? 0 : 1;
-  }
-  LitOnTheirBacks r;
-  std::vector<std::uint8_t> flagged(surfaces, 0), known(surfaces, 0);
-  for (std::size_t k = 0; k < surfaces; ++k)
-  {
-    r.frontLit += front[k];
-    flagged[k] = cast[k] > 0 && 2 * reached[k] >= cast[k] ? 1 : 0;
-    known[k] = front[k] || cast[k] > 0 || rays.size() < kBackSamples ? 1 : 0;
-    r.surfaces += flagged[k];
-  }
-  for (const Triangle& t : scene.triangles)
-  {
-    const Index k = t.v[0] < surfaceOf.size() ? surfaceOf[t.v[0]] : kInvalidIndex;
-    r.triangles += k != kInvalidIndex && flagged[k] ? 1 : 0;
-    r.knownTriangles += k != kInvalidIndex && known[k] ? 1 : 0;
-  }
-  return r;
 }
 }
