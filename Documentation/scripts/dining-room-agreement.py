@@ -28,7 +28,8 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from vtkmodules.vtkRenderingCore import vtkLight
 
-LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
+from agreement import LUMINANCE, rel_rmse, vertex_areas
+
 # The middle of the opening of the shade above the table's right half (Mesh013, whose rim is at
 # 1.213 m), 2 cm under it, in the scene's metres.
 LAMP = (0.95 / 3, 3.60 / 3, -1.945 / 3)
@@ -41,17 +42,6 @@ def read(path):
     reader.SetFileName(path)
     reader.Update()
     return reader.GetOutput()
-
-
-def vertex_areas(surface):
-    """A third of each triangle's area to each of its corners (linkgi::vertexAreas)."""
-    p = vtk_to_numpy(surface.GetPoints().GetData()).astype(float)
-    t = vtk_to_numpy(surface.GetPolys().GetConnectivityArray()).reshape(-1, 3)
-    third = np.linalg.norm(np.cross(p[t[:, 1]] - p[t[:, 0]], p[t[:, 2]] - p[t[:, 0]]), axis=1) / 6
-    areas = np.zeros(len(p))
-    for k in range(3):
-        np.add.at(areas, t[:, k], third)
-    return areas
 
 
 def lamp():
@@ -80,10 +70,6 @@ def solve(surface, method, paths=1024, seed=0):
     out = gi.GetOutput()
     arrays = [vtk_to_numpy(out.GetPointData().GetArray(n)) @ LUMINANCE for n in ("DirectIrradiance", "IndirectIrradiance")]
     return arrays[0], arrays[1], seconds, out
-
-
-def rel_rmse(a, r, w):
-    return float(np.sqrt(np.sum(w * (a - r) ** 2) / np.sum(w * r ** 2)))
 
 
 def warnings(out):

@@ -28,7 +28,8 @@ from vtkmodules.vtkIOPLY import vtkPLYReader
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from vtkmodules.vtkRenderingCore import vtkLight
 
-LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
+from agreement import LUMINANCE, rel_rmse, vertex_areas
+
 READERS = {"vtp": vtkXMLPolyDataReader, "vtk": vtkDataSetReader, "ply": vtkPLYReader, "stl": vtkSTLReader,
            "obj": vtkOBJReader, "g": vtkBYUReader}
 METHODS = [name for name in linkgi.methods() if name != "reference"]
@@ -75,21 +76,6 @@ def solve(surface, light, method, refine=False, seed=0):
     light_arrays = [vtk_to_numpy(out.GetPointData().GetArray(n)) @ LUMINANCE
                     for n in ("DirectIrradiance", "IndirectIrradiance")]
     return light_arrays[0], light_arrays[1], out, seconds
-
-
-def vertex_areas(surface):
-    """A third of each triangle's area to each of its corners (linkgi::vertexAreas)."""
-    p = vtk_to_numpy(surface.GetPoints().GetData()).astype(float)
-    t = vtk_to_numpy(surface.GetPolys().GetConnectivityArray()).reshape(-1, 3)
-    third = np.linalg.norm(np.cross(p[t[:, 1]] - p[t[:, 0]], p[t[:, 2]] - p[t[:, 0]]), axis=1) / 6
-    areas = np.zeros(len(p))
-    for k in range(3):
-        np.add.at(areas, t[:, k], third)
-    return areas
-
-
-def rel_rmse(a, r, w):
-    return float(np.sqrt(np.sum(w * (a - r) ** 2) / np.sum(w * r ** 2)))
 
 
 def geometry(surface):

@@ -3,6 +3,7 @@
 THIS.py METHOD... with the scene at /tmp/dr/dining-room.vtp (dining-room-scene.py)."""
 import sys, os, importlib.util
 import numpy as np
+sys.path.insert(0, "/work/main/Documentation/scripts")  # agreement.py
 spec = importlib.util.spec_from_file_location("dra", "/work/main/Documentation/scripts/dining-room-agreement.py")
 dra = importlib.util.module_from_spec(spec); spec.loader.exec_module(dra)
 surface = dra.read("/tmp/dr/dining-room.vtp")
