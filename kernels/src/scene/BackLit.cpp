@@ -37,11 +37,8 @@ LitOnTheirBacks litOnlyOnTheirBacks(const Scene& scene, const std::vector<Index>
       Vec3f toLight;
       if (maxComponent(unshadowedIrradiance(light, p, back, toLight)) > 0.f)
       {
-        Ray r;
-        r.origin = p + back * offset;
-        r.direction = directionToLight(light, r.origin);
-        r.tfar = light.type == LightType::Directional ? 3.0e38f : 1.f - 1e-4f;
-        rays.push_back(r);
+        const Vec3f origin = p + back * offset;
+        rays.push_back(shadowRay(light, origin, directionToLight(light, origin)));
         rayOf.push_back(k);
         ++cast[k];
         break;
