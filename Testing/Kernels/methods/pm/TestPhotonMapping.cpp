@@ -452,7 +452,8 @@ TEST(TestPhotonMapping, NothingLightsTheUndersideOfASlabOnTheFloor)
   // A slab resting 2 mm over the floor of a lit room: its underside sees only the floor under
   // it, which no light reaches but through the gap, so it is nearly dark, as the reference
   // finds. The photons on the lit floor around the slab must not light the floor under it:
-  // a gather ray that hits there reads no estimate whose photons lay further away.
+  // a gather ray that hits there reads no estimate whose photons lay further away, nor one
+  // whose photons lay uncovered where a surface covers the hit.
   MeshBuilder b;
   b.addBox({ -2, 0, -2 }, { 2, 3, 2 }, 0.25f, Vec3f(0.6f), true);
   const Index slab = b.vertexCount();
@@ -472,10 +473,12 @@ TEST(TestPhotonMapping, NothingLightsTheUndersideOfASlabOnTheFloor)
                top = meanLuminance(s, reference.indirect, slab, end, 1);
   std::printf("the slab's underside %.4g W/m^2 indirect, the reference's %.4g (its top's %.4g)\n", lit, dark, top);
   EXPECT_LT(dark, 0.1 * top);
-  // Within its estimates' discs the lit floor still reaches under the edges (0.22 here against
-  // the reference's 0.06, the top's 2.36); read from anywhere within a twentieth of the
-  // scene's diagonal, as the estimates were before they kept their discs, it was 0.60.
-  EXPECT_LT(lit, dark + 0.1 * top) << "the lit floor's photons light the floor under the slab";
+  // 0.046 here against the reference's 0.061, the top's 2.36. Read wherever the estimates'
+  // discs reach, the lit floor reached under the edges (0.22); read from anywhere within a
+  // twentieth of the scene's diagonal, as the estimates were before they kept their discs,
+  // it was 0.60. The light through the gap is still there.
+  EXPECT_LT(lit, dark + 0.03 * top) << "the lit floor's photons light the floor under the slab";
+  EXPECT_GT(lit, 0.25 * dark) << "the light through the gap is lost";
 }
 
 TEST(TestPhotonMapping, NothingLightsAPlateUnderATableTop)

@@ -197,18 +197,18 @@ struct RadianceSitesView
   float maxDistance2 = 3.4e38f; ///< a hit with no estimate this near sees none
 };
 
-/// The outgoing radiance a gather ray sees at surface point y (unit normal n): the nearest
-/// estimate within sqrt(maxDistance2) that faces within 60 degrees of n and lies within 30
-/// degrees of y's tangent plane, where its photons' disc holds y; zero otherwise. An
-/// estimate is an average over its disc: read further out, where its photons say nothing, it
-/// lit the floor under an object resting on it, which no photon reaches, with the light of
-/// the floor around the object. (Where photons lie about y, the nearest estimate's disc holds
-/// it: every siteStride-th photon has one, and each disc holds estimatePhotons of them.)
-LINKGI_HOST_DEVICE inline Vec3f lookupRadiance(const RadianceSitesView& s, const Vec3f& y, const Vec3f& n)
+/// The estimate a gather ray reads at surface point y (unit normal n): the nearest within
+/// sqrt(maxDistance2) that faces within 60 degrees of n and lies within 30 degrees of y's
+/// tangent plane, where its photons' disc holds y; kInvalidIndex otherwise. An estimate is an
+/// average over its disc: read further out, where its photons say nothing, it lit the floor
+/// under an object resting on it, which no photon reaches, with the light of the floor around
+/// the object. (Where photons lie about y, the nearest estimate's disc holds it: every
+/// siteStride-th photon has one, and each disc holds estimatePhotons of them.)
+LINKGI_HOST_DEVICE inline Index estimateAt(const RadianceSitesView& s, const Vec3f& y, const Vec3f& n)
 {
   if (s.tree.count == 0)
   {
-    return Vec3f(0.f);
+    return kInvalidIndex;
   }
   const Index i = nearestOne(s.tree, y, s.maxDistance2, [&](Index j) {
     const Vec3f d = s.tree.points[j] - y;
@@ -217,9 +217,16 @@ LINKGI_HOST_DEVICE inline Vec3f lookupRadiance(const RadianceSitesView& s, const
   });
   if (i == kInvalidIndex)
   {
-    return Vec3f(0.f);
+    return kInvalidIndex;
   }
   const Vec3f d = s.tree.points[i] - y;
-  return dot(d, d) <= s.radius2[i] ? s.radiance[i] : Vec3f(0.f);
+  return dot(d, d) <= s.radius2[i] ? i : kInvalidIndex;
+}
+
+/// The outgoing radiance of estimateAt(s, y, n), zero where there is none.
+LINKGI_HOST_DEVICE inline Vec3f lookupRadiance(const RadianceSitesView& s, const Vec3f& y, const Vec3f& n)
+{
+  const Index i = estimateAt(s, y, n);
+  return i == kInvalidIndex ? Vec3f(0.f) : s.radiance[i];
 }
 }
