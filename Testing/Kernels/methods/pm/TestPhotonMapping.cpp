@@ -415,6 +415,69 @@ TEST(TestPhotonMapping, TreeSearchesEqualBruteForce)
   EXPECT_EQ(pm::nearestOne(empty.view(), Vec3f(0.f), 1.f, [](Index) { return true; }), kInvalidIndex);
 }
 
+TEST(TestPhotonMapping, EstimatesDivideByTheSurfaceTheirPhotonsCanCover)
+{
+  // Photons spread evenly (stratified) over a strip 4 cm wide and 2 m long, each of the same flux: the
+  // radiance an estimate in its middle must find is their total flux / the strip's area / pi.
+  // Jensen's disc of the 64 nearest photons is far wider than the strip, and divides by all
+  // of it; the area the mesh measures within the disc is the strip's band of it.
+  MeshBuilder b;
+  b.addQuadGrid({ -1.f, -0.02f, 0.f }, { 2.f, 0.f, 0.f }, { 0.f, 0.04f, 0.f }, 100, 2, Vec3f(0.5f));
+  const Scene strip = b.take();
+  const pm::SurfaceTree surface(strip);
+  std::vector<Vec3f> positions, normals, flux;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> jitter(0.f, 1.f);
+  const int n = 400; // stratified: 200 cells along, 2 across, one photon in each
+  for (int i = 0; i < n; ++i)
+  {
+    positions.emplace_back(-1.f + 0.01f * (float(i / 2) + jitter(rng)), -0.02f + 0.02f * (float(i % 2) + jitter(rng)), 0.f);
+    normals.emplace_back(0.f, 0.f, 1.f);
+    flux.emplace_back(1e-3f);
+  }
+  const pm::PointTree tree(positions);
+  const pm::PhotonsView photons{ tree.view(), normals.data(), flux.data() };
+  const float expected = float(n) * 1e-3f / (2.f * 0.04f) / kPi;
+  // The mean over the estimates at the photons of the strip's middle (each has the noise of
+  // its 64 photons, 12%).
+  std::vector<pm::Neighbour> heap(64);
+  double measured = 0.0, disc = 0.0, radius = 0.0;
+  int sites = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    if (std::abs(positions[i].x) < 0.6f)
+    {
+      float r2 = 0.f;
+      measured += pm::siteRadiance(photons, surface.view(false), Index(i), 64, 1.f, heap.data(), r2).x;
+      disc += pm::siteRadiance(photons, pm::SurfaceView{}, Index(i), 64, 1.f, heap.data(), r2).x;
+      radius += std::sqrt(r2);
+      ++sites;
+    }
+  }
+  measured /= sites;
+  disc /= sites;
+  radius /= sites;
+  std::printf("radiance on the strip %.4g over its band, %.4g over the disc (r = %.3g m), true %.4g\n", measured,
+    disc, radius, expected);
+  EXPECT_GT(radius, 0.1) << "the disc is not wider than the strip";
+  EXPECT_NEAR(measured, expected, 0.1 * expected);
+  EXPECT_LT(disc, 0.5 * expected) << "the disc alone does not darken the strip";
+  // A surface as wide as the disc keeps it: the band's area is the disc's.
+  MeshBuilder wide;
+  wide.addQuadGrid({ -1.f, -1.f, 0.f }, { 2.f, 0.f, 0.f }, { 0.f, 2.f, 0.f }, 50, 50, Vec3f(0.5f));
+  const pm::SurfaceTree plane(wide.take());
+  EXPECT_EQ(pm::photonArea(plane.view(false), Vec3f(0.f), Vec3f(0.f, 0.f, 1.f), 0.09f), kPi * 0.09f);
+  // Photons on the strip's back count its vertices only where backs take photons.
+  const Vec3f down(0.f, 0.f, -1.f);
+  EXPECT_EQ(pm::photonArea(surface.view(false), Vec3f(0.f), down, 0.09f), kPi * 0.09f);
+  EXPECT_NEAR(pm::photonArea(surface.view(true), Vec3f(0.f), down, 0.09f), 0.6f * 0.04f, 0.2f * 0.024f);
+  // Too few vertices within the disc to measure it by: the disc.
+  MeshBuilder coarse;
+  coarse.addQuadGrid({ -1.f, -0.02f, 0.f }, { 2.f, 0.f, 0.f }, { 0.f, 0.04f, 0.f }, 4, 1, Vec3f(0.5f));
+  const pm::SurfaceTree few(coarse.take());
+  EXPECT_EQ(pm::photonArea(few.view(false), Vec3f(0.f), Vec3f(0.f, 0.f, 1.f), 0.09f), kPi * 0.09f);
+}
+
 TEST(TestPhotonMapping, GatherReadsTheEstimateOfItsOwnSurface)
 {
   // A gather ray's hit reads the nearest radiance estimate that faces its way and lies near

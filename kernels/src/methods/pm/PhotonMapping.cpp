@@ -196,8 +196,21 @@ std::vector<Vec3f> causticIrradiance(const Scene& s, const PhotonMap& map, std::
   return out;
 }
 
-void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride, float maxRadius,
-  const ProgressCallback& progress)
+SurfaceTree::SurfaceTree(const Scene& scene)
+  : positions(scene.positions)
+  , normals(scene.normals)
+  , areas(vertexAreas(scene))
+  , tree(positions)
+{
+}
+
+SurfaceView SurfaceTree::view(bool twoSided) const
+{
+  return { tree.view(), normals.data(), areas.data(), twoSided };
+}
+
+void estimateRadiance(PhotonMap& map, const SurfaceView& surface, std::uint32_t k, std::uint32_t siteStride,
+  float maxRadius, const ProgressCallback& progress)
 {
   map.maxDistance2 = maxRadius * maxRadius;
   const std::size_t n = map.count(), stride = std::max<std::uint32_t>(siteStride, 1);
@@ -215,7 +228,8 @@ void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride,
       const std::size_t i = s * stride;
       map.sitePositions[s] = map.positions[i];
       map.siteNormals[s] = map.normals[i];
-      map.siteRadiance[s] = siteRadiance(view, Index(i), k, map.maxDistance2, heap.data(), map.siteRadius2[s]);
+      map.siteRadiance[s] = siteRadiance(view, surface, Index(i), k, map.maxDistance2, heap.data(),
+        map.siteRadius2[s]);
     }
   }, progress);
   map.sites = PointTree(map.sitePositions);

@@ -79,11 +79,25 @@ std::uint64_t tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNor
   const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress = {},
   std::uint64_t secondPassBytes = UINT64_MAX);
 
+/// The mesh's vertices as the estimates measure thin parts by (SurfaceView, PmMath.h), in
+/// arrays of its own: built with the geometry, read by every photon stage after it.
+struct SurfaceTree
+{
+  std::vector<Vec3f> positions, normals;
+  std::vector<float> areas;
+  PointTree tree;
+
+  explicit SurfaceTree(const Scene& scene);
+  SurfaceTree(const SurfaceTree&) = delete; // the tree points into `positions`
+  SurfaceView view(bool twoSided) const;
+};
+
 /// Builds the map's estimates from photons already in positions/normals/flux, at every
 /// `siteStride`-th photon: siteRadiance (PmMath.h) from the k nearest photons within
-/// `maxRadius`, those facing within 37 degrees of the site's normal counted.
-void estimateRadiance(PhotonMap& map, std::uint32_t k, std::uint32_t siteStride, float maxRadius,
-  const ProgressCallback& progress = {});
+/// `maxRadius`, those facing within 37 degrees of the site's normal counted, over the area
+/// `surface` says they can cover.
+void estimateRadiance(PhotonMap& map, const SurfaceView& surface, std::uint32_t k, std::uint32_t siteStride,
+  float maxRadius, const ProgressCallback& progress = {});
 
 /// The clusters of the vertices, and what interpolation needs from them.
 struct Clusters

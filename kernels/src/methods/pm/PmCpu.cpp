@@ -11,6 +11,8 @@
 #include "shared/DirectLight.h"
 #include "shared/Sampling.h"
 
+#include <memory>
+
 namespace linkgi::pm
 {
 namespace
@@ -26,7 +28,9 @@ public:
     {
       case kGeometryStage:
         geometryTouched = true;
-        return geometry.update(c);
+        geometry.update(c);
+        surface = std::make_unique<SurfaceTree>(c.scene);
+        return;
       case kPhotonStage:
         return tracePhotons(c);
       case kClusterStage:
@@ -97,7 +101,7 @@ private:
     const std::uint64_t secondPass = linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, geometry.origins,
       *geometry.tracer, c.options, next, half(0.0), memoryLeft(c.stats, held));
     raiseEstimate(c.stats, held + secondPass);
-    estimateRadiance(next, c.options.photonMapping.estimatePhotons, siteStride(next.count()),
+    estimateRadiance(next, surface->view(c.options.twoSided), c.options.photonMapping.estimatePhotons, siteStride(next.count()),
       kEstimateRadius * boundingDiagonal(c.scene.positions), half(0.5));
   }
 
@@ -172,6 +176,7 @@ private:
   }
 
   CpuGeometry geometry;
+  std::unique_ptr<SurfaceTree> surface; ///< with the geometry
   bool geometryTouched = false;
   Staged<PhotonMap> map;
   Staged<Clusters> clusters;

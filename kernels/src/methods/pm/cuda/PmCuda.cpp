@@ -66,7 +66,8 @@ private:
     mesh.update(c.scene, c.changes, stream, &c.stats);
     if (c.changes & (kTopology | kPositions))
     {
-      areas.upload(vertexAreas(c.scene), stream); // the caustics' one-ring discs
+      areas.upload(vertexAreas(c.scene), stream); // the caustics' one-ring discs, the thin parts' areas
+      vertexTree.build(mesh.positions.data(), mesh.vertexCount, stream);
     }
   }
 
@@ -112,8 +113,8 @@ private:
     treeRadius2.resize(std::max<std::uint32_t>(siteCount, 1));
     const float radius = kEstimateRadius * mesh.extent.diagonal;
     estimateMax2 = radius * radius;
-    gpu::estimateSites({ photonView, sorted.normals.data(), sorted.flux.data() }, photonTree.view().order, stride,
-      o.photonMapping.estimatePhotons, estimateMax2, sitePositions.data(), siteNormals.data(), siteRadiance.data(),
+    gpu::estimateSites({ photonView, sorted.normals.data(), sorted.flux.data() }, photonTree.view().order,
+      { vertexTree.view(), mesh.normals.data(), areas.data(), o.twoSided }, stride, o.photonMapping.estimatePhotons, estimateMax2, sitePositions.data(), siteNormals.data(), siteRadiance.data(),
       siteRadius2.data(), flags, scan, temp, stream);
     siteTree.build(sitePositions.data(), siteCount, stream);
     // The estimates in the site tree's order (their radiance in `flux`'s place).
@@ -248,6 +249,7 @@ private:
   GPUBuffer<Offset> scan;
   GPUBuffer<unsigned char> temp;
   gpu::DevicePointTree photonTree, siteTree, causticTree;
+  gpu::DevicePointTree vertexTree; ///< the estimates measure thin parts by (SurfaceView)
   gpu::DevicePhotons sorted, sites; ///< the photons and the estimates in their trees' orders
   GPUBuffer<Vec3f> sitePositions, siteNormals, siteRadiance;
   GPUBuffer<float> siteRadius2, treeRadius2; ///< the estimates' discs, in site and in site-tree order

@@ -208,7 +208,7 @@ __global__ void siteOrderKernel(const Index* order, std::uint32_t n, std::uint32
 }
 
 template <int K>
-__global__ void sitesKernel(PhotonsView photons, const Index* sitePhotons, std::uint32_t siteCount, std::uint32_t k,
+__global__ void sitesKernel(PhotonsView photons, SurfaceView surface, const Index* sitePhotons, std::uint32_t siteCount, std::uint32_t k,
   float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, float* siteRadius2)
 {
   const std::uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
@@ -220,7 +220,7 @@ __global__ void sitesKernel(PhotonsView photons, const Index* sitePhotons, std::
   const Index i = sitePhotons[s];
   sitePositions[s] = photons.tree.points[i];
   siteNormals[s] = photons.normals[i];
-  siteRadiance[s] = pm::siteRadiance(photons, i, k, max2, heap, siteRadius2[s]);
+  siteRadiance[s] = pm::siteRadiance(photons, surface, i, k, max2, heap, siteRadius2[s]);
 }
 
 template <typename T>
@@ -271,10 +271,11 @@ void withHeap(std::uint32_t k, Args&&... args)
 template <int K>
 struct SitesLaunch
 {
-  static void run(const PhotonsView& p, const Index* sitePhotons, std::uint32_t siteCount, std::uint32_t k,
+  static void run(const PhotonsView& p, const SurfaceView& surface, const Index* sitePhotons, std::uint32_t siteCount,
+    std::uint32_t k,
     float max2, Vec3f* positions, Vec3f* normals, Vec3f* radiance, float* radius2, cudaStream_t stream)
   {
-    sitesKernel<K><<<gridBlocks(siteCount), kThreads, 0, stream>>>(p, sitePhotons, siteCount, k, max2, positions,
+    sitesKernel<K><<<gridBlocks(siteCount), kThreads, 0, stream>>>(p, surface, sitePhotons, siteCount, k, max2, positions,
       normals, radiance, radius2);
     LINKGI_CUDA_CHECK_LAUNCH("sitesKernel");
   }
@@ -505,8 +506,8 @@ void splitPhotons(const paths::Vpl* hits, std::size_t count, DevicePhotons& out,
     cudaMemcpyDeviceToHost, stream));
 }
 
-void estimateSites(const PhotonsView& photons, const Index* order, std::uint32_t stride, std::uint32_t k,
-  float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, float* siteRadius2,
+void estimateSites(const PhotonsView& photons, const Index* order, const SurfaceView& surface, std::uint32_t stride,
+  std::uint32_t k, float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, float* siteRadius2,
   cuda::GPUBuffer<Index>& scratch, cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp,
   cudaStream_t stream)
 {
@@ -523,7 +524,7 @@ void estimateSites(const PhotonsView& photons, const Index* order, std::uint32_t
     cuda::exclusiveSum(flags, scan.data(), n, temp, stream);
     siteOrderKernel<<<gridBlocks(n), kThreads, 0, stream>>>(order, n, stride, scan.data(), sitePhotons);
     LINKGI_CUDA_CHECK_LAUNCH("siteOrderKernel");
-    withHeap<SitesLaunch>(k, photons, sitePhotons, siteCount, k, max2, sitePositions, siteNormals, siteRadiance,
+    withHeap<SitesLaunch>(k, photons, surface, sitePhotons, siteCount, k, max2, sitePositions, siteNormals, siteRadiance,
       siteRadius2, stream);
   }
 }
