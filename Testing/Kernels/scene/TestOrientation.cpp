@@ -1,6 +1,8 @@
 // findInwardSurfaces, hasLightInside, litOnlyFromBehind and litShareOfFronts on shapes whose
 // inside and outside are known: closed surfaces wound either way, surfaces with small holes,
 // open surfaces (a bowl, a tube) that have no inside, and a room with its lamp inside.
+#include "CudaFixtures.h"
+
 #include "linkgi/Orientation.h"
 #include "scene/BackLit.h"
 #include "linkgi/Solver.h"
@@ -260,12 +262,13 @@ struct Lit
   Scene scene;
   std::vector<Vec3f> direct;
   std::vector<std::string> warnings;
+  std::string backend; ///< that solved it
   bool warned(const char* what) const
   {
     return std::any_of(warnings.begin(), warnings.end(), [what](const std::string& w) { return w.find(what) != std::string::npos; });
   }
 };
-Lit Solve(MeshBuilder& builder, const Vec3f& lamp)
+Lit Solve(MeshBuilder& builder, const Vec3f& lamp, Method method = Method::Links, Backend backend = Backend::Cpu)
 {
   Lit out;
   out.scene = builder.take();
@@ -273,12 +276,27 @@ Lit Solve(MeshBuilder& builder, const Vec3f& lamp)
   light.position = lamp;
   out.scene.lights = { light };
   SolverOptions o;
-  o.backend = Backend::Cpu;
+  o.method = method;
+  o.backend = backend;
   o.raysPerVertex = 16;
   Solver solver;
   out.direct = solver.update(out.scene, o).direct;
   out.warnings = solver.stats().warnings;
+  out.backend = solver.stats().backend;
   return out;
+}
+
+/// Three tiles of a map, the middle one wound the other way (GIS polygons of mixed
+/// orientation), lit from above.
+MeshBuilder Tiles()
+{
+  MeshBuilder tiles;
+  for (int i = 0; i < 3; ++i)
+  {
+    const Vec3f origin(1.1f * float(i), 0.f, 0.f), x(1.f, 0.f, 0.f), y(0.f, 1.f, 0.f);
+    i == 1 ? tiles.addQuadGrid(origin, y, x, 4, 4, Vec3f(0.5f)) : tiles.addQuadGrid(origin, x, y, 4, 4, Vec3f(0.5f));
+  }
+  return tiles;
 }
 
 /// The share of the light facing the fronts of `builder`'s scene, lit by a point light at
@@ -325,14 +343,9 @@ TEST(TestOrientation, FrontsInTheShadowOfTheirOwnSurfaceAreWarnedAbout)
 
 TEST(TestOrientation, SurfacesLitOnlyOnTheirBacksAmongLitOnesAreWarnedAbout)
 {
-  // Three tiles of a map under a light, the middle one wound the other way (GIS polygons of
-  // mixed orientation): it is lit only on its back, and the update says so.
-  MeshBuilder tiles;
-  for (int i = 0; i < 3; ++i)
-  {
-    const Vec3f origin(1.1f * float(i), 0.f, 0.f), x(1.f, 0.f, 0.f), y(0.f, 1.f, 0.f);
-    i == 1 ? tiles.addQuadGrid(origin, y, x, 4, 4, Vec3f(0.5f)) : tiles.addQuadGrid(origin, x, y, 4, 4, Vec3f(0.5f));
-  }
+  // Three tiles of a map under a light, the middle one wound the other way: it is lit only
+  // on its back, and the update says so.
+  MeshBuilder tiles = Tiles();
   const Lit map = Solve(tiles, { 1.6f, 0.5f, 3.f });
   const LitOnTheirBacks r = BackLit(map);
   EXPECT_EQ(r.surfaces, 1u);
@@ -349,4 +362,19 @@ TEST(TestOrientation, SurfacesLitOnlyOnTheirBacksAmongLitOnesAreWarnedAbout)
   EXPECT_EQ(faces, 6u);
   EXPECT_EQ(BackLit(lit).surfaces, 0u);
   EXPECT_FALSE(lit.warned("lit only on their backs"));
+}
+
+TEST(TestOrientation, EveryGpuBackendChecksWhichSurfacesAreLitOnlyOnTheirBacks)
+{
+  // The check traces its shadow rays through the BVH of the backend that solved: on the GPU,
+  // the device's.
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  for (const Method method :
+    { Method::Links, Method::InstantRadiosity, Method::ImplicitVisibility, Method::PhotonMapping })
+  {
+    MeshBuilder tiles = Tiles();
+    const Lit map = Solve(tiles, { 1.6f, 0.5f, 3.f }, method, Backend::Cuda);
+    EXPECT_EQ(map.backend, "cuda") << "method " << int(method);
+    EXPECT_TRUE(map.warned("1 of 3 lit surfaces")) << "method " << int(method);
+  }
 }

@@ -6,6 +6,9 @@
 #include "cuda/GPUBuffer.h"
 
 #include "shared/BvhBuild.h"
+#include "shared/RayTracer.h"
+
+#include <memory>
 
 namespace linkgi::cuda
 {
@@ -55,4 +58,10 @@ private:
   GPUBuffer<Index> reorderedOrder;
   GPUBuffer<BvhTriangle> reorderedTriangles;
 };
+
+/// The RayTracer interface over `bvh`, which a backend builds and keeps on GPU `device`:
+/// trace() and occluded() copy the rays there and the results back on `stream`, after the
+/// work queued on it; build() and refit() throw. For checks of a result (the back-lit check
+/// of Solver). `bvh` must outlive it.
+std::unique_ptr<RayTracer> traceThrough(const DeviceBvh& bvh, int device, cudaStream_t stream);
 }

@@ -77,7 +77,7 @@ int useFirstDevice()
 
 DeviceContext::DeviceContext(int slots)
 {
-  const int device = useFirstDevice();
+  device = useFirstDevice();
   cudaDeviceProp prop{};
   LINKGI_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
   name = prop.name;

@@ -51,6 +51,7 @@ public:
   /// engine's allocations; no per-device link figures.
   void describe(SolverStats& st) const;
 
+  int device = 0; ///< its number
   cudaStream_t stream = nullptr;
   std::string name;
   unsigned long long* counters = nullptr; ///< pinned: read them after a wait

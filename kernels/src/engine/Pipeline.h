@@ -125,9 +125,10 @@ public:
   /// measures on a sample of the elements what that stage allocates per element
   /// (MemoryShape::sampledPerElement), allocating little and keeping nothing.
   virtual double sampleMemory(const StageContext& /*context*/) { return 0.0; }
-  /// After a commit: the host ray tracer over the committed scene, for checks of the result
-  /// (litOnlyOnTheirBacks); nullptr where the backend has none (the GPU's).
-  virtual const RayTracer* hostTracer() const { return nullptr; }
+  /// After a commit: a ray tracer over the committed scene, for checks of the result
+  /// (litOnlyOnTheirBacks): the CPU backends' own, the GPU backends' BVH through copies of
+  /// the rays; nullptr where the backend has none.
+  virtual const RayTracer* sceneTracer() const { return nullptr; }
 };
 
 /// One stage's result in a backend: what the last commit kept, and what this update staged.

@@ -466,10 +466,19 @@ void Solver::Impl::checkSides(const Scene& s, const Solution& sol, const SolverO
   {
     surfaceOf = surfaceLabels(s, surfaces);
   }
-  std::string backs = backLitWarning(litOnlyOnTheirBacks(s, surfaceOf, surfaces, sol.direct, *tracer));
-  if (!backs.empty())
+  try
   {
-    warnings.push_back(std::move(backs));
+    std::string backs = backLitWarning(litOnlyOnTheirBacks(s, surfaceOf, surfaces, sol.direct, *tracer));
+    if (!backs.empty())
+    {
+      warnings.push_back(std::move(backs));
+    }
+  }
+  catch (const CudaError& e)
+  {
+    // The result stands; only its check through the GPU's BVH is lost.
+    warnings.push_back(std::string("Which surfaces are lit only on their backs was not checked: the GPU failed (") +
+      e.what() + ").");
   }
 }
 
@@ -561,7 +570,7 @@ void Solver::Impl::solve(const Scene& input, const SolverOptions& opt, const Pro
     onCpu = true;
   }
 
-  checkSides(s, sol, opt, changes, onCpu ? cpu.impl->hostTracer() : nullptr, st.warnings);
+  checkSides(s, sol, opt, changes, (onCpu ? cpu : cuda).impl->sceneTracer(), st.warnings);
 
   // Commit: nothing below can fail.
   loan->commit();

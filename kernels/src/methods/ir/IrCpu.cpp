@@ -171,7 +171,7 @@ public:
     st.setCounter("Vpls", vpls.committed().count());
   }
 
-  const RayTracer* hostTracer() const override { return geometry.tracer.get(); }
+  const RayTracer* sceneTracer() const override { return geometry.tracer.get(); }
 
 private:
   void buildProxyTracer(const StageContext& c)

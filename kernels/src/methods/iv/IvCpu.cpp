@@ -70,7 +70,7 @@ public:
     st.lightRays = direct.committed().shadowRays;
   }
 
-  const RayTracer* hostTracer() const override { return geometry.tracer.get(); }
+  const RayTracer* sceneTracer() const override { return geometry.tracer.get(); }
 
   double sampleMemory(const StageContext& c) override
   {

@@ -71,7 +71,7 @@ public:
     st.lightRays = direct.shadowRays;
   }
 
-  const RayTracer* hostTracer() const override { return geometry.tracer.get(); }
+  const RayTracer* sceneTracer() const override { return geometry.tracer.get(); }
 
   double sampleMemory(const StageContext& c) override
   {

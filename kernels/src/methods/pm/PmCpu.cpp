@@ -80,7 +80,7 @@ public:
     st.setCounter("Clusters", clusters.committed().count());
   }
 
-  const RayTracer* hostTracer() const override { return geometry.tracer.get(); }
+  const RayTracer* sceneTracer() const override { return geometry.tracer.get(); }
 
 private:
   /// The gather stage's results: E_ind per element (caustics included), the caustics alone

@@ -49,7 +49,7 @@ public:
     st.setCounter("Paths", paths);
   }
 
-  const RayTracer* hostTracer() const override { return geometry.tracer.get(); }
+  const RayTracer* sceneTracer() const override { return geometry.tracer.get(); }
 
 private:
   CpuGeometry geometry;

@@ -110,6 +110,8 @@ public:
     st.setCounter("Vpls", vpls.count);
   }
 
+  const RayTracer* sceneTracer() const override { return meshTracer.get(); }
+
 private:
   void buildProxyBvh(const StageContext& c)
   {
@@ -240,6 +242,8 @@ private:
   cudaStream_t stream = device.stream;
   unsigned long long* rayCounts = device.counters;
   DeviceMesh mesh;
+  /// The mesh's BVH for checks of a result (sceneTracer).
+  std::unique_ptr<RayTracer> meshTracer = cuda::traceThrough(mesh.bvh, device.device, stream);
   cuda::DeviceDirectLight direct;
   cuda::DeviceFinish done;
   gpu::DeviceProxy proxy;

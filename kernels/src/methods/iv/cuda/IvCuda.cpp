@@ -56,6 +56,8 @@ public:
     st.lightRays = lightRays;
   }
 
+  const RayTracer* sceneTracer() const override { return meshTracer.get(); }
+
 private:
   void updateElements(const StageContext& c)
   {
@@ -309,6 +311,8 @@ private:
   cuda::DeviceContext device{ kSlots };
   cudaStream_t stream = device.stream;
   cuda::DeviceMesh mesh;
+  /// The mesh's BVH for checks of a result (sceneTracer).
+  std::unique_ptr<RayTracer> meshTracer = cuda::traceThrough(mesh.bvh, device.device, stream);
   cuda::DeviceDirectLight direct;
   cuda::DeviceFinish done;
 

@@ -166,6 +166,7 @@ Engine::Engine(int maxDevices)
   {
     devices.push_back(std::make_unique<EngineDevice>(found[i % use].index));
   }
+  meshTracer = cuda::traceThrough(devices[0]->bvh, devices[0]->id, devices[0]->stream);
   physicalDevices = int(use);
   identicalDevices = true;
   for (std::size_t i = 1; i < use; ++i)

@@ -64,6 +64,7 @@ public:
   void commit() override {}
   bool discard() override { return false; }
   void describe(SolverStats& stats) const override;
+  const RayTracer* sceneTracer() const override { return meshTracer.get(); }
 
   int deviceCount() const;
   /// "NVIDIA H100 80GB HBM3" or "2 x NVIDIA H200".
@@ -88,6 +89,7 @@ private:
   void runOnAllDevices(const std::function<void(EngineDevice&, std::size_t)>& work);
 
   std::vector<std::unique_ptr<EngineDevice>> devices;
+  std::unique_ptr<RayTracer> meshTracer; ///< the first partition's BVH, for checks of a result
   Index edgeCount = 0; ///< of the topology on the first partition
   float eps = 0.f; ///< rayEpsilon of the positions (the ray origins' bound), set by the geometry stage
   std::string name;

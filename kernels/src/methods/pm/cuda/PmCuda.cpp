@@ -60,6 +60,8 @@ public:
     st.setCounter("Clusters", clusterCount);
   }
 
+  const RayTracer* sceneTracer() const override { return meshTracer.get(); }
+
 private:
   void geometry(const StageContext& c)
   {
@@ -235,6 +237,8 @@ private:
   cuda::DeviceContext device{ kSlots };
   cudaStream_t stream = device.stream;
   cuda::DeviceMesh mesh;
+  /// The mesh's BVH for checks of a result (sceneTracer).
+  std::unique_ptr<RayTracer> meshTracer = cuda::traceThrough(mesh.bvh, device.device, stream);
   cuda::DeviceDirectLight direct;
   cuda::DeviceFinish done;
   GPUBuffer<float> areas;
