@@ -146,11 +146,15 @@ struct LeafLinks
 /// a leaf looks from, relative to its vertex (the ray-origin shift towards its one-ring, so
 /// a vertex on a contact line looks from inside the room; its surface rays also leave from
 /// the origin's offset along the normal, as link rays do).
+/// `tracer` (over `scene`, or null): a bin whose surface hit lies in a gap that its leaf's
+/// vertex is not in (hitInGap: the floor under an object resting on it, read from the lit
+/// floor beside it) gives black, as a back; it needs `receivers`' offsets.
 /// `rows` (per leaf, or null for all): the leaves to push to; the others get empty rows
 /// (a process's share under MPI, SolverOptions::partition).
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
   const Scene& scene, const std::vector<Vec3f>& faceNormals, const ElementTriangles& elements,
-  const std::vector<RayOrigin>& receivers, const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
+  const std::vector<RayOrigin>& receivers, const RayTracer* tracer, const ProgressCallback& progress = {},
+  const std::uint8_t* rows = nullptr);
 
 /// (Each function reports its own fraction in [0, 1] through `progress`.)
 /// n_B gather iterations: L at the leaves, pulled up the tree (area-weighted), gathered at

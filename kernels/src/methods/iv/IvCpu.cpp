@@ -107,8 +107,8 @@ public:
     useBins(c.options);
     std::vector<Index> created;
     const NodeLinks nodes = createNodeLinks(tree, bins, LinkCreationOptions::of(c.scene), {}, sample.data(), &created);
-    const LeafLinks leaves = pushToLeaves(tree, nodes, bins, c.scene, geometry.faceNormals, elements, geometry.origins, {},
-      sample.data());
+    const LeafLinks leaves = pushToLeaves(tree, nodes, bins, c.scene, geometry.faceNormals, elements, geometry.origins,
+      geometry.tracer.get(), {}, sample.data());
     std::vector<double> below(tree.nodeCount(), 1.0); // leaves below each node
     for (std::size_t i = 0; i < tree.left.size(); ++i)
     {
@@ -178,7 +178,8 @@ private:
     const NodeLinks created = createNodeLinks(tree, bins, lo, within(0.0, 0.6), rows);
     const auto t = std::chrono::steady_clock::now();
     Links& next = links.stage();
-    next.leaves = pushToLeaves(tree, created, bins, c.scene, geometry.faceNormals, elements, geometry.origins, within(0.6, 1.0), rows);
+    next.leaves = pushToLeaves(tree, created, bins, c.scene, geometry.faceNormals, elements, geometry.origins,
+      geometry.tracer.get(), within(0.6, 1.0), rows);
     next.nodeLinks = created.byReceiver.nonZeros();
     next.createdLinks = created.created;
     if (!rows)

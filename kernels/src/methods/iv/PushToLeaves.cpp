@@ -3,6 +3,7 @@
 // direction bin. Split from ImplicitLinks.cpp, which creates the node links.
 #include "methods/iv/ImplicitLinks.h"
 #include "scene/Topology.h"
+#include "shared/Gaps.h"
 
 #include "linkgi/Error.h"
 
@@ -191,6 +192,34 @@ void drawSurfaces(const Scene& scene, const std::vector<Vec3f>& faceNormals, con
     }
   }
 }
+/// Bins whose surface hit, at the receiver's `origin`, lies in a gap that the hit leaf's
+/// vertex is not in (hitInGap): black, as a back.
+void darkenGaps(const ClusterTree& tree, const std::vector<Vec3f>& faceNormals, const std::vector<RayOrigin>& receivers,
+  const RayTracer& tracer, const Vec3f& origin, const Vec3f& n, const CubeBins& bins,
+  const std::vector<float>& bestDistance, std::vector<Index>& bestSource)
+{
+  const auto trace = [&tracer](const Ray& ray) {
+    Hit h;
+    tracer.trace(&ray, &h, 1);
+    return h;
+  };
+  for (std::size_t b = 0; b < bins.count(); ++b)
+  {
+    const Index hit = bestSource[b];
+    const Vec3f& dir = bins.center[b];
+    if (hit == kInvalidIndex || !(hit & kSurfaceHit) || (hit & kSurfaceBack) || dot(n, dir) <= 0.f)
+    {
+      continue;
+    }
+    const Index src = hit & kSourceMask;
+    const float t = std::sqrt(bestDistance[b]);
+    const Vec3f facing = dot(tree.normal[src], dir) < 0.f ? tree.normal[src] : -tree.normal[src];
+    if (hitInGap(faceNormals.data(), origin + dir * t, tree.position[src], facing, t, receivers[src].offset, trace))
+    {
+      bestSource[b] = hit | kSurfaceBack;
+    }
+  }
+}
 }
 
 ElementTriangles ElementTriangles::of(const Scene& scene)
@@ -202,7 +231,8 @@ ElementTriangles ElementTriangles::of(const Scene& scene)
 
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
   const Scene& scene, const std::vector<Vec3f>& faceNormals, const ElementTriangles& elements,
-  const std::vector<RayOrigin>& receivers, const ProgressCallback& progress, const std::uint8_t* rows)
+  const std::vector<RayOrigin>& receivers, const RayTracer* tracer, const ProgressCallback& progress,
+  const std::uint8_t* rows)
 {
   const std::size_t leaves = tree.leafCount, nb = bins.count();
   if (tree.nodeCount() > kSourceMask)
@@ -305,6 +335,10 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
         surfaces.erase(std::unique(surfaces.begin(), surfaces.end()), surfaces.end());
         const Vec3f origin = receivers.empty() ? p : p + n * receivers[leaf].offset;
         drawSurfaces(scene, faceNormals, elements, surfaces, origin, n, bins, bestDistance, bestSource);
+        if (tracer && !surfaces.empty() && !receivers.empty())
+        {
+          darkenGaps(tree, faceNormals, receivers, *tracer, origin, n, bins, bestDistance, bestSource);
+        }
         surfaces.clear();
         float hemisphere = 0.f;
         for (std::size_t b = 0; b < nb; ++b)

@@ -6,6 +6,7 @@
 
 #include "methods/pm/PmTypes.h"
 
+#include "shared/Gaps.h"
 #include "shared/LightPaths.h"
 
 namespace linkgi::pm
@@ -163,25 +164,6 @@ struct GatherHit
   bool hit = false;
 };
 
-/// A surface covers a point where it lies within 25 degrees of parallel to it: a gap between
-/// nearly parallel surfaces (an object resting on the floor), not the far side of a fold.
-constexpr float kCoverCos = 0.9f;
-
-/// Whether a surface covers point p (unit normal n, rays leave it `offset` off the
-/// surface) within `reach` along n, nearly parallel to it (kCoverCos).
-template <typename Trace>
-LINKGI_HOST_DEVICE inline bool coveredWithin(const Vec3f* faceNormals, const Vec3f& p, const Vec3f& n, float offset, float reach,
-  const Trace& trace)
-{
-  Ray ray;
-  ray.origin = p + n * offset;
-  ray.direction = n;
-  ray.tnear = 0.f;
-  ray.tfar = reach;
-  const Hit h = trace(ray);
-  return h.triangle != kInvalidIndex && fabsf(dot(faceNormals[h.triangle], n)) > kCoverCos;
-}
-
 /// A final-gather ray whose first hit `h` is known: mirrors and glass send it on (reflected,
 /// or refracted with the Fresnel odds, by a hash of the sample's cluster and the ray's
 /// number), up to kMaxSpecularBounces turns; then it reads the photon map's radiance at its
@@ -245,18 +227,11 @@ LINKGI_HOST_DEVICE inline GatherHit shadeGatherRay(const paths::PathScene& s, co
   {
     return out;
   }
-  // A ray shorter than the way from its hit to the estimate it reads may have run into a
-  // gap (under an object resting on the floor): where a surface covers the hit within that
-  // way and none covers the estimate's photons, those photons saw light the hit does not.
-  const Vec3f site = sites.tree.points[e];
-  const float reach = length(site - y);
-  if (out.distance < reach)
+  // In a gap (under an object resting on the floor) the estimate's photons saw light the
+  // hit does not.
+  if (hitInGap(s.faceNormals, y, sites.tree.points[e], fn, out.distance, triangleOffset(s.origins, t), trace))
   {
-    const float offset = triangleOffset(s.origins, t);
-    if (coveredWithin(s.faceNormals, y, fn, offset, reach, trace) && !coveredWithin(s.faceNormals, site, fn, offset, reach, trace))
-    {
-      return out;
-    }
+    return out;
   }
   out.radiance = sites.radiance[e];
   return out;

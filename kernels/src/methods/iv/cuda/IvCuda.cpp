@@ -195,6 +195,7 @@ private:
     p.positions = mesh.positions.data();
     p.triangles = mesh.triangles.data();
     p.faceNormals = mesh.faceNormals.data();
+    p.bvh = mesh.bvh.view();
     p.elementOffsets = elementOffsets.data();
     p.elementTriangles = elementTriangles.data();
     p.binCenters = binCenters.data();

@@ -4,6 +4,7 @@
 #include "cuda/Primitives.h"
 
 #include "shared/Bounce.h"
+#include "shared/Gaps.h"
 
 namespace linkgi::iv::gpu
 {
@@ -297,6 +298,7 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
       continue;
     }
     std::uint64_t best = keys[b];
+    float bestT = 0.f; // of a surface hit that is the best
     for (int i = 0; i < nearCount; ++i)
     {
       const Index src = near[i];
@@ -310,8 +312,25 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
         if (t > 0.f)
         {
           const std::uint64_t key = binKey(t * t, src | kSurfaceHit | (back ? kSurfaceBack : 0u));
+          bestT = key < best ? t : bestT;
           best = key < best ? key : best;
         }
+      }
+    }
+    const Index hit = Index(best & 0xffffffffu);
+    if (bestT > 0.f && p.receivers && (hit & kSurfaceHit) && !(hit & kSurfaceBack))
+    {
+      const NodeBounds& s = p.nodes[hit & kSourceMask];
+      const Vec3f facing = dot(s.normal, dir) < 0.f ? s.normal : -s.normal;
+      const auto trace = [&p](const Ray& ray) {
+        Hit h;
+        bvh::traverse<false>(p.bvh, ray, h);
+        return h;
+      };
+      if (hitInGap(p.faceNormals, origin + dir * bestT, s.position, facing, bestT, p.receivers[hit & kSourceMask].offset,
+            trace))
+      {
+        best |= std::uint64_t(kSurfaceBack);
       }
     }
     keys[b] = best;

@@ -59,6 +59,7 @@ struct PushParams
   const Vec3f* positions = nullptr;     ///< the mesh, for the leaves drawn from their surface
   const Triangle* triangles = nullptr;
   const Vec3f* faceNormals = nullptr; ///< frontFaceNormals: which side of a triangle is its front
+  BvhView bvh; ///< the mesh's: a surface hit in a gap its leaf is not in gives black (hitInGap)
   const Index* elementOffsets = nullptr; ///< ElementTriangles: each vertex's triangles
   const Index* elementTriangles = nullptr;
   const Vec3f* binCenters = nullptr;
