@@ -217,7 +217,8 @@ TEST(TestGlobalIlluminationAgreement, EveryMethodAgreesWithThePathTracerOnAModel
   vtkPolyData* spider = reader->GetOutput();
   double b[6];
   spider->GetBounds(b);
-  const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
+  const double diagonal =
+    std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
   const double centre[3] = { (b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2 };
   vtkNew<vtkLight> lamp;
   lamp->SetPositional(true);

@@ -192,6 +192,7 @@ void drawSurfaces(const Scene& scene, const std::vector<Vec3f>& faceNormals, con
     }
   }
 }
+
 /// Bins whose surface hit, at the receiver's `origin`, lies in a gap that the hit leaf's
 /// vertex is not in (hitInGap): black, as a back.
 void darkenGaps(const ClusterTree& tree, const std::vector<Vec3f>& faceNormals, const std::vector<RayOrigin>& receivers,

@@ -101,8 +101,8 @@ private:
     const std::uint64_t secondPass = linkgi::pm::tracePhotons(c.scene, geometry.faceNormals, geometry.origins,
       *geometry.tracer, c.options, next, half(0.0), memoryLeft(c.stats, held));
     raiseEstimate(c.stats, held + secondPass);
-    estimateRadiance(next, surface->view(c.options.twoSided), c.options.photonMapping.estimatePhotons, siteStride(next.count()),
-      kEstimateRadius * boundingDiagonal(c.scene.positions), half(0.5));
+    estimateRadiance(next, surface->view(c.options.twoSided), c.options.photonMapping.estimatePhotons,
+      siteStride(next.count()), kEstimateRadius * boundingDiagonal(c.scene.positions), half(0.5));
   }
 
   void gather(const StageContext& c)

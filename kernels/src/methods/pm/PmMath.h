@@ -52,7 +52,7 @@ struct SurfaceView
   bool twoSided = false; ///< photons land on backs too, with the back's normal
 };
 
-/// The fewest vertices within a disc that measure its surface's area (thinPartArea).
+/// The fewest vertices within a disc that measure its surface's area (photonArea).
 constexpr std::uint32_t kThinPartVertices = 8;
 /// A disc whose surface measures less than this share of it lies on a thin part.
 constexpr float kThinPartShare = 0.5f;

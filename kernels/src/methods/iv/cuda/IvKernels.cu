@@ -327,8 +327,8 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
         bvh::traverse<false>(p.bvh, ray, h);
         return h;
       };
-      if (hitInGap(p.faceNormals, origin + dir * bestT, s.position, facing, bestT, p.receivers[hit & kSourceMask].offset,
-            trace))
+      const float offset = p.receivers[hit & kSourceMask].offset;
+      if (hitInGap(p.faceNormals, origin + dir * bestT, s.position, facing, bestT, offset, trace))
       {
         best |= std::uint64_t(kSurfaceBack);
       }
