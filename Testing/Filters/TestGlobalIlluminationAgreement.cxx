@@ -8,7 +8,6 @@
 
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkGlobalIlluminationSceneBuilder.h"
-#include "vtkIdList.h"
 #include "vtkLight.h"
 #include "vtkPointData.h"
 #include "vtkReverseSense.h"
@@ -174,30 +173,16 @@ std::vector<linkgi::Vec3f> Vectors(vtkPolyData* pd, const char* name)
   return out;
 }
 
-/// A third of the area of each triangle of `pd` at each of its corners.
+/// Each point's area (a third of each adjacent triangle's): vertexAreas of the engine's mesh,
+/// its elements split at creases summed back to their points.
 std::vector<float> PointAreas(vtkPolyData* pd)
 {
+  const vtkGlobalIlluminationSceneBuilder::Mesh mesh = vtkGlobalIlluminationSceneBuilder::BuildMesh(pd, true, 30.0);
+  const std::vector<float> elementAreas = linkgi::vertexAreas(mesh.Scene);
   std::vector<float> out(std::size_t(pd->GetNumberOfPoints()), 0.f);
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
+  for (std::size_t e = 0; e < elementAreas.size(); ++e)
   {
-    pd->GetCellPoints(c, ids);
-    if (ids->GetNumberOfIds() != 3)
-    {
-      continue;
-    }
-    double p[3][3];
-    for (int k = 0; k < 3; ++k)
-    {
-      pd->GetPoint(ids->GetId(k), p[k]);
-    }
-    const linkgi::Vec3f e1(float(p[1][0] - p[0][0]), float(p[1][1] - p[0][1]), float(p[1][2] - p[0][2]));
-    const linkgi::Vec3f e2(float(p[2][0] - p[0][0]), float(p[2][1] - p[0][1]), float(p[2][2] - p[0][2]));
-    const float third = linkgi::length(linkgi::cross(e1, e2)) / 6.f;
-    for (int k = 0; k < 3; ++k)
-    {
-      out[std::size_t(ids->GetId(k))] += third;
-    }
+    out[std::size_t(mesh.ElementPoint[e])] += elementAreas[e];
   }
   return out;
 }
