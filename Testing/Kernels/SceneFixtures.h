@@ -6,6 +6,7 @@
 #include "scene/MeshBuilder.h"
 #include "methods/reference/Reference.h"
 #include "linkgi/SolverTypes.h"
+#include "shared/Metrics.h"
 
 #include <functional>
 #include <string>
@@ -80,5 +81,40 @@ inline Scene roomWithBlock(float cell = 0.25f)
   l.intensity = { 10.f, 9.f, 8.f };
   s.lights.push_back(l);
   return s;
+}
+
+/// A slab (1.2 x 0.2 x 1.2 m, cells of 0.1 m) resting 2 mm over the floor of a lit room
+/// (4 x 3 x 4 m, cells of 0.25 m): its underside sees only the floor under it, which no
+/// light reaches but through the gap, and whose triangles' corners lie out in the light.
+/// The slab's vertices are [slabBegin, vertexCount()).
+inline Scene slabOnTheFloor(Index& slabBegin)
+{
+  MeshBuilder b;
+  b.addBox({ -2, 0, -2 }, { 2, 3, 2 }, 0.25f, Vec3f(0.6f), true);
+  slabBegin = b.vertexCount();
+  b.addBox({ -0.6f, 0.002f, -0.6f }, { 0.6f, 0.2f, 0.6f }, 0.1f, Vec3f(0.6f));
+  Scene s = b.take();
+  Light l;
+  l.position = { 0.9f, 2.7f, 0.4f };
+  l.intensity = Vec3f(10.f);
+  s.lights.push_back(l);
+  return s;
+}
+
+/// The area-weighted mean luminance of e over the vertices [begin, end) whose normals point
+/// up (facing > 0: y above 0.9), down (facing < 0: y below -0.9) or anywhere (facing 0).
+inline double meanLuminance(const Scene& s, const std::vector<Vec3f>& e, Index begin, Index end, int facing)
+{
+  const std::vector<float> area = vertexAreas(s);
+  double sum = 0, weight = 0;
+  for (Index v = begin; v < end; ++v)
+  {
+    if (facing == 0 || (facing > 0 ? s.normals[v].y > 0.9f : s.normals[v].y < -0.9f))
+    {
+      sum += area[v] * luminance(e[v]);
+      weight += area[v];
+    }
+  }
+  return sum / weight;
 }
 }

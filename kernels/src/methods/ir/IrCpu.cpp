@@ -92,6 +92,11 @@ std::vector<Vec3f> compensateCpu(const Scene& s, const std::vector<RayOrigin>& o
     std::vector<Ray> batch(rays);
     std::vector<Hit> hits(rays);
     const auto indirectAt = [&indirect](Index e) { return indirect[e]; };
+    const auto trace = [&tracer](const Ray& ray) {
+      Hit h;
+      tracer.trace(&ray, &h, 1);
+      return h;
+    };
     for (std::size_t e = first; e < last; ++e)
     {
       const Index v = elements.vertexOf(e);
@@ -107,7 +112,7 @@ std::vector<Vec3f> compensateCpu(const Scene& s, const std::vector<RayOrigin>& o
       Vec3f sum(0.f);
       for (std::uint32_t i = 0; i < rays; ++i)
       {
-        sum += compensationSample(inputs, batch[i], hits[i], indirectAt);
+        sum += compensationSample(inputs, batch[i], hits[i], indirectAt, trace);
       }
       out[e] += sum * (kPi / float(rays));
     }
@@ -235,6 +240,8 @@ private:
     const auto start = std::chrono::steady_clock::now();
     CompensationInputs in;
     in.triangles = c.scene.triangles.data();
+    in.positions = c.scene.positions.data();
+    in.origins = geometry.origins.data();
     in.faceNormals = geometry.faceNormals.data();
     in.albedo = c.scene.albedo.data();
     in.emission = c.scene.emission.empty() ? nullptr : c.scene.emission.data();

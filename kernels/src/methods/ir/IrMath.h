@@ -6,6 +6,7 @@
 
 #include "shared/Bounce.h"
 #include "shared/DirectLight.h"
+#include "shared/Gaps.h"
 #include "shared/LightPaths.h"
 #include "shared/Sampling.h"
 #include "shared/Surface.h"
@@ -88,12 +89,14 @@ LINKGI_HOST_DEVICE inline std::uint32_t vertexSubset(Index v, std::uint32_t subs
 ///   E_c(x) = int (1 - f(d(w))) L(y(w)) cos dw  ~  pi / n sum_i (1 - f(d_i)) L(y_i)
 /// over n = k*k cosine-weighted rays at the centres of a k x k grid (twisted per vertex),
 /// traced only as far as f's upper end, 1.2 dmin. L(y) = Le + rho/pi (E_d + E_ind) is
-/// interpolated at the hit from its triangle's elements; the back of a one-sided triangle
-/// is black. E_ind(y) is itself the clamped gather's, so what short paths add after their
+/// interpolated at the hit from its triangle's elements, less the corners in a gap the hit
+/// is not in (excludeGapCorners); the back of a one-sided triangle is black. E_ind(y) is itself the clamped gather's, so what short paths add after their
 /// first bounce stays out, and a compensated path may have one bounce more than `bounces`.
 struct CompensationInputs
 {
   const Triangle* triangles = nullptr;
+  const Vec3f* positions = nullptr;
+  const RayOrigin* origins = nullptr; ///< rayOrigins: the offset of the gap test's rays
   const Vec3f* faceNormals = nullptr; ///< frontFaceNormals
   const Vec3f* albedo = nullptr;      ///< per vertex
   const Vec3f* emission = nullptr;    ///< per vertex, null: none
@@ -123,11 +126,12 @@ LINKGI_HOST_DEVICE inline Ray compensationRay(const Vec3f& origin, const Frame& 
   return Ray{ origin, 0.f, frame.toWorld(cosineHemisphere(u, v)), 1.2f * dmin };
 }
 
-/// (1 - f(d)) L(y) for one compensation ray and its hit (zero for a miss or a blocked back
-/// side); `indirect(e)` reads E_ind of element e.
-template <typename IndirectAt>
-LINKGI_HOST_DEVICE inline Vec3f compensationSample(const CompensationInputs& c, const Ray& ray, const Hit& h,
-  const IndirectAt& indirect)
+/// (1 - f(d)) L(y) for one compensation ray and its hit (zero for a miss, a blocked back
+/// side or a hit in a gap); `indirect(e)` reads E_ind of element e, `trace(ray)` the closest
+/// Hit (for the gap test).
+template <typename IndirectAt, typename Trace>
+LINKGI_HOST_DEVICE inline Vec3f compensationSample(const CompensationInputs& c, const Ray& ray, Hit h,
+  const IndirectAt& indirect, const Trace& trace)
 {
   if (h.triangle == kInvalidIndex)
   {
@@ -135,6 +139,11 @@ LINKGI_HOST_DEVICE inline Vec3f compensationSample(const CompensationInputs& c, 
   }
   const bool back = dot(ray.direction, c.faceNormals[h.triangle]) > 0.f;
   if (back && !c.twoSided)
+  {
+    return Vec3f(0.f);
+  }
+  excludeGapCorners(h, ray, c.triangles, c.positions, c.faceNormals, c.origins, c.twoSided, trace);
+  if (isGapHit(h))
   {
     return Vec3f(0.f);
   }

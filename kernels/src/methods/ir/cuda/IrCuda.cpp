@@ -202,9 +202,9 @@ private:
     {
       gpu::CompensationLaunch p;
       p.mesh = mesh.bvh.view();
-      p.positions = mesh.positions.data();
+      p.inputs.positions = mesh.positions.data();
       p.normals = mesh.normals.data();
-      p.origins = mesh.origins.data();
+      p.inputs.origins = mesh.origins.data();
       p.inputs.triangles = mesh.triangles.data();
       p.inputs.faceNormals = mesh.faceNormals.data();
       p.inputs.albedo = pathScene.albedo.data();

@@ -66,19 +66,22 @@ __global__ void compensateKernel(CompensationLaunch p, cuda::Rgba* out)
   const Index v = e < c.vertexCount ? e : e - c.vertexCount;
   const Vec3f n = p.normals[v] * (e < c.vertexCount ? 1.f : -1.f);
   const Frame frame = vertexFrame(n, true, p.seed, e);
-  const Vec3f origin = elementRayOrigin(p.positions[v], n, p.origins[v]);
+  const Vec3f origin = elementRayOrigin(c.positions[v], n, c.origins[v]);
   const std::uint32_t k = p.side, rays = k * k, key = compensationKey(p.seed, e);
   const auto indirectAt = [&p](Index i) {
     const cuda::Rgba x = p.indirect[i];
     return Vec3f(x.r, x.g, x.b);
   };
+  const auto trace = [&p](const Ray& ray) {
+    Hit h;
+    bvh::traverse<false>(p.mesh, ray, h);
+    return h;
+  };
   Vec3f sum(0.f);
   for (std::uint32_t i = 0; i < rays; ++i)
   {
     const Ray ray = compensationRay(origin, frame, i, k, c.dmin, key);
-    Hit h;
-    bvh::traverse<false>(p.mesh, ray, h);
-    sum += compensationSample(c, ray, h, indirectAt);
+    sum += compensationSample(c, ray, trace(ray), indirectAt, trace);
   }
   const Vec3f total = indirectAt(e) + sum * (kPi / float(rays));
   out[e] = { total.x, total.y, total.z, 0.f };

@@ -58,10 +58,8 @@ struct GatherLaunch
 struct CompensationLaunch
 {
   BvhView mesh;
-  const Vec3f* positions = nullptr;
   const Vec3f* normals = nullptr;
-  const RayOrigin* origins = nullptr;
-  CompensationInputs inputs;
+  CompensationInputs inputs; ///< with the positions and ray origins
   const cuda::Rgba* indirect = nullptr; ///< E_ind per element, as gathered
   std::uint32_t side = 0;               ///< k: k*k rays per element
   std::uint32_t seed = 0;
