@@ -267,7 +267,7 @@ TEST(TestMemoryBudget, LinksBuiltElementByElementAreTheTwoPassLinks)
     const Topology topo = Topology::build(s.vertexCount(), s.triangles);
     const std::vector<RayOrigin> origins = rayOrigins(s, topo);
     const std::vector<Vec3f> faces = frontFaceNormals(s);
-    const LinkStructure twoPass = compressLinks(s, traceLinkRays(s, origins, *tracer, faces, o), faces, o);
+    const LinkStructure twoPass = compressLinks(s, traceLinkRays(s, origins, *tracer, o), faces, o);
     double msCompress = -1.0;
     const LinkStructure fused = buildLinks(s, origins, *tracer, faces, o, {}, &msCompress);
     EXPECT_GE(msCompress, 0.0);

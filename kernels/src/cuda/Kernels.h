@@ -81,12 +81,6 @@ struct LinkTraceParams
   const Vec3f* positions = nullptr;
   const Vec3f* normals = nullptr;
   const RayOrigin* origins = nullptr;
-  const Triangle* triangles = nullptr;
-  const Vec3f* faceNormals = nullptr; ///< frontFaceNormals
-  bool twoSided = false;
-  /// Per element of the batch: how far it sees along its normal (distanceAlong), which
-  /// traceLinks writes before it traces the links.
-  float* receiverGaps = nullptr;
   const Vec3f* directions = nullptr; ///< raysPerVertex local directions
   Index raysPerVertex = 0;
   Index vertexCount = 0;
@@ -95,8 +89,7 @@ struct LinkTraceParams
   Index firstElement = 0; ///< the batch: elements [firstElement, firstElement + elementCount)
   Index elementCount = 0;
 };
-/// hits[(x - firstElement) * raysPerVertex + k] for ray k of element x, where x lies in a gap
-/// its corners outside the gap the hit is in left out (excludeGapCorners, as the CPU's).
+/// hits[(x - firstElement) * raysPerVertex + k] for ray k of element x.
 void traceLinks(const LinkTraceParams& p, LinkHit* hits, cudaStream_t stream);
 
 /// Where compressLinks writes: per element a fixed-capacity row (3 n_C transport entries,
@@ -114,6 +107,9 @@ struct LinkRowsOut
 struct LinkCompressParams
 {
   LinkTraceParams trace;
+  const Triangle* triangles = nullptr;
+  const Vec3f* faceNormals = nullptr;
+  bool twoSided = false;
   int envWidth = 0, envHeight = 0;
 };
 /// Merges each element's links with equal columns (weights summed in ray order, columns

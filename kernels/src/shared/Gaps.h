@@ -60,37 +60,18 @@ LINKGI_HOST_DEVICE inline bool isGapHit(const Hit& h)
 /// under a chair's seat read from a corner beside the chair.
 constexpr float kGapDepth = 2.f;
 
-/// How far along unit n from `origin` the nearest surface lies (+infinity for none): a
-/// receiver in a gap sees its other side there. One ray.
-template <typename Trace>
-LINKGI_HOST_DEVICE inline float distanceAlong(const Vec3f& origin, const Vec3f& n, const Trace& trace)
-{
-  Ray ray;
-  ray.origin = origin;
-  ray.direction = n;
-  ray.tnear = 0.f;
-  ray.tfar = 3.0e38f;
-  const Hit h = trace(ray);
-  return h.triangle != kInvalidIndex ? h.t : INFINITY;
-}
-
-/// A hit read as its triangle's corners interpolated (the links, instant radiosity's
-/// compensation), with hitInGap for each corner that lies more than kGapDepth times the
-/// cover's distance away: the corners whose light the hit does not get are left out and the
-/// others reweighted (u, v rewritten); with none left, the hit becomes a gap hit (isGapHit).
-/// The cover over the hit is traced once, no farther than the ray came (a gap's other side
-/// is no farther from the hit than a receiver looking into it, and most often is that
-/// receiver) nor than the farthest corner over kGapDepth: a short ray. A miss, a blocked
-/// back (one-sided) and a hit at least as far from the receiver as from its corners stay as
-/// they are, and so does a hit whose corners all lie within kGapDepth times `receiverGap` of
-/// it: how far the ray's receiver sees along its normal (distanceAlong), which the links pass
-/// so that only a receiver that may sit in a gap pays for the test (a room's floor sees the
-/// ceiling, and its rays hit triangles smaller than twice the room's height); 0 tests every
-/// hit. `ray`: the ray that made the hit.
+/// A hit read as its triangle's corners interpolated (instant radiosity's compensation), with
+/// hitInGap for each corner that lies more than kGapDepth times the cover's distance away:
+/// the corners whose light the hit does not get are left out and the others reweighted (u, v
+/// rewritten); with none left, the hit becomes a gap hit (isGapHit). The cover over the hit
+/// is traced once, no farther than the ray came (a gap's other side is no farther from the
+/// hit than a receiver looking into it, and most often is that receiver) nor than the
+/// farthest corner over kGapDepth: a short ray. A miss, a blocked back (one-sided) and a hit
+/// at least as far from the receiver as from its corners stay as they are. `ray`: the ray
+/// that made the hit.
 template <typename Trace>
 LINKGI_HOST_DEVICE inline void excludeGapCorners(Hit& h, const Ray& ray, const Triangle* triangles,
-  const Vec3f* positions, const Vec3f* faceNormals, const RayOrigin* origins, bool twoSided, const Trace& trace,
-  float receiverGap = 0.f)
+  const Vec3f* positions, const Vec3f* faceNormals, const RayOrigin* origins, bool twoSided, const Trace& trace)
 {
   if (h.triangle == kInvalidIndex)
   {
@@ -115,7 +96,7 @@ LINKGI_HOST_DEVICE inline void excludeGapCorners(Hit& h, const Ray& ray, const T
     reach[k] = length(positions[tri.v[k]] - y);
     farthest = fmaxf(farthest, reach[k]);
   }
-  if (!(t < farthest) || !(kGapDepth * receiverGap < farthest))
+  if (!(t < farthest))
   {
     return;
   }

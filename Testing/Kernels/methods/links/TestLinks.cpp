@@ -18,9 +18,8 @@ LinkStructure linksOf(const Scene& s, std::uint32_t rays, bool twoSided = false)
   tracer->build(s.positions, s.triangles);
   const LinkOptions o{ rays, twoSided, true, 0 };
   const Topology topo = Topology::build(s.vertexCount(), s.triangles);
-  const std::vector<Vec3f> faces = frontFaceNormals(s);
-  const LinkHits hits = traceLinkRays(s, rayOrigins(s, topo), *tracer, faces, o);
-  return compressLinks(s, hits, faces, o);
+  const LinkHits hits = traceLinkRays(s, rayOrigins(s, topo), *tracer, o);
+  return compressLinks(s, hits, frontFaceNormals(s), o);
 }
 
 float rowSum(const SparseMatrix& m, std::size_t r)
@@ -125,10 +124,9 @@ TEST(TestLinks, RowsOfEveryBandAreWhereTheHitsPutThem)
   auto tracer = createCpuRayTracer();
   tracer->build(s.positions, s.triangles);
   const LinkOptions o{ std::uint32_t(n), true, true, 0 };
-  const std::vector<Vec3f> faces = frontFaceNormals(s);
   const LinkHits hits =
-    traceLinkRays(s, rayOrigins(s, Topology::build(nv, s.triangles)), *tracer, faces, o);
-  const LinkStructure l = compressLinks(s, hits, faces, o);
+    traceLinkRays(s, rayOrigins(s, Topology::build(nv, s.triangles)), *tracer, o);
+  const LinkStructure l = compressLinks(s, hits, frontFaceNormals(s), o);
   ASSERT_EQ(l.transport.rows(), 2 * nv);
   ASSERT_EQ(l.environment.rows(), 2 * nv);
   const float w = kPi / float(n);

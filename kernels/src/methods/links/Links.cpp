@@ -15,10 +15,9 @@ namespace linkgi
 namespace
 {
 /// Traces element x's rays - the shared directions in its twisted frame, from its shifted
-/// origin - into `hits` (rays.size() of them), and where x lies in a gap, leaves out each
-/// hit's corners outside the gap the hit is in (excludeGapCorners).
-void traceElement(const Scene& scene, const std::vector<RayOrigin>& origins, const std::vector<Vec3f>& faceNormals,
-  const std::vector<Vec3f>& dirs, const Elements& elements, const LinkOptions& options, std::size_t x,
+/// origin - into `hits` (rays.size() of them).
+void traceElement(const Scene& scene, const std::vector<RayOrigin>& origins, const std::vector<Vec3f>& dirs,
+  const Elements& elements, const LinkOptions& options, std::size_t x,
   const RayTracer& tracer, std::vector<Ray>& rays, Hit* hits)
 {
   const Index v = elements.vertexOf(x);
@@ -31,31 +30,19 @@ void traceElement(const Scene& scene, const std::vector<RayOrigin>& origins, con
     rays[k].direction = frame.toWorld(dirs[k]);
   }
   tracer.trace(rays.data(), hits, rays.size());
-  const auto trace = [&tracer](const Ray& ray) {
-    Hit h;
-    tracer.trace(&ray, &h, 1);
-    return h;
-  };
-  const float gap = distanceAlong(origin, normal, trace);
-  for (std::size_t k = 0; k < rays.size(); ++k)
-  {
-    excludeGapCorners(hits[k], rays[k], scene.triangles.data(), scene.positions.data(), faceNormals.data(),
-      origins.data(), options.twoSided, trace, gap);
-  }
 }
 }
 
 LinkHits traceLinkRays(const Scene& scene, const std::vector<RayOrigin>& origins,
-  const RayTracer& tracer, const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
-  const ProgressCallback& progress)
+  const RayTracer& tracer, const LinkOptions& options, const ProgressCallback& progress)
 {
   LinkHits out;
-  traceLinkRays(scene, origins, tracer, faceNormals, options, out, progress);
+  traceLinkRays(scene, origins, tracer, options, out, progress);
   return out;
 }
 
 void traceLinkRays(const Scene& scene, const std::vector<RayOrigin>& origins,
-  const RayTracer& tracer, const std::vector<Vec3f>& faceNormals, const LinkOptions& options, LinkHits& out,
+  const RayTracer& tracer, const LinkOptions& options, LinkHits& out,
   const ProgressCallback& progress)
 {
   const std::vector<Vec3f> dirs = makeDirectionSet(options.raysPerVertex);
@@ -74,7 +61,7 @@ void traceLinkRays(const Scene& scene, const std::vector<RayOrigin>& origins,
       std::vector<Ray> rays(n);
       for (std::size_t x = begin; x < end; ++x)
       {
-        traceElement(scene, origins, faceNormals, dirs, elements, options, x, tracer, rays, &out.hits[x * n]);
+        traceElement(scene, origins, dirs, elements, options, x, tracer, rays, &out.hits[x * n]);
       }
     },
     progress);
@@ -290,7 +277,7 @@ LinkStructure buildLinks(const Scene& scene, const std::vector<RayOrigin>& origi
       thread_local std::vector<Ray> rays;
       rays.resize(n);
       hits.resize(n);
-      traceElement(scene, origins, faceNormals, dirs, elements, options, x, tracer, rays, hits.data());
+      traceElement(scene, origins, dirs, elements, options, x, tracer, rays, hits.data());
       traceNs += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t).count();
       return hits.data();
     });

@@ -5,7 +5,6 @@
 #include "linkgi/Scene.h"
 #include "scene/Topology.h"
 #include "shared/Csr.h"
-#include "shared/Gaps.h"
 #include "shared/RayOrigin.h"
 #include "shared/RayTracer.h"
 #include "shared/Surface.h"
@@ -72,8 +71,7 @@ struct LinkParams
 
 /// The links one ray adds to its element's row: up to three (element, weight) pairs for a
 /// hit (barycentric weights, back sides offset by vertexCount), one environment texel for a
-/// miss, none for a back-face hit on one-sided elements (the ray is blocked and sees black)
-/// or a hit in a gap none of its corners is in (isGapHit).
+/// miss, none for a back-face hit on one-sided elements (the ray is blocked and sees black).
 struct RayLinks
 {
   Index column[3];
@@ -95,7 +93,7 @@ LINKGI_HOST_DEVICE inline RayLinks linksOfRay(const Hit& h, const Vec3f& directi
     return r;
   }
   const bool back = dot(direction, faceNormals[h.triangle]) > 0.f;
-  if ((back && !p.twoSided) || isGapHit(h))
+  if (back && !p.twoSided)
   {
     return r;
   }
@@ -114,15 +112,12 @@ LINKGI_HOST_DEVICE inline RayLinks linksOfRay(const Hit& h, const Vec3f& directi
   return r;
 }
 
-/// Stage 1: shoots raysPerVertex rays from every element; where an element lies in a gap,
-/// its hits' corners outside the gap are left out (excludeGapCorners; `faceNormals`:
-/// frontFaceNormals).
+/// Stage 1: shoots raysPerVertex rays from every element.
 LinkHits traceLinkRays(const Scene& scene, const std::vector<RayOrigin>& origins,
-  const RayTracer& tracer, const std::vector<Vec3f>& faceNormals, const LinkOptions& options,
-  const ProgressCallback& progress = {});
+  const RayTracer& tracer, const LinkOptions& options, const ProgressCallback& progress = {});
 /// The same into `out`, whose hit buffer is reused when it already has the right size.
 void traceLinkRays(const Scene& scene, const std::vector<RayOrigin>& origins,
-  const RayTracer& tracer, const std::vector<Vec3f>& faceNormals, const LinkOptions& options, LinkHits& out,
+  const RayTracer& tracer, const LinkOptions& options, LinkHits& out,
   const ProgressCallback& progress = {});
 
 /// Stage 2: turns hits into links and merges links with the same (x, y) into CSR rows

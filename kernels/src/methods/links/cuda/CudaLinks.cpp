@@ -167,7 +167,6 @@ void linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
   s.envWeights.resize(std::size_t(count) * n);
   s.counts.resize(count);
   s.envCounts.resize(count);
-  s.receiverGaps.resize(count);
   s.offsets.resize(count);
   s.envOffsets.resize(count);
 
@@ -179,9 +178,8 @@ void linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
   p.trace.directions = d.directions.data();
   p.trace.firstElement = first;
   p.trace.elementCount = count;
-  p.trace.triangles = d.triangles.data();
-  p.trace.faceNormals = d.faceNormals.data();
-  p.trace.receiverGaps = s.receiverGaps.data();
+  p.triangles = d.triangles.data();
+  p.faceNormals = d.faceNormals.data();
 
   LINKGI_CUDA_CHECK(cudaEventRecord(d.events[0], d.stream));
   traceLinks(p.trace, s.hits.data(), d.stream);
@@ -248,7 +246,7 @@ LinkJob makeJob(const Scene& s, const SolverOptions& options)
   t.vertexCount = Index(s.vertexCount());
   t.twist = options.twist;
   t.seed = options.seed;
-  t.twoSided = options.twoSided;
+  job.params.twoSided = options.twoSided;
   job.params.envWidth = s.environment.hasTexture() ? s.environment.width : 0;
   job.params.envHeight = s.environment.hasTexture() ? s.environment.height : 0;
   return job;

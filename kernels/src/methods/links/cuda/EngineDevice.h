@@ -43,14 +43,12 @@ struct LinkScratch
   GPUBuffer<Index> columns, counts, envColumns, envCounts;
   GPUBuffer<Offset> offsets, envOffsets;
   GPUBuffer<float> weights, envWeights;
-  GPUBuffer<float> receiverGaps; ///< per element (LinkTraceParams::receiverGaps)
   GPUBuffer<unsigned long long> rawLinks;
   GPUBuffer<unsigned char> temp;
   std::size_t bytes() const
   {
     return hits.bytes() + columns.bytes() + counts.bytes() + offsets.bytes() + envColumns.bytes() +
-      envCounts.bytes() + envOffsets.bytes() + weights.bytes() + envWeights.bytes() + receiverGaps.bytes() +
-      temp.bytes();
+      envCounts.bytes() + envOffsets.bytes() + weights.bytes() + envWeights.bytes() + temp.bytes();
   }
 };
 

@@ -24,29 +24,6 @@ __device__ inline Frame elementFrame(const LinkTraceParams& p, Index x)
   return vertexFrame(p.normals[v] * sign, p.twist, p.seed, x);
 }
 
-__device__ inline Hit traceClosest(const LinkTraceParams& p, const Ray& ray)
-{
-  Hit h;
-  bvh::traverse<false>(p.bvh, ray, h);
-  return h;
-}
-
-/// How far each element of the batch sees along its normal (distanceAlong). One thread per
-/// element.
-__global__ void receiverGapsKernel(LinkTraceParams p)
-{
-  const Index i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= p.elementCount)
-  {
-    return;
-  }
-  const Index x = p.firstElement + i;
-  const Index v = x < p.vertexCount ? x : x - p.vertexCount;
-  const Vec3f normal = p.normals[v] * (x < p.vertexCount ? 1.f : -1.f);
-  const auto trace = [&p](const Ray& r) { return traceClosest(p, r); };
-  p.receiverGaps[i] = distanceAlong(elementRayOrigin(p.positions[v], normal, p.origins[v]), normal, trace);
-}
-
 /// Six blocks per SM: at most 40 registers (47 unbounded) with 12 bytes spilled; conference's
 /// link rays measured 9.9 ms instead of 10.8 on an H200 (eight blocks spilled more and lost).
 __global__ void __launch_bounds__(kThreads, 6) traceLinksKernel(LinkTraceParams p, LinkHit* hits)
@@ -64,10 +41,8 @@ __global__ void __launch_bounds__(kThreads, 6) traceLinksKernel(LinkTraceParams 
   Ray ray;
   ray.origin = elementRayOrigin(p.positions[v], normal, p.origins[v]);
   ray.direction = frame.toWorld(p.directions[k]);
-  const auto trace = [&p](const Ray& r) { return traceClosest(p, r); };
-  Hit h = trace(ray);
-  excludeGapCorners(h, ray, p.triangles, p.positions, p.faceNormals, p.origins, p.twoSided, trace,
-    p.receiverGaps[x - p.firstElement]);
+  Hit h;
+  bvh::traverse<false>(p.bvh, ray, h);
   hits[i] = LinkHit{ h.triangle, h.u, h.v };
 }
 
@@ -139,7 +114,7 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
 
   LinkParams lp;
   lp.vertexCount = t.vertexCount;
-  lp.twoSided = t.twoSided;
+  lp.twoSided = p.twoSided;
   lp.weight = kPi / float(n);
   lp.envWidth = p.envWidth;
   lp.envHeight = p.envHeight;
@@ -162,7 +137,7 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
       h.triangle = lh.triangle;
       h.u = lh.u;
       h.v = lh.v;
-      links = linksOfRay(h, dir, t.triangles, t.faceNormals, lp);
+      links = linksOfRay(h, dir, p.triangles, p.faceNormals, lp);
     }
     raw += links.count;
     for (int j = 0; j < 3; ++j)
@@ -293,8 +268,6 @@ void traceLinks(const LinkTraceParams& p, LinkHit* hits, cudaStream_t stream)
   const std::size_t rays = std::size_t(p.elementCount) * p.raysPerVertex;
   if (rays)
   {
-    receiverGapsKernel<<<(p.elementCount + kThreads - 1) / kThreads, kThreads, 0, stream>>>(p);
-    LINKGI_CUDA_CHECK_LAUNCH("receiverGapsKernel");
     traceLinksKernel<<<unsigned((rays + kThreads - 1) / kThreads), kThreads, 0, stream>>>(p, hits);
     LINKGI_CUDA_CHECK_LAUNCH("traceLinksKernel");
   }
@@ -313,7 +286,7 @@ bool compressLinks(const LinkCompressParams& p, const LinkHit* hits, const LinkR
     return true;
   }
   // Columns are elements (< 2 x vertices) or environment texels.
-  const Index elements = p.trace.twoSided ? 2 * p.trace.vertexCount : p.trace.vertexCount;
+  const Index elements = p.twoSided ? 2 * p.trace.vertexCount : p.trace.vertexCount;
   const unsigned texels = p.envWidth > 0 ? unsigned(p.envWidth) * unsigned(p.envHeight) : 1u;
   KeyLayout layout;
   layout.columnBits = bitsFor(std::max(unsigned(elements), texels));
