@@ -129,7 +129,8 @@ TEST(TestGaps, GatherHitsDoNotLightTheUndersideOfASlabOnTheFloor)
   // have their corners out in the lit floor, and no method that tests its gather hits for a
   // gap may read them there: instant radiosity's compensation interpolates those corners
   // (excludeGapCorners), photon mapping reads estimates made out there, implicit visibility
-  // leaves drawn there. (The link method's rows have no such test: 0.185 here.)
+  // leaves drawn there. (The link method's rows have no such test, for its cost in link
+  // generation: 0.185 here; Methods.md, "Link structure".)
   Index slab = 0;
   const Scene s = test::slabOnTheFloor(slab);
   const Index end = Index(s.vertexCount());
@@ -150,9 +151,7 @@ TEST(TestGaps, GatherHitsDoNotLightTheUndersideOfASlabOnTheFloor)
     std::printf("  %s: %.4g\n", methodName(method), lit);
     // Instant radiosity 0.104, implicit visibility 0.109 and photon mapping 0.046 against
     // the reference's 0.061 and the top's 2.36. Reading the lit floor's corners and
-    // estimates, instant radiosity was 0.179 and photon mapping 0.22. (The links leave
-    // their hits' corners in: 0.185. Tested on the links' every hit, the gap test cost
-    // the CPU's link rays 13-59% in furnished rooms of large triangles; Methods.md.)
+    // estimates, instant radiosity was 0.179 and photon mapping 0.22.
     EXPECT_LT(lit, dark + 0.03 * top) << methodName(method) << ": the lit floor lights the floor under the slab";
     EXPECT_GT(lit, 0.25 * dark) << methodName(method) << ": the light through the gap is lost";
   }

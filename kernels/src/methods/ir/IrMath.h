@@ -90,8 +90,9 @@ LINKGI_HOST_DEVICE inline std::uint32_t vertexSubset(Index v, std::uint32_t subs
 /// over n = k*k cosine-weighted rays at the centres of a k x k grid (twisted per vertex),
 /// traced only as far as f's upper end, 1.2 dmin. L(y) = Le + rho/pi (E_d + E_ind) is
 /// interpolated at the hit from its triangle's elements, less the corners in a gap the hit
-/// is not in (excludeGapCorners); the back of a one-sided triangle is black. E_ind(y) is itself the clamped gather's, so what short paths add after their
-/// first bounce stays out, and a compensated path may have one bounce more than `bounces`.
+/// is not in (excludeGapCorners); the back of a one-sided triangle is black. E_ind(y) is
+/// itself the clamped gather's, so what short paths add after their first bounce stays out,
+/// and a compensated path may have one bounce more than `bounces`.
 struct CompensationInputs
 {
   const Triangle* triangles = nullptr;
