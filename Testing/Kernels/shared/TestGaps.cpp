@@ -64,13 +64,8 @@ struct FloorUnderAPlate
     tracer->trace(&ray, &h, 1);
     EXPECT_NE(h.triangle, kInvalidIndex);
     EXPECT_NEAR(h.t, 1.f, 1e-4f);
-    const auto trace = [this](const Ray& r) {
-      Hit c;
-      tracer->trace(&r, &c, 1);
-      return c;
-    };
     excludeGapCorners(h, ray, scene.triangles.data(), scene.positions.data(), faceNormals.data(), origins.data(),
-      false, trace);
+      false, ClosestHit{ *tracer });
     return h;
   }
 };

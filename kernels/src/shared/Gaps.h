@@ -16,11 +16,12 @@ namespace linkgi
 /// nearly parallel surfaces (an object resting on the floor), not the far side of a fold.
 constexpr float kCoverCos = 0.9f;
 
-/// Whether a surface covers point p within `reach` along the unit direction n (off the
-/// surface by `offset`), nearly parallel to it (kCoverCos). `trace(ray)` returns the
-/// closest Hit; `faceNormals` are the traced triangles'.
+/// How far along the unit direction n from point p (off the surface by `offset`) a surface
+/// nearly parallel to it (kCoverCos) covers it, within `reach`; +infinity where none does (the
+/// nearest surface that way is farther or not parallel). `trace(ray)` returns the closest
+/// Hit; `faceNormals` are the traced triangles'.
 template <typename Trace>
-LINKGI_HOST_DEVICE inline bool coveredWithin(const Vec3f* faceNormals, const Vec3f& p, const Vec3f& n, float offset,
+LINKGI_HOST_DEVICE inline float coverDistance(const Vec3f* faceNormals, const Vec3f& p, const Vec3f& n, float offset,
   float reach, const Trace& trace)
 {
   Ray ray;
@@ -29,7 +30,15 @@ LINKGI_HOST_DEVICE inline bool coveredWithin(const Vec3f* faceNormals, const Vec
   ray.tnear = 0.f;
   ray.tfar = reach;
   const Hit h = trace(ray);
-  return h.triangle != kInvalidIndex && fabsf(dot(faceNormals[h.triangle], n)) > kCoverCos;
+  return h.triangle != kInvalidIndex && fabsf(dot(faceNormals[h.triangle], n)) > kCoverCos ? h.t : INFINITY;
+}
+
+/// Whether a surface covers point p within `reach` along n (coverDistance).
+template <typename Trace>
+LINKGI_HOST_DEVICE inline bool coveredWithin(const Vec3f* faceNormals, const Vec3f& p, const Vec3f& n, float offset,
+  float reach, const Trace& trace)
+{
+  return coverDistance(faceNormals, p, n, offset, reach, trace) <= reach;
 }
 
 /// Whether a ray that met the surface at y after `t` reads, from a sample at `site` of that
@@ -101,13 +110,8 @@ LINKGI_HOST_DEVICE inline void excludeGapCorners(Hit& h, const Ray& ray, const T
     return;
   }
   const float offset = triangleOffset(origins, tri);
-  Ray cover;
-  cover.origin = y + facing * offset;
-  cover.direction = facing;
-  cover.tnear = 0.f;
-  cover.tfar = fminf(t, farthest / kGapDepth);
-  const Hit c = trace(cover);
-  if (c.triangle == kInvalidIndex || !(fabsf(dot(faceNormals[c.triangle], facing)) > kCoverCos))
+  const float cover = coverDistance(faceNormals, y, facing, offset, fminf(t, farthest / kGapDepth), trace);
+  if (cover == INFINITY)
   {
     return; // nothing parallel covers the hit: no gap
   }
@@ -115,7 +119,7 @@ LINKGI_HOST_DEVICE inline void excludeGapCorners(Hit& h, const Ray& ray, const T
   float kept = 0.f;
   for (int k = 0; k < 3; ++k)
   {
-    if (t < reach[k] && kGapDepth * c.t < reach[k] && bary[k] > 0.f &&
+    if (t < reach[k] && kGapDepth * cover < reach[k] && bary[k] > 0.f &&
       !coveredWithin(faceNormals, positions[tri.v[k]], facing, offset, reach[k], trace))
     {
       bary[k] = 0.f;

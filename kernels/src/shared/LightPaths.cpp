@@ -166,11 +166,7 @@ VplSet traceVplsCpu(const PathSetup& setup, const RayTracer& tracer, std::uint32
   const std::uint32_t slotsPerPath = view.bounces + 1;
   std::vector<Vpl> slots;
   std::vector<int> counts;
-  const auto trace = [&tracer](const Ray& ray) {
-    Hit h;
-    tracer.trace(&ray, &h, 1);
-    return h;
-  };
+  const ClosestHit trace{ tracer };
   const std::uint32_t target = setup.targetVpls;
   std::uint64_t taken = 0;
   for (int pass = 0; pass < 2; ++pass)

@@ -40,6 +40,19 @@ public:
   virtual void occluded(const Ray* rays, std::uint8_t* occluded, std::size_t count) const = 0;
 };
 
+/// `tracer`'s closest hit of one ray, as the host/device code that takes a `trace(ray)`
+/// callable wants it (light paths, gap tests, gathers).
+struct ClosestHit
+{
+  const RayTracer& tracer;
+  Hit operator()(const Ray& ray) const
+  {
+    Hit h;
+    tracer.trace(&ray, &h, 1);
+    return h;
+  }
+};
+
 /// The CPU backend, on Embree 3. Embree errors are reported as linkgi::Error. Builds
 /// without Embree throw linkgi::Error here.
 std::unique_ptr<RayTracer> createEmbreeRayTracer();

@@ -92,11 +92,7 @@ std::vector<Vec3f> compensateCpu(const Scene& s, const std::vector<RayOrigin>& o
     std::vector<Ray> batch(rays);
     std::vector<Hit> hits(rays);
     const auto indirectAt = [&indirect](Index e) { return indirect[e]; };
-    const auto trace = [&tracer](const Ray& ray) {
-      Hit h;
-      tracer.trace(&ray, &h, 1);
-      return h;
-    };
+    const ClosestHit trace{ tracer };
     for (std::size_t e = first; e < last; ++e)
     {
       const Index v = elements.vertexOf(e);

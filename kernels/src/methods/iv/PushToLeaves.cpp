@@ -199,11 +199,7 @@ void darkenGaps(const ClusterTree& tree, const std::vector<Vec3f>& faceNormals, 
   const RayTracer& tracer, const Vec3f& origin, const Vec3f& n, const CubeBins& bins,
   const std::vector<float>& bestDistance, std::vector<Index>& bestSource)
 {
-  const auto trace = [&tracer](const Ray& ray) {
-    Hit h;
-    tracer.trace(&ray, &h, 1);
-    return h;
-  };
+  const ClosestHit trace{ tracer };
   for (std::size_t b = 0; b < bins.count(); ++b)
   {
     const Index hit = bestSource[b];

@@ -468,11 +468,7 @@ SampleIrradiance finalGather(const Scene& s, const std::vector<RayOrigin>& origi
     std::uint64_t gathered = 0;
     std::vector<Ray> rays(n);
     std::vector<Hit> hits(n);
-    const auto trace = [&tracer](const Ray& ray) {
-      Hit h;
-      tracer.trace(&ray, &h, 1);
-      return h;
-    };
+    const ClosestHit trace{ tracer };
     for (std::size_t j = begin; j < end; ++j)
     {
       const Index v = clusters.sample[j];
