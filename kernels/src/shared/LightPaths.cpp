@@ -45,6 +45,7 @@ PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals,
   const SceneExtent extent = known ? *known : sceneExtent(s);
   const Vec3f lo = extent.lo, hi = extent.hi;
   const float radius = std::max(0.5f * length(hi - lo), 1e-30f);
+  const Vec3f centre = (lo + hi) * 0.5f;
   std::vector<float> weights;
   const auto add = [&](std::uint32_t kind, Index index, float weight, float area) {
     if (weight > 0.f && std::isfinite(weight))
@@ -58,10 +59,8 @@ PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals,
     for (Index i = 0; i < s.lights.size(); ++i)
     {
       const Light& l = s.lights[i];
-      const float cone = 2.f * kPi * (1.f - std::cos(l.coneAngleDegrees * (kPi / 180.f)));
       const float extent = l.type == LightType::Directional ? kPi * radius * radius
-        : l.type == LightType::Spot                          ? cone
-                                                             : 4.f * kPi;
+                                                            : emissionCone(l, centre, radius).solidAngle();
       add(kLightSource, i, extent * mean(l.intensity), 0.f);
     }
   }
@@ -121,7 +120,7 @@ PathSetup buildPathSetup(const Scene& s, const std::vector<Vec3f>& faceNormals,
   v.sources = setup.sources.data();
   v.cdf = setup.cdf.data();
   v.sourceCount = Index(setup.sources.size());
-  v.centre = (lo + hi) * 0.5f;
+  v.centre = centre;
   v.radius = radius;
   v.envColor = s.environment.color;
   v.envWidth = s.environment.hasTexture() ? s.environment.width : 0;

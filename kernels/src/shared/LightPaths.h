@@ -162,6 +162,58 @@ LINKGI_HOST_DEVICE inline Vec3f diskPoint(const Vec3f& centre, const Vec3f& axis
   return centre + f.t * (x * radius) + f.b * (y * radius);
 }
 
+/// The cone of directions in which a point or spot light's paths leave: `axis` and the cosine
+/// of its half angle. A point light sends light everywhere, a spot light within its cone;
+/// from outside the scene's bounding sphere (`centre`, `radius`) only directions within the
+/// sphere's cone can reach a surface, and the narrower of the two cones is sampled: a lamp
+/// beside a model alone would otherwise spend most of its paths on nothing (a lamp 1.4
+/// diagonals from a model lands one path in 30).
+struct EmissionCone
+{
+  Vec3f axis{ 0.f, 0.f, 1.f };
+  float cosMax = -1.f; ///< -1: the whole sphere of directions
+  LINKGI_HOST_DEVICE float solidAngle() const { return 2.f * kPi * (1.f - cosMax); }
+};
+
+LINKGI_HOST_DEVICE inline EmissionCone emissionCone(const Light& l, const Vec3f& centre, float radius)
+{
+  EmissionCone cone;
+  if (l.type == LightType::Spot)
+  {
+    cone = { normalize(l.direction), std::cos(l.coneAngleDegrees * (kPi / 180.f)) };
+  }
+  const Vec3f toCentre = centre - l.position;
+  const float distance = length(toCentre);
+  // A little wider than the sphere, for the roundings of the distance and the directions.
+  const float reach = radius * 1.001f;
+  if (distance > reach)
+  {
+    const float sinScene = reach / distance;
+    const float cosScene = std::sqrt(fmaxf(0.f, 1.f - sinScene * sinScene));
+    if (cosScene > cone.cosMax)
+    {
+      cone = { toCentre * (1.f / distance), cosScene };
+    }
+  }
+  return cone;
+}
+
+/// A spot light's intensity along unit direction d against its axis: cos^spotExponent inside
+/// its cone, 0 outside; 1 for a point light.
+LINKGI_HOST_DEVICE inline float spotFactor(const Light& l, const Vec3f& d)
+{
+  if (l.type != LightType::Spot)
+  {
+    return 1.f;
+  }
+  const float cosAxis = dot(d, normalize(l.direction));
+  if (cosAxis < std::cos(l.coneAngleDegrees * (kPi / 180.f)))
+  {
+    return 0.f;
+  }
+  return l.spotExponent > 0.f ? std::pow(fmaxf(cosAxis, 0.f), l.spotExponent) : 1.f;
+}
+
 /// The source the path picks with u in [0, 1): the first cdf entry above u.
 LINKGI_HOST_DEVICE inline Index pickSource(const float* cdf, Index count, float u)
 {
@@ -210,22 +262,19 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
     }
     else
     {
+      // Uniform in the cone that reaches the scene (emissionCone); a spot light's own cone
+      // and falloff weigh each direction.
+      const EmissionCone cone = emissionCone(l, s.centre, s.radius);
+      const float cosAxis = 1.f - u(3) * (1.f - cone.cosMax);
+      const float sinAxis = std::sqrt(fmaxf(0.f, 1.f - cosAxis * cosAxis)), phi = 2.f * kPi * u(4);
       ray.origin = l.position;
-      if (l.type == LightType::Spot)
+      ray.direction = Frame::fromNormal(cone.axis).toWorld({ sinAxis * std::cos(phi), sinAxis * std::sin(phi), cosAxis });
+      const float spot = spotFactor(l, ray.direction);
+      if (!(spot > 0.f))
       {
-        const float cosCone = std::cos(l.coneAngleDegrees * (kPi / 180.f));
-        const float cosAxis = 1.f - u(3) * (1.f - cosCone);
-        const float sinAxis = std::sqrt(fmaxf(0.f, 1.f - cosAxis * cosAxis)), phi = 2.f * kPi * u(4);
-        const Frame f = Frame::fromNormal(normalize(l.direction));
-        ray.direction = f.toWorld({ sinAxis * std::cos(phi), sinAxis * std::sin(phi), cosAxis });
-        const float falloff = l.spotExponent > 0.f ? std::pow(fmaxf(cosAxis, 0.f), l.spotExponent) : 1.f;
-        power = l.intensity * (falloff * 2.f * kPi * (1.f - cosCone) * scale);
+        return 0; // outside a spot light's cone, within the scene's
       }
-      else
-      {
-        ray.direction = uniformSphere(u(3), u(4));
-        power = l.intensity * (4.f * kPi * scale);
-      }
+      power = l.intensity * (spot * cone.solidAngle() * scale);
     }
   }
   else if (src.kind == kEmitterSource)

@@ -318,6 +318,69 @@ TEST(TestInstantRadiosity, OpenScenesStillGetAboutTheVplsAskedFor)
   EXPECT_LE(solver.stats().counter("Vpls"), 1500u);
 }
 
+TEST(TestInstantRadiosity, PathsFromALampBesideAModelAllHeadForIt)
+{
+  // A square 0.2 m wide under a lamp 5 m away, nothing else: the square subtends 1.6e-3 sr,
+  // one path in 7,900 over the whole sphere. Sampled within the cone of the scene's bounding
+  // sphere, most of 1024 paths land, and the flux of their first hits is rho I Omega (Omega =
+  // 4 asin(a^2 / (a^2 + 4 d^2)), the solid angle of a square seen from its axis): from a
+  // point light, from a spot light whose cone is wider than the scene's (its falloff is
+  // within 0.1% of 1 over the square), and none from a spot light turned away. A spot cone
+  // narrower than the square is sampled itself: every path lands, with rho I 2 pi (1 - cos).
+  const float a = 0.2f, d = 5.f, rho = 0.5f;
+  const double omega = 4.0 * std::asin(a * a / (a * a + 4.0 * d * d));
+  const auto firstHits = [&](LightType type, const Vec3f& direction, float cone, double& expected) {
+    MeshBuilder b;
+    b.addQuadGrid({ -a / 2, -a / 2, 0 }, { a, 0, 0 }, { 0, a, 0 }, 4, 4, Vec3f(rho)); // faces +z
+    Scene s = b.take();
+    Light l;
+    l.type = type;
+    l.position = { 0.f, 0.f, d };
+    l.direction = direction;
+    l.coneAngleDegrees = cone;
+    l.spotExponent = 2.f;
+    l.intensity = Vec3f(3.f);
+    s.lights.push_back(l);
+    validateScene(s);
+    SolverOptions o = instantRadiosity(1024);
+    o.bounces = 1;
+    const auto tracer = createCpuRayTracer();
+    tracer->build(s.positions, s.triangles);
+    const Topology topology = Topology::build(s.vertexCount(), s.triangles);
+    const std::vector<Vec3f> faceNormals = frontFaceNormals(s); // the setup points into both
+    const std::vector<RayOrigin> origins = rayOrigins(s, topology);
+    const ir::PathSetup setup = ir::buildPathSetup(s, faceNormals, origins, o);
+    const ir::VplSet vpls = ir::traceVplsCpu(setup, *tracer, 1);
+    double flux = 0.0;
+    for (const ir::Vpl& vpl : vpls.vpls)
+    {
+      flux += vpl.flux.x;
+    }
+    const double intensity = s.lights[0].intensity.x; // as validation scaled it
+    expected = type == LightType::Spot && cone < 1.f
+      ? rho * intensity * 2.0 * kPi * (1.0 - std::cos(double(cone) * kPi / 180.0))
+      : rho * intensity * omega;
+    std::printf("%zu of %u paths landed; flux %.6g, expected %.6g\n", vpls.count(), setup.view.paths, flux, expected);
+    return std::make_pair(double(vpls.count()) / setup.view.paths, flux);
+  };
+  double expected = 0.0;
+  const Vec3f down{ 0.f, 0.f, -1.f };
+  struct Case
+  {
+    LightType type;
+    float cone;
+    double landing; ///< the share of paths that must land
+  };
+  for (const Case& c : { Case{ LightType::Point, 30.f, 0.5 }, Case{ LightType::Spot, 30.f, 0.5 },
+         Case{ LightType::Spot, 0.5f, 1.0 } })
+  {
+    const auto [landed, flux] = firstHits(c.type, down, c.cone, expected);
+    EXPECT_GE(landed, c.landing);
+    EXPECT_NEAR(flux / expected, 1.0, 0.02);
+  }
+  EXPECT_EQ(firstHits(LightType::Spot, { 1.f, 0.f, 0.f }, 30.f, expected).second, 0.0);
+}
+
 TEST(TestInstantRadiosity, BadOptionsAreNamed)
 {
   const Scene s = test::roomWithBlock(0.5f);
