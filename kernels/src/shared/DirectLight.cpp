@@ -139,21 +139,13 @@ bool lightSample(const Light& light, const Vec3f& p, const Vec3f& n, const Vec3f
 Vec3f lightIrradiance(const Light& light, const Vec3f& p, const Vec3f& n,
   const RayTracer& tracer, float eps, const Vec3f& shift)
 {
-  Vec3f irradiance;
-  Ray shadow;
-  if (!lightSample(light, p, n, p + n * eps + shift, irradiance, shadow))
-    return Vec3f(0.f);
-  std::uint8_t blocked = 0;
-  tracer.occluded(&shadow, &blocked, 1);
-  return blocked ? Vec3f(0.f) : irradiance;
+  return shadowedIrradiance(&light, 1, p, n, p + n * eps + shift, AnyHit{ tracer });
 }
 
 Vec3f directIrradiance(const Scene& scene, const Vec3f& p, const Vec3f& n,
   const RayTracer& tracer, float eps, const Vec3f& shift)
 {
-  Vec3f sum(0.f);
-  for (const Light& light : scene.lights)
-    sum += lightIrradiance(light, p, n, tracer, eps, shift);
-  return sum;
+  return shadowedIrradiance(scene.lights.data(), Index(scene.lights.size()), p, n, p + n * eps + shift,
+    AnyHit{ tracer });
 }
 }

@@ -94,6 +94,26 @@ LINKGI_HOST_DEVICE inline Ray shadowRay(const Light& light, const Vec3f& origin,
   return r;
 }
 
+/// Shadowed irradiance at surface point p (unit normal n of the lit side) from lights[0,
+/// count), each decided by a shadow ray from `origin` (p a little off the surface);
+/// `occluded(ray)` tests one ray.
+template <typename Occluded>
+LINKGI_HOST_DEVICE inline Vec3f shadowedIrradiance(const Light* lights, Index count, const Vec3f& p,
+  const Vec3f& n, const Vec3f& origin, const Occluded& occluded)
+{
+  Vec3f sum(0.f);
+  for (Index i = 0; i < count; ++i)
+  {
+    Vec3f toLight;
+    const Vec3f e = unshadowedIrradiance(lights[i], p, n, toLight);
+    if (maxComponent(e) > 0.f && !occluded(shadowRay(lights[i], origin, directionToLight(lights[i], origin))))
+    {
+      sum += e;
+    }
+  }
+  return sum;
+}
+
 /// Hat-weighted visibility of vertex v: its own sample (weight 1) and the midpoints of its
 /// incident edges (weight 1/2 each) when oversampling.
 LINKGI_HOST_DEVICE inline float oversampledVisibility(Index v, const float* vertexVisible,

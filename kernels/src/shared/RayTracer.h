@@ -53,6 +53,19 @@ struct ClosestHit
   }
 };
 
+/// Whether anything blocks one ray in `tracer`, as the host/device code that takes an
+/// `occluded(ray)` callable wants it (shadow rays).
+struct AnyHit
+{
+  const RayTracer& tracer;
+  bool operator()(const Ray& ray) const
+  {
+    std::uint8_t blocked = 0;
+    tracer.occluded(&ray, &blocked, 1);
+    return blocked != 0;
+  }
+};
+
 /// The CPU backend, on Embree 3. Embree errors are reported as linkgi::Error. Builds
 /// without Embree throw linkgi::Error here.
 std::unique_ptr<RayTracer> createEmbreeRayTracer();

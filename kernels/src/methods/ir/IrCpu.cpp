@@ -93,6 +93,7 @@ std::vector<Vec3f> compensateCpu(const Scene& s, const std::vector<RayOrigin>& o
     std::vector<Hit> hits(rays);
     const auto indirectAt = [&indirect](Index e) { return indirect[e]; };
     const ClosestHit trace{ tracer };
+    const AnyHit occluded{ tracer };
     for (std::size_t e = first; e < last; ++e)
     {
       const Index v = elements.vertexOf(e);
@@ -108,7 +109,7 @@ std::vector<Vec3f> compensateCpu(const Scene& s, const std::vector<RayOrigin>& o
       Vec3f sum(0.f);
       for (std::uint32_t i = 0; i < rays; ++i)
       {
-        sum += compensationSample(inputs, batch[i], hits[i], indirectAt, trace);
+        sum += compensationSample(inputs, batch[i], hits[i], indirectAt, trace, occluded);
       }
       out[e] += sum * (kPi / float(rays));
     }
@@ -237,11 +238,14 @@ private:
     CompensationInputs in;
     in.triangles = c.scene.triangles.data();
     in.positions = c.scene.positions.data();
+    in.normals = c.scene.normals.data();
     in.origins = geometry.origins.data();
     in.faceNormals = geometry.faceNormals.data();
     in.albedo = c.scene.albedo.data();
     in.emission = c.scene.emission.empty() ? nullptr : c.scene.emission.data();
     in.direct = directLight.data();
+    in.lights = c.scene.lights.data();
+    in.lightCount = Index(c.scene.lights.size());
     in.vertexCount = Index(c.scene.vertexCount());
     in.twoSided = c.options.twoSided;
     in.dmin = c.options.instantRadiosity.clampDistance * boundingDiagonal(c.scene.positions);

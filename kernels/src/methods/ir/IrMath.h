@@ -88,20 +88,26 @@ LINKGI_HOST_DEVICE inline std::uint32_t vertexSubset(Index v, std::uint32_t subs
 /// per-vertex solution: what the clamp takes from element x is
 ///   E_c(x) = int (1 - f(d(w))) L(y(w)) cos dw  ~  pi / n sum_i (1 - f(d_i)) L(y_i)
 /// over n = k*k cosine-weighted rays at the centres of a k x k grid (twisted per vertex),
-/// traced only as far as f's upper end, 1.2 dmin. L(y) = Le + rho/pi (E_d + E_ind) is
-/// interpolated at the hit from its triangle's elements, less the corners in a gap the hit
-/// is not in (excludeGapCorners); the back of a one-sided triangle is black. E_ind(y) is
-/// itself the clamped gather's, so what short paths add after their first bounce stays out,
-/// and a compensated path may have one bounce more than `bounces`.
+/// traced only as far as f's upper end, 1.2 dmin. L(y) = Le + rho/pi (E_d + E_ind): E_d of
+/// the lights at y itself, with a shadow ray per light (interpolated from the hit triangle's
+/// corners, it would lend a lit point beside a large triangle the darkness of its corners,
+/// or a point in a shadow their light); Le, rho and E_ind interpolated from the triangle's
+/// elements, less the corners in a gap the hit is not in (excludeGapCorners). The back of a
+/// one-sided triangle is black. E_ind(y) is itself the clamped gather's, so what short paths
+/// add after their first bounce stays out, and a compensated path may have one bounce more
+/// than `bounces`.
 struct CompensationInputs
 {
   const Triangle* triangles = nullptr;
   const Vec3f* positions = nullptr;
-  const RayOrigin* origins = nullptr; ///< rayOrigins: the offset of the gap test's rays
+  const Vec3f* normals = nullptr;     ///< per vertex
+  const RayOrigin* origins = nullptr; ///< rayOrigins: the offset of the shadow and gap rays
   const Vec3f* faceNormals = nullptr; ///< frontFaceNormals
   const Vec3f* albedo = nullptr;      ///< per vertex
   const Vec3f* emission = nullptr;    ///< per vertex, null: none
   const Vec3f* direct = nullptr;      ///< E_d per element
+  const Light* lights = nullptr;
+  Index lightCount = 0;
   Index vertexCount = 0;
   bool twoSided = false;
   float dmin = 0.f;
@@ -129,26 +135,38 @@ LINKGI_HOST_DEVICE inline Ray compensationRay(const Vec3f& origin, const Frame& 
 
 /// (1 - f(d)) L(y) for one compensation ray and its hit (zero for a miss, a blocked back
 /// side or a hit in a gap); `indirect(e)` reads E_ind of element e, `trace(ray)` the closest
-/// Hit (for the gap test).
-template <typename IndirectAt, typename Trace>
+/// Hit (for the gap test), `occluded(ray)` whether a shadow ray is blocked.
+template <typename IndirectAt, typename Trace, typename Occluded>
 LINKGI_HOST_DEVICE inline Vec3f compensationSample(const CompensationInputs& c, const Ray& ray, Hit h,
-  const IndirectAt& indirect, const Trace& trace)
+  const IndirectAt& indirect, const Trace& trace, const Occluded& occluded)
 {
   if (h.triangle == kInvalidIndex)
   {
     return Vec3f(0.f);
   }
-  const bool back = dot(ray.direction, c.faceNormals[h.triangle]) > 0.f;
+  const Vec3f faceNormal = c.faceNormals[h.triangle];
+  const bool back = dot(ray.direction, faceNormal) > 0.f;
   if (back && !c.twoSided)
   {
     return Vec3f(0.f);
   }
+  const Triangle t = c.triangles[h.triangle];
+  // The lights at the hit, on the side the ray sees: the shading normal there (the face's
+  // where the corners' normals cancel), shadow rays from a triangle's offset off it.
+  const float w = 1.f - h.u - h.v;
+  Vec3f n = normalize(c.normals[t.v[0]] * w + c.normals[t.v[1]] * h.u + c.normals[t.v[2]] * h.v);
+  n = (dot(n, n) > 0.f ? n : faceNormal) * (back ? -1.f : 1.f);
+  const Vec3f y = ray.origin + ray.direction * h.t;
   excludeGapCorners(h, ray, c.triangles, c.positions, c.faceNormals, c.origins, c.twoSided, trace);
   if (isGapHit(h))
   {
     return Vec3f(0.f);
   }
-  const Triangle t = c.triangles[h.triangle];
+  const float distance = h.t * std::sqrt(dot(ray.direction, ray.direction));
+  const bool exact = !(distance >= farthestCorner(c.positions, t, y));
+  const Vec3f direct = exact
+    ? shadowedIrradiance(c.lights, c.lightCount, y, n, y + n * triangleOffset(c.origins, t), occluded)
+    : Vec3f(0.f);
   const float bary[3] = { 1.f - h.u - h.v, h.u, h.v };
   Vec3f radiance(0.f);
   for (int j = 0; j < 3; ++j)
@@ -156,9 +174,8 @@ LINKGI_HOST_DEVICE inline Vec3f compensationSample(const CompensationInputs& c, 
     const Index v = t.v[j];
     const Index e = back ? v + c.vertexCount : v;
     const Vec3f le = (c.emission && !back) ? c.emission[v] : Vec3f(0.f);
-    radiance += outgoingRadiance(c.albedo[v], c.direct[e], indirect(e), le) * bary[j];
+    radiance += outgoingRadiance(c.albedo[v], exact ? direct : c.direct[e], indirect(e), le) * bary[j];
   }
-  const float distance = h.t * std::sqrt(dot(ray.direction, ray.direction));
   return radiance * (1.f - distanceBound(distance, c.dmin));
 }
 

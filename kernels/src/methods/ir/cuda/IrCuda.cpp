@@ -203,13 +203,15 @@ private:
       gpu::CompensationLaunch p;
       p.mesh = mesh.bvh.view();
       p.inputs.positions = mesh.positions.data();
-      p.normals = mesh.normals.data();
+      p.inputs.normals = mesh.normals.data();
       p.inputs.origins = mesh.origins.data();
       p.inputs.triangles = mesh.triangles.data();
       p.inputs.faceNormals = mesh.faceNormals.data();
       p.inputs.albedo = pathScene.albedo.data();
       p.inputs.emission = emission;
       p.inputs.direct = direct.direct.data();
+      p.inputs.lights = direct.lights.data(); // the lights that emit
+      p.inputs.lightCount = Index(direct.lights.size());
       p.inputs.vertexCount = mesh.vertexCount;
       p.inputs.twoSided = c.options.twoSided;
       p.inputs.dmin = c.options.instantRadiosity.clampDistance * mesh.extent.diagonal;

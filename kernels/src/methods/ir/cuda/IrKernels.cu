@@ -64,7 +64,7 @@ __global__ void compensateKernel(CompensationLaunch p, cuda::Rgba* out)
     return;
   }
   const Index v = e < c.vertexCount ? e : e - c.vertexCount;
-  const Vec3f n = p.normals[v] * (e < c.vertexCount ? 1.f : -1.f);
+  const Vec3f n = c.normals[v] * (e < c.vertexCount ? 1.f : -1.f);
   const Frame frame = vertexFrame(n, true, p.seed, e);
   const Vec3f origin = elementRayOrigin(c.positions[v], n, c.origins[v]);
   const std::uint32_t k = p.side, rays = k * k, key = compensationKey(p.seed, e);
@@ -77,11 +77,15 @@ __global__ void compensateKernel(CompensationLaunch p, cuda::Rgba* out)
     bvh::traverse<false>(p.mesh, ray, h);
     return h;
   };
+  const auto occluded = [&p](const Ray& ray) {
+    Hit h;
+    return bvh::traverse<true>(p.mesh, ray, h);
+  };
   Vec3f sum(0.f);
   for (std::uint32_t i = 0; i < rays; ++i)
   {
     const Ray ray = compensationRay(origin, frame, i, k, c.dmin, key);
-    sum += compensationSample(c, ray, trace(ray), indirectAt, trace);
+    sum += compensationSample(c, ray, trace(ray), indirectAt, trace, occluded);
   }
   const Vec3f total = indirectAt(e) + sum * (kPi / float(rays));
   out[e] = { total.x, total.y, total.z, 0.f };

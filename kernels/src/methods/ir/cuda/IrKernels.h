@@ -58,8 +58,7 @@ struct GatherLaunch
 struct CompensationLaunch
 {
   BvhView mesh;
-  const Vec3f* normals = nullptr;
-  CompensationInputs inputs; ///< with the positions and ray origins
+  CompensationInputs inputs; ///< device arrays
   const cuda::Rgba* indirect = nullptr; ///< E_ind per element, as gathered
   std::uint32_t side = 0;               ///< k: k*k rays per element
   std::uint32_t seed = 0;
