@@ -63,14 +63,6 @@ LINKGI_HOST_DEVICE inline bool isGapHit(const Hit& h)
   return h.u == kGapHitU;
 }
 
-/// The distance from y to the farthest corner of triangle t. A hit on t seen from nearer than
-/// that is not represented by its corners' values: excludeGapCorners tests it for a gap, and
-/// instant radiosity's compensation reads the lights there itself.
-LINKGI_HOST_DEVICE inline float farthestCorner(const Vec3f* positions, const Triangle& t, const Vec3f& y)
-{
-  return fmaxf(length(positions[t.v[0]] - y), fmaxf(length(positions[t.v[1]] - y), length(positions[t.v[2]] - y)));
-}
-
 /// How much farther than the cover over a hit a corner must lie for excludeGapCorners to
 /// leave it out: a gap at least twice as deep as it is wide, whose inside sees at most 5% of
 /// the light at its mouth (a slot between parallel planes, lit at its mouth), not the floor
@@ -107,12 +99,12 @@ LINKGI_HOST_DEVICE inline void excludeGapCorners(Hit& h, const Ray& ray, const T
   float bary[3] = { 1.f - h.u - h.v, h.u, h.v };
   const Vec3f y = positions[tri.v[0]] * bary[0] + positions[tri.v[1]] * bary[1] + positions[tri.v[2]] * bary[2];
   const float t = h.t * length(ray.direction);
-  float reach[3];
+  float reach[3], farthest = 0.f;
   for (int k = 0; k < 3; ++k)
   {
     reach[k] = length(positions[tri.v[k]] - y);
+    farthest = fmaxf(farthest, reach[k]);
   }
-  const float farthest = fmaxf(reach[0], fmaxf(reach[1], reach[2]));
   if (!(t < farthest))
   {
     return;

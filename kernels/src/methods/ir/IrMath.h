@@ -88,12 +88,12 @@ LINKGI_HOST_DEVICE inline std::uint32_t vertexSubset(Index v, std::uint32_t subs
 /// per-vertex solution: what the clamp takes from element x is
 ///   E_c(x) = int (1 - f(d(w))) L(y(w)) cos dw  ~  pi / n sum_i (1 - f(d_i)) L(y_i)
 /// over n = k*k cosine-weighted rays at the centres of a k x k grid (twisted per vertex),
-/// traced only as far as f's upper end, 1.2 dmin. L(y) = Le + rho/pi (E_d + E_ind): E_d of
-/// the lights at y itself, with a shadow ray per light (interpolated from the hit triangle's
-/// corners, it would lend a lit point beside a large triangle the darkness of its corners,
-/// or a point in a shadow their light); Le, rho and E_ind interpolated from the triangle's
-/// elements, less the corners in a gap the hit is not in (excludeGapCorners). The back of a
-/// one-sided triangle is black. E_ind(y) is itself the clamped gather's, so what short paths
+/// traced only as far as f's upper end, 1.2 dmin. L(y) = Le + rho/pi (E_d + E_ind)
+/// interpolated from the hit triangle's elements, less the corners in a gap the hit is not
+/// in (excludeGapCorners); but on a triangle with a corner beyond 1.2 dmin of the hit, E_d is
+/// the lights' own at y, a shadow ray each (interpolated from corners that far, it would lend
+/// a lit point beside the receiver the darkness of its corners, or a shadowed one their
+/// light). The back of a one-sided triangle is black. E_ind(y) is itself the clamped gather's, so what short paths
 /// add after their first bounce stays out, and a compensated path may have one bounce more
 /// than `bounces`.
 struct CompensationInputs
@@ -151,22 +151,27 @@ LINKGI_HOST_DEVICE inline Vec3f compensationSample(const CompensationInputs& c, 
     return Vec3f(0.f);
   }
   const Triangle t = c.triangles[h.triangle];
-  // The lights at the hit, on the side the ray sees: the shading normal there (the face's
-  // where the corners' normals cancel), shadow rays from a triangle's offset off it.
-  const float w = 1.f - h.u - h.v;
-  Vec3f n = normalize(c.normals[t.v[0]] * w + c.normals[t.v[1]] * h.u + c.normals[t.v[2]] * h.v);
-  n = (dot(n, n) > 0.f ? n : faceNormal) * (back ? -1.f : 1.f);
   const Vec3f y = ray.origin + ray.direction * h.t;
+  const float hu = h.u, hv = h.v; // excludeGapCorners may reweight them
   excludeGapCorners(h, ray, c.triangles, c.positions, c.faceNormals, c.origins, c.twoSided, trace);
   if (isGapHit(h))
   {
     return Vec3f(0.f);
   }
-  const float distance = h.t * std::sqrt(dot(ray.direction, ray.direction));
-  const bool exact = !(distance >= farthestCorner(c.positions, t, y));
-  const Vec3f direct = exact
-    ? shadowedIrradiance(c.lights, c.lightCount, y, n, y + n * triangleOffset(c.origins, t), occluded)
-    : Vec3f(0.f);
+  // E_d: the corners' where all lie within the compensation's reach of the hit; else the
+  // lights' own at the hit (the corners of a triangle larger than that say nothing of the
+  // light beside the receiver), on the side the ray sees, with the shading normal there (the
+  // face's where the corners' normals cancel) and shadow rays from the triangle's offset.
+  const float reach = 1.2f * c.dmin;
+  const bool exact = length(c.positions[t.v[0]] - y) > reach || length(c.positions[t.v[1]] - y) > reach ||
+    length(c.positions[t.v[2]] - y) > reach;
+  Vec3f direct(0.f);
+  if (exact)
+  {
+    Vec3f n = normalize(c.normals[t.v[0]] * (1.f - hu - hv) + c.normals[t.v[1]] * hu + c.normals[t.v[2]] * hv);
+    n = (dot(n, n) > 0.f ? n : faceNormal) * (back ? -1.f : 1.f);
+    direct = shadowedIrradiance(c.lights, c.lightCount, y, n, y + n * triangleOffset(c.origins, t), occluded);
+  }
   const float bary[3] = { 1.f - h.u - h.v, h.u, h.v };
   Vec3f radiance(0.f);
   for (int j = 0; j < 3; ++j)
@@ -176,6 +181,7 @@ LINKGI_HOST_DEVICE inline Vec3f compensationSample(const CompensationInputs& c, 
     const Vec3f le = (c.emission && !back) ? c.emission[v] : Vec3f(0.f);
     radiance += outgoingRadiance(c.albedo[v], exact ? direct : c.direct[e], indirect(e), le) * bary[j];
   }
+  const float distance = h.t * std::sqrt(dot(ray.direction, ray.direction));
   return radiance * (1.f - distanceBound(distance, c.dmin));
 }
 
