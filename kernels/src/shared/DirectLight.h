@@ -47,6 +47,22 @@ LINKGI_HOST_DEVICE inline float falloffAgainstInverseSquare(const Light& light, 
   return clamped / distanceFalloff(light, r2);
 }
 
+/// A spot light's intensity along unit direction d against its axis: cos^spotExponent inside
+/// its cone, 0 outside; 1 for a point light.
+LINKGI_HOST_DEVICE inline float spotFactor(const Light& l, const Vec3f& d)
+{
+  if (l.type != LightType::Spot)
+  {
+    return 1.f;
+  }
+  const float cosAxis = dot(d, normalize(l.direction));
+  if (cosAxis < std::cos(l.coneAngleDegrees * (kPi / 180.f)))
+  {
+    return 0.f;
+  }
+  return l.spotExponent > 0.f ? std::pow(fmaxf(cosAxis, 0.f), l.spotExponent) : 1.f;
+}
+
 /// Irradiance at p (unit normal n) from one light, without visibility; also returns the
 /// shadow ray direction `toLight` = directionToLight(light, p). Bounded: see above.
 LINKGI_HOST_DEVICE inline Vec3f unshadowedIrradiance(const Light& light, const Vec3f& p, const Vec3f& n, Vec3f& toLight)
@@ -67,15 +83,10 @@ LINKGI_HOST_DEVICE inline Vec3f unshadowedIrradiance(const Light& light, const V
   {
     return Vec3f(0.f);
   }
-  float spot = 1.f;
-  if (light.type == LightType::Spot)
+  const float spot = spotFactor(light, toLight * -invR);
+  if (!(spot > 0.f))
   {
-    const float cosAxis = -dot(toLight, normalize(light.direction)) * invR;
-    if (cosAxis < std::cos(light.coneAngleDegrees * (kPi / 180.f)))
-    {
-      return Vec3f(0.f);
-    }
-    spot = light.spotExponent > 0.f ? std::pow(fmaxf(cosAxis, 0.f), light.spotExponent) : 1.f;
+    return Vec3f(0.f);
   }
   const float falloff = spot * cosSurface / distanceFalloff(light, r2);
   const Vec3f e = light.intensity * falloff;

@@ -198,22 +198,6 @@ LINKGI_HOST_DEVICE inline EmissionCone emissionCone(const Light& l, const Vec3f&
   return cone;
 }
 
-/// A spot light's intensity along unit direction d against its axis: cos^spotExponent inside
-/// its cone, 0 outside; 1 for a point light.
-LINKGI_HOST_DEVICE inline float spotFactor(const Light& l, const Vec3f& d)
-{
-  if (l.type != LightType::Spot)
-  {
-    return 1.f;
-  }
-  const float cosAxis = dot(d, normalize(l.direction));
-  if (cosAxis < std::cos(l.coneAngleDegrees * (kPi / 180.f)))
-  {
-    return 0.f;
-  }
-  return l.spotExponent > 0.f ? std::pow(fmaxf(cosAxis, 0.f), l.spotExponent) : 1.f;
-}
-
 /// The source the path picks with u in [0, 1): the first cdf entry above u.
 LINKGI_HOST_DEVICE inline Index pickSource(const float* cdf, Index count, float u)
 {

@@ -87,15 +87,15 @@ LINKGI_HOST_DEVICE inline std::uint32_t vertexSubset(Index v, std::uint32_t subs
 /// Bias compensation (after Kollig & Keller 2004) as a gather over the update's own
 /// per-vertex solution: what the clamp takes from element x is
 ///   E_c(x) = int (1 - f(d(w))) L(y(w)) cos dw  ~  pi / n sum_i (1 - f(d_i)) L(y_i)
-/// over n = k*k cosine-weighted rays at the centres of a k x k grid (twisted per vertex),
-/// traced only as far as f's upper end, 1.2 dmin. L(y) = Le + rho/pi (E_d + E_ind)
-/// interpolated from the hit triangle's elements, less the corners in a gap the hit is not
-/// in (excludeGapCorners); but on a triangle with a corner beyond 1.2 dmin of the hit, E_d is
-/// the lights' own at y, a shadow ray each (interpolated from corners that far, it would lend
-/// a lit point beside the receiver the darkness of its corners, or a shadowed one their
-/// light). The back of a one-sided triangle is black. E_ind(y) is itself the clamped gather's, so what short paths
-/// add after their first bounce stays out, and a compensated path may have one bounce more
-/// than `bounces`.
+/// over n = k*k cosine-weighted rays, one jittered within each cell of a k x k grid (twisted
+/// per vertex; compensationRay), traced only as far as f's upper end, 1.2 dmin.
+/// L(y) = Le + rho/pi (E_d + E_ind) interpolated from the hit triangle's elements, less the
+/// corners in a gap the hit is not in (excludeGapCorners); but on a triangle with a corner
+/// beyond 1.2 dmin of the hit, E_d is the lights' own at y, a shadow ray each (interpolated
+/// from corners that far, it would lend a lit point beside the receiver the darkness of its
+/// corners, or a shadowed one their light). The back of a one-sided triangle is black.
+/// E_ind(y) is itself the clamped gather's, so what short paths add after their first
+/// bounce stays out, and a compensated path may have one bounce more than `bounces`.
 struct CompensationInputs
 {
   const Triangle* triangles = nullptr;
