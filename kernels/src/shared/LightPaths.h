@@ -162,17 +162,26 @@ LINKGI_HOST_DEVICE inline Vec3f diskPoint(const Vec3f& centre, const Vec3f& axis
   return centre + f.t * (x * radius) + f.b * (y * radius);
 }
 
-/// The cone of directions in which a point or spot light's paths leave: `axis` and the cosine
-/// of its half angle. A point light sends light everywhere, a spot light within its cone;
-/// from outside the scene's bounding sphere (`centre`, `radius`) only directions within the
-/// sphere's cone can reach a surface, and the narrower of the two cones is sampled: a lamp
-/// beside a model alone would otherwise spend most of its paths on nothing (a lamp 1.4
-/// diagonals from a model lands one path in 30).
+/// The cone of directions in which a point or spot light's paths leave: `axis` and one minus
+/// the cosine of its half angle. A point light sends light everywhere, a spot light within
+/// its cone; from outside the scene's bounding sphere (`centre`, `radius`) only directions
+/// within the sphere's cone can reach a surface, and the narrower of the two cones is
+/// sampled: a lamp beside a model alone would otherwise spend most of its paths on nothing
+/// (a lamp 1.4 diagonals from a model lands one path in 30). One minus the cosine, not the
+/// cosine, so that the cone of a lamp thousands of radii away keeps its width in single
+/// precision (its cosine rounds to 1 beyond about 4,000 radii).
 struct EmissionCone
 {
   Vec3f axis{ 0.f, 0.f, 1.f };
-  float cosMax = -1.f; ///< -1: the whole sphere of directions
-  LINKGI_HOST_DEVICE float solidAngle() const { return 2.f * kPi * (1.f - cosMax); }
+  float oneMinusCos = 2.f; ///< 2: the whole sphere of directions
+  LINKGI_HOST_DEVICE float solidAngle() const { return 2.f * kPi * oneMinusCos; }
+  /// The direction of the cone at (u, v) in [0, 1)^2, uniform in solid angle.
+  LINKGI_HOST_DEVICE Vec3f direction(float u, float v) const
+  {
+    const float x = u * oneMinusCos; // 1 - cos of the angle to the axis
+    const float sinAxis = std::sqrt(fmaxf(0.f, x * (2.f - x))), phi = 2.f * kPi * v;
+    return Frame::fromNormal(axis).toWorld({ sinAxis * std::cos(phi), sinAxis * std::sin(phi), 1.f - x });
+  }
 };
 
 LINKGI_HOST_DEVICE inline EmissionCone emissionCone(const Light& l, const Vec3f& centre, float radius)
@@ -180,7 +189,8 @@ LINKGI_HOST_DEVICE inline EmissionCone emissionCone(const Light& l, const Vec3f&
   EmissionCone cone;
   if (l.type == LightType::Spot)
   {
-    cone = { normalize(l.direction), std::cos(l.coneAngleDegrees * (kPi / 180.f)) };
+    const float half = std::sin(0.5f * l.coneAngleDegrees * (kPi / 180.f));
+    cone = { normalize(l.direction), 2.f * half * half };
   }
   const Vec3f toCentre = centre - l.position;
   const float distance = length(toCentre);
@@ -190,9 +200,10 @@ LINKGI_HOST_DEVICE inline EmissionCone emissionCone(const Light& l, const Vec3f&
   {
     const float sinScene = reach / distance;
     const float cosScene = std::sqrt(fmaxf(0.f, 1.f - sinScene * sinScene));
-    if (cosScene > cone.cosMax)
+    const float scene = sinScene * sinScene / (1.f + cosScene);
+    if (scene < cone.oneMinusCos)
     {
-      cone = { toCentre * (1.f / distance), cosScene };
+      cone = { toCentre * (1.f / distance), scene };
     }
   }
   return cone;
@@ -249,10 +260,8 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
       // Uniform in the cone that reaches the scene (emissionCone); a spot light's own cone
       // and falloff weigh each direction.
       const EmissionCone cone = emissionCone(l, s.centre, s.radius);
-      const float cosAxis = 1.f - u(3) * (1.f - cone.cosMax);
-      const float sinAxis = std::sqrt(fmaxf(0.f, 1.f - cosAxis * cosAxis)), phi = 2.f * kPi * u(4);
       ray.origin = l.position;
-      ray.direction = Frame::fromNormal(cone.axis).toWorld({ sinAxis * std::cos(phi), sinAxis * std::sin(phi), cosAxis });
+      ray.direction = cone.direction(u(3), u(4));
       const float spot = spotFactor(l, ray.direction);
       if (!(spot > 0.f))
       {

@@ -361,11 +361,12 @@ TEST(TestInstantRadiosity, PathsFromALampBesideAModelAllHeadForIt)
   // sphere, most of 1024 paths land, and the flux of their first hits is rho I Omega (Omega =
   // 4 asin(a^2 / (a^2 + 4 d^2)), the solid angle of a square seen from its axis): from a
   // point light, from a spot light whose cone is wider than the scene's (its falloff is
-  // within 0.1% of 1 over the square), and none from a spot light turned away. A spot cone
-  // narrower than the square is sampled itself: every path lands, with rho I 2 pi (1 - cos).
-  const float a = 0.2f, d = 5.f, rho = 0.5f;
-  const double omega = 4.0 * std::asin(a * a / (a * a + 4.0 * d * d));
-  const auto firstHits = [&](LightType type, const Vec3f& direction, float cone, double& expected) {
+  // within 0.1% of 1 over the square), from a lamp 20 km away (10,000 times the scene's
+  // size, where the cosine of the scene's cone rounds to 1 in single precision), and none
+  // from a spot light turned away. A spot cone narrower than the square is sampled itself:
+  // every path lands, with rho I 2 pi (1 - cos).
+  const float a = 0.2f, rho = 0.5f;
+  const auto firstHits = [&](LightType type, const Vec3f& direction, float cone, float d, double& expected) {
     MeshBuilder b;
     b.addQuadGrid({ -a / 2, -a / 2, 0 }, { a, 0, 0 }, { 0, a, 0 }, 4, 4, Vec3f(rho)); // faces +z
     Scene s = b.take();
@@ -393,6 +394,7 @@ TEST(TestInstantRadiosity, PathsFromALampBesideAModelAllHeadForIt)
       flux += vpl.flux.x;
     }
     const double intensity = s.lights[0].intensity.x; // as validation scaled it
+    const double omega = 4.0 * std::asin(double(a) * a / (double(a) * a + 4.0 * double(d) * d));
     expected = type == LightType::Spot && cone < 1.f
       ? rho * intensity * 2.0 * kPi * (1.0 - std::cos(double(cone) * kPi / 180.0))
       : rho * intensity * omega;
@@ -404,17 +406,17 @@ TEST(TestInstantRadiosity, PathsFromALampBesideAModelAllHeadForIt)
   struct Case
   {
     LightType type;
-    float cone;
+    float cone, distance;
     double landing; ///< the share of paths that must land
   };
-  for (const Case& c : { Case{ LightType::Point, 30.f, 0.5 }, Case{ LightType::Spot, 30.f, 0.5 },
-         Case{ LightType::Spot, 0.5f, 1.0 } })
+  for (const Case& c : { Case{ LightType::Point, 30.f, 5.f, 0.5 }, Case{ LightType::Spot, 30.f, 5.f, 0.5 },
+         Case{ LightType::Point, 30.f, 2.0e4f, 0.5 }, Case{ LightType::Spot, 0.5f, 5.f, 1.0 } })
   {
-    const auto [landed, flux] = firstHits(c.type, down, c.cone, expected);
+    const auto [landed, flux] = firstHits(c.type, down, c.cone, c.distance, expected);
     EXPECT_GE(landed, c.landing);
     EXPECT_NEAR(flux / expected, 1.0, 0.02);
   }
-  EXPECT_EQ(firstHits(LightType::Spot, { 1.f, 0.f, 0.f }, 30.f, expected).second, 0.0);
+  EXPECT_EQ(firstHits(LightType::Spot, { 1.f, 0.f, 0.f }, 30.f, 5.f, expected).second, 0.0);
 }
 
 TEST(TestInstantRadiosity, BadOptionsAreNamed)
