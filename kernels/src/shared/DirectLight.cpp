@@ -123,19 +123,6 @@ DirectLightResult computeDirectLight(const Scene& scene, const Topology& topolog
   return result;
 }
 
-/// Unshadowed irradiance of one light at (p, n) and the shadow ray from `origin` that
-/// decides visibility. Returns false when the light cannot contribute.
-bool lightSample(const Light& light, const Vec3f& p, const Vec3f& n, const Vec3f& origin,
-  Vec3f& irradiance, Ray& shadow)
-{
-  Vec3f toLight;
-  irradiance = unshadowedIrradiance(light, p, n, toLight);
-  if (!(maxComponent(irradiance) > 0.f))
-    return false;
-  shadow = shadowRay(light, origin, directionToLight(light, origin));
-  return true;
-}
-
 Vec3f lightIrradiance(const Light& light, const Vec3f& p, const Vec3f& n,
   const RayTracer& tracer, float eps, const Vec3f& shift)
 {

@@ -105,6 +105,21 @@ LINKGI_HOST_DEVICE inline Ray shadowRay(const Light& light, const Vec3f& origin,
   return r;
 }
 
+/// Unshadowed irradiance of one light at (p, n) and the shadow ray from `origin` that
+/// decides visibility. Returns false when the light cannot contribute.
+LINKGI_HOST_DEVICE inline bool lightSample(const Light& light, const Vec3f& p, const Vec3f& n,
+  const Vec3f& origin, Vec3f& irradiance, Ray& shadow)
+{
+  Vec3f toLight;
+  irradiance = unshadowedIrradiance(light, p, n, toLight);
+  if (!(maxComponent(irradiance) > 0.f))
+  {
+    return false;
+  }
+  shadow = shadowRay(light, origin, directionToLight(light, origin));
+  return true;
+}
+
 /// Shadowed irradiance at surface point p (unit normal n of the lit side) from lights[0,
 /// count), each decided by a shadow ray from `origin` (p a little off the surface);
 /// `occluded(ray)` tests one ray.
@@ -115,9 +130,9 @@ LINKGI_HOST_DEVICE inline Vec3f shadowedIrradiance(const Light* lights, Index co
   Vec3f sum(0.f);
   for (Index i = 0; i < count; ++i)
   {
-    Vec3f toLight;
-    const Vec3f e = unshadowedIrradiance(lights[i], p, n, toLight);
-    if (maxComponent(e) > 0.f && !occluded(shadowRay(lights[i], origin, directionToLight(lights[i], origin))))
+    Vec3f e;
+    Ray shadow;
+    if (lightSample(lights[i], p, n, origin, e, shadow) && !occluded(shadow))
     {
       sum += e;
     }
@@ -156,11 +171,6 @@ struct DirectLightResult
 DirectLightResult computeDirectLight(const Scene& scene, const Topology& topology,
   const std::vector<RayOrigin>& origins, const RayTracer& tracer, bool twoSided, bool oversampling,
   const ProgressCallback& progress = {});
-
-/// Unshadowed irradiance of one light at (p, n) and the shadow ray from `origin` that
-/// decides visibility. Returns false when the light cannot contribute.
-bool lightSample(const Light& light, const Vec3f& p, const Vec3f& n, const Vec3f& origin,
-  Vec3f& irradiance, Ray& shadow);
 
 /// Exact irradiance that one light delivers at point p with unit normal n, shadowed:
 ///   point:       V * I * max(0, cos) / r^2

@@ -162,9 +162,13 @@ LINKGI_HOST_DEVICE inline Vec3f compensationSample(const CompensationInputs& c, 
   // lights' own at the hit (the corners of a triangle larger than that say nothing of the
   // light beside the receiver), on the side the ray sees, with the shading normal there (the
   // face's where the corners' normals cancel) and shadow rays from the triangle's offset.
-  const float reach = 1.2f * c.dmin;
-  const bool exact = length(c.positions[t.v[0]] - y) > reach || length(c.positions[t.v[1]] - y) > reach ||
-    length(c.positions[t.v[2]] - y) > reach;
+  const float reach2 = 1.44f * c.dmin * c.dmin;
+  bool exact = false;
+  for (int j = 0; j < 3; ++j)
+  {
+    const Vec3f toCorner = c.positions[t.v[j]] - y;
+    exact = exact || dot(toCorner, toCorner) > reach2;
+  }
   Vec3f direct(0.f);
   if (exact)
   {
