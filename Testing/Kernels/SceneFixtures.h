@@ -101,6 +101,26 @@ inline Scene slabOnTheFloor(Index& slabBegin)
   return s;
 }
 
+/// A plate 10 cm high (4 x 4 cells, facing +x) stands on a 4 x 4 m floor of two triangles in
+/// a spot light's pool 0.9 m wide: the floor's corners lie outside the cone, so their direct
+/// light is 0, but the floor around the plate is lit. The plate's vertices are
+/// [plateBegin, vertexCount()).
+inline Scene plateInAPoolOfLight(Index& plateBegin)
+{
+  MeshBuilder b;
+  b.addQuadGrid({ -2, 0, -2 }, { 0, 0, 4 }, { 4, 0, 0 }, 1, 1, Vec3f(0.5f)); // faces +y
+  plateBegin = b.addQuadGrid({ 0, 0, -0.05f }, { 0, 0.1f, 0 }, { 0, 0, 0.1f }, 4, 4, Vec3f(0.5f));
+  Scene s = b.take();
+  Light l;
+  l.type = LightType::Spot;
+  l.position = { 0.3f, 1.f, 0.f };
+  l.direction = { 0.f, -1.f, 0.f };
+  l.coneAngleDegrees = 25.f;
+  l.intensity = Vec3f(1.f);
+  s.lights.push_back(l);
+  return s;
+}
+
 /// The area-weighted mean luminance of e over the vertices [begin, end) whose normals point
 /// up (facing > 0: y above 0.9), down (facing < 0: y below -0.9) or anywhere (facing 0).
 inline double meanLuminance(const Scene& s, const std::vector<Vec3f>& e, Index begin, Index end, int facing)

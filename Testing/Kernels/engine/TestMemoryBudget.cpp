@@ -245,7 +245,8 @@ TEST(TestMemoryBudget, TheSampledRowsLinkAsTheWholeMeshDoes)
     const double sampled = solver.stats().memorySampledPerElement;
     auto tracer = createCpuRayTracer();
     tracer->build(s.positions, s.triangles);
-    const LinkOptions lo{ o.raysPerVertex, o.twoSided, o.twist, o.seed };
+    const DetailNodes detail = detailNodes(s, detailNodeBudget(s.vertexCount()));
+    const LinkOptions lo{ o.raysPerVertex, o.twoSided, o.twist, o.seed, nullptr, &detail };
     const LinkStructure all = buildLinks(s, rayOrigins(s, Topology::build(s.vertexCount(), s.triangles)), *tracer,
       frontFaceNormals(s), lo);
     const double whole = double(all.transport.nonZeros() + all.environment.nonZeros()) / double(s.vertexCount());

@@ -125,7 +125,8 @@ TEST(TestGaps, GatherHitsDoNotLightTheUndersideOfASlabOnTheFloor)
   // gap may read them there: instant radiosity's compensation interpolates those corners
   // (excludeGapCorners), photon mapping reads estimates made out there, implicit visibility
   // leaves drawn there. (The link method's rows have no such test, for its cost in link
-  // generation: 0.185 here; Methods.md, "Link structure".)
+  // generation: 0.152 here, 0.185 reading the floor's corners alone;
+  // Methods.md, "Link structure".)
   Index slab = 0;
   const Scene s = test::slabOnTheFloor(slab);
   const Index end = Index(s.vertexCount());
@@ -144,7 +145,7 @@ TEST(TestGaps, GatherHitsDoNotLightTheUndersideOfASlabOnTheFloor)
     Solver solver;
     const double lit = test::meanLuminance(s, solver.update(s, o).indirect, slab, end, -1);
     std::printf("  %s: %.4g\n", methodName(method), lit);
-    // Instant radiosity 0.104, implicit visibility 0.109 and photon mapping 0.046 against
+    // Instant radiosity 0.041, implicit visibility 0.109 and photon mapping 0.046 against
     // the reference's 0.061 and the top's 2.36. Reading the lit floor's corners and
     // estimates, instant radiosity was 0.179 and photon mapping 0.22.
     EXPECT_LT(lit, dark + 0.03 * top) << methodName(method) << ": the lit floor lights the floor under the slab";

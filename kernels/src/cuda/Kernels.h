@@ -7,6 +7,7 @@
 #include "cuda/CudaCheck.h"
 
 #include "shared/Bvh.h"
+#include "methods/links/DetailNodes.h"
 #include "shared/RayOrigin.h"
 #include "linkgi/Scene.h"
 
@@ -111,6 +112,7 @@ struct LinkCompressParams
   const Vec3f* faceNormals = nullptr;
   bool twoSided = false;
   int envWidth = 0, envHeight = 0;
+  DetailGrid detail; ///< hits on subdivided triangles link to their nodes (Links.h)
 };
 /// Merges each element's links with equal columns (weights summed in ray order, columns
 /// sorted); deterministic. Returns false if raysPerVertex is above kMaxCompressRays.

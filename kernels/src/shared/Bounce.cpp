@@ -35,7 +35,7 @@ std::vector<Vec3f> iterateBounces(const SparseMatrix& transport, const BounceInp
   const std::function<void(std::vector<Vec3f>&)>& exchange)
 {
   const std::size_t n = inputs.fixedIrradiance.size();
-  std::vector<Vec3f> indirect(n, Vec3f(0.f)), radiance(n);
+  std::vector<Vec3f> indirect(n, Vec3f(0.f)), radiance(n + inputs.extraColumns);
   for (std::uint32_t b = 0; b < bounces; ++b)
   {
     if (progress && !progress("bounces", double(b) / bounces))
@@ -49,6 +49,10 @@ std::vector<Vec3f> iterateBounces(const SparseMatrix& transport, const BounceInp
           inputs.emission.empty() ? Vec3f(0.f) : inputs.emission[e]);
       }
     });
+    if (inputs.extraColumns)
+    {
+      inputs.extraRadiance(radiance.data());
+    }
     // The gather is the bounce's whole cost (tens of ms per bounce at 100k vertices): it
     // checks for an abort in slices, so that cancel() or a starved background update stops
     // within milliseconds of work rather than a bounce.

@@ -51,6 +51,11 @@ struct BounceInputs
   std::vector<Vec3f> fixedIrradiance; ///< E_d + E_env: irradiance that does not bounce in
   std::vector<Vec3f> albedo;          ///< rho per element
   std::vector<Vec3f> emission;        ///< Le per element (empty = none)
+  /// Columns the transport gathers beyond the elements (the links' detail nodes), after
+  /// them in the radiance vector; `extraRadiance(radiance)` writes theirs once the
+  /// elements' radiance of a bounce is in place.
+  std::size_t extraColumns = 0;
+  std::function<void(Vec3f* radiance)> extraRadiance;
 };
 
 /// n_B Jacobi bounces from E_ind = 0: L = Le + rho/pi (E_fixed + E_ind), E_ind = W L.

@@ -191,22 +191,12 @@ TEST(TestInstantRadiosity, CompensationReachesTheGrazingNeighboursOfAConcaveSurf
 
 TEST(TestInstantRadiosity, CompensationSeesTheLightOnALargeTriangleWhoseCornersAreDark)
 {
-  // A plate 10 cm high stands on a 4 x 4 m floor of two triangles, in a spot light's pool
-  // 0.9 m wide: the floor's corners lie outside the cone, so their direct light is 0, but the
-  // floor around the plate is lit. The plate's light from the floor nearer than the clamp
-  // comes from the compensation, which must see the light where its rays land, not the
-  // corners' darkness; the plate's indirect light then agrees with the path tracer's.
-  MeshBuilder b;
-  b.addQuadGrid({ -2, 0, -2 }, { 0, 0, 4 }, { 4, 0, 0 }, 1, 1, Vec3f(0.5f));             // faces +y
-  const Index plate = b.addQuadGrid({ 0, 0, -0.05f }, { 0, 0.1f, 0 }, { 0, 0, 0.1f }, 4, 4, Vec3f(0.5f)); // +x
-  Scene s = b.take();
-  Light l;
-  l.type = LightType::Spot;
-  l.position = { 0.3f, 1.f, 0.f };
-  l.direction = { 0.f, -1.f, 0.f };
-  l.coneAngleDegrees = 25.f;
-  l.intensity = Vec3f(1.f);
-  s.lights.push_back(l);
+  // The plate's light from the floor nearer than the clamp comes from the compensation,
+  // which must see the light where its rays land, not the corners' darkness
+  // (test::plateInAPoolOfLight); the plate's indirect light then agrees with the path
+  // tracer's.
+  Index plate = 0;
+  const Scene s = test::plateInAPoolOfLight(plate);
   SolverOptions o = instantRadiosity(4096);
   o.bounces = 1;
   const Solution ir = Solver().update(s, o);

@@ -77,14 +77,23 @@ struct RowChunk
   std::uint64_t rawLinks = 0;
 };
 
-/// Dense scratch row: accumulates weights by column and remembers which columns it touched.
+/// Scratch row: accumulates weights by column in a dense array over the elements (or texels)
+/// and remembers which columns it touched; links to detail nodes (columns from
+/// `value.size()` on) are listed and merged at the flush, so that a worker's scratch does
+/// not grow with the nodes.
 struct ScratchRow
 {
   std::vector<float> value;
   std::vector<Index> touched;
+  std::vector<std::pair<Index, float>> beyond;
 
   void add(Index column, float w)
   {
+    if (column >= value.size())
+    {
+      beyond.emplace_back(column, w);
+      return;
+    }
     if (value[column] == 0.f)
     {
       touched.push_back(column);
@@ -92,19 +101,33 @@ struct ScratchRow
     value[column] += w;
   }
   /// Appends the row to (columns, weights) and clears the scratch. Columns stay in the
-  /// order rays first reached them: coherent enough for the gather, and sorting them
-  /// would cost more than the rest of the compression.
+  /// order rays first reached them (the nodes' after, by column): coherent enough for the
+  /// gather, and sorting them would cost more than the rest of the compression.
   std::size_t flush(std::vector<Index>& columns, std::vector<float>& weights)
   {
+    const std::size_t before = columns.size();
     for (Index c : touched)
     {
       columns.push_back(c);
       weights.push_back(value[c]);
       value[c] = 0.f;
     }
-    const std::size_t count = touched.size();
     touched.clear();
-    return count;
+    // Stable: equal columns add up in ray order, as in the dense part.
+    std::stable_sort(beyond.begin(), beyond.end(),
+      [](const std::pair<Index, float>& a, const std::pair<Index, float>& b) { return a.first < b.first; });
+    for (std::size_t i = 0; i < beyond.size(); ++i)
+    {
+      if (i > 0 && beyond[i].first == beyond[i - 1].first)
+      {
+        weights.back() += beyond[i].second;
+        continue;
+      }
+      columns.push_back(beyond[i].first);
+      weights.push_back(beyond[i].second);
+    }
+    beyond.clear();
+    return columns.size() - before;
   }
 };
 
@@ -152,6 +175,11 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
   params.weight = kPi / float(n);
   params.envWidth = env.hasTexture() ? env.width : 0;
   params.envHeight = env.hasTexture() ? env.height : 0;
+  const std::size_t columns = rows + (options.detail ? options.detail->columns(options.twoSided) : 0);
+  if (options.detail)
+  {
+    params.detail = options.detail->grid(rows);
+  }
 
   // The rows are compressed band by band: a band's chunks in parallel into buffers that
   // are reused for every band (their pages stay resident and warm), then appended to the
@@ -170,7 +198,7 @@ LinkStructure linkRows(const Scene& scene, std::uint32_t raysPerVertex,
   // written, and never reallocated, so no band's append copies what came before or holds
   // the links twice.
   LinkStructure out;
-  const LinksPerElement bound = LinksPerElement::bound(n, rows, texels);
+  const LinksPerElement bound = LinksPerElement::bound(n, columns, texels);
   for (SparseMatrix* m : { &out.transport, &out.environment })
   {
     const std::size_t entries = rows * (m == &out.transport ? bound.transport : bound.environment);

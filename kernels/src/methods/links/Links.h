@@ -3,6 +3,7 @@
 
 #include "cpu/Parallel.h"
 #include "linkgi/Scene.h"
+#include "methods/links/DetailNodes.h"
 #include "scene/Topology.h"
 #include "shared/Csr.h"
 #include "shared/RayOrigin.h"
@@ -50,6 +51,8 @@ struct LinkOptions
   /// Per element, or null for all: only rows marked 1 are linked (Partition), the others
   /// stay empty.
   const std::uint8_t* rows = nullptr;
+  /// The mesh's detail nodes (null or empty: hits link to their triangle's corners only).
+  const DetailNodes* detail = nullptr;
 };
 
 /// Per ray: the triangle hit (kInvalidIndex = miss) and its barycentrics.
@@ -67,11 +70,13 @@ struct LinkParams
   float weight = 0.f;  ///< pi / n_C
   int envWidth = 0;    ///< lat-long environment size, 0 x 0 for a constant colour (texel 0)
   int envHeight = 0;
+  DetailGrid detail;   ///< hits on subdivided triangles link to its nodes
 };
 
 /// The links one ray adds to its element's row: up to three (element, weight) pairs for a
-/// hit (barycentric weights, back sides offset by vertexCount), one environment texel for a
-/// miss, none for a back-face hit on one-sided elements (the ray is blocked and sees black).
+/// hit (barycentric weights, back sides offset by vertexCount; on a subdivided triangle the
+/// detail nodes around the hit), one environment texel for a miss, none for a back-face hit
+/// on one-sided elements (the ray is blocked and sees black).
 struct RayLinks
 {
   Index column[3];
@@ -97,15 +102,29 @@ LINKGI_HOST_DEVICE inline RayLinks linksOfRay(const Hit& h, const Vec3f& directi
   {
     return r;
   }
-  const Index offset = back ? p.vertexCount : 0;
   const Triangle tri = triangles[h.triangle];
-  const float bary[3] = { 1.f - h.u - h.v, h.u, h.v };
+  Index column[3];
+  float weight[3];
+  if (p.detail.steps && p.detail.steps[h.triangle] >= 2)
+  {
+    detailCell(p.detail, h.triangle, tri, h.u, h.v, back, p.vertexCount, column, weight);
+  }
+  else
+  {
+    const Index offset = back ? p.vertexCount : 0;
+    const float bary[3] = { 1.f - h.u - h.v, h.u, h.v };
+    for (int j = 0; j < 3; ++j)
+    {
+      column[j] = tri.v[j] + offset;
+      weight[j] = bary[j];
+    }
+  }
   for (int j = 0; j < 3; ++j)
   {
-    if (bary[j] > 0.f)
+    if (weight[j] > 0.f)
     {
-      r.column[r.count] = tri.v[j] + offset;
-      r.weight[r.count] = p.weight * bary[j];
+      r.column[r.count] = column[j];
+      r.weight[r.count] = p.weight * weight[j];
       ++r.count;
     }
   }

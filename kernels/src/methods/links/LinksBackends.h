@@ -15,6 +15,9 @@ enum Stage : std::size_t
   kBounceStage      ///< E_env, Jacobi bounces, smoothing, outgoing radiance
 };
 
+/// The detail nodes' columns (DetailNodes::columns) that a mesh of this shape may have.
+std::uint64_t detailColumnBound(const MemoryShape& shape, const SolverOptions& options);
+
 /// LinksPerElement::bound for a mesh of this shape under these options.
 LinksPerElement linksPerElement(const MemoryShape& shape, const SolverOptions& options);
 

@@ -47,6 +47,7 @@ public:
     if (directStaged)
     {
       std::swap(direct, nextDirect);
+      std::swap(nodeDirect, nextNodeDirect);
     }
     linksStaged = directStaged = geometryTouched = linksDropped = false;
   }
@@ -68,6 +69,7 @@ public:
     st.setCounter("LinksRaw", links.rawLinks);
     st.setCounter("LinksCompressed", links.transport.nonZeros());
     st.setCounter("LinkBytes", links.transport.bytes() + links.environment.bytes());
+    st.setCounter("DetailNodes", detail.nodes.size());
     st.lightRays = direct.shadowRays;
   }
 
@@ -90,7 +92,7 @@ public:
     {
       sample[k * rows / count] = 1;
     }
-    const LinkOptions sampleOptions{ o.raysPerVertex, o.twoSided, o.twist, o.seed, sample.data() };
+    const LinkOptions sampleOptions{ o.raysPerVertex, o.twoSided, o.twist, o.seed, sample.data(), &detail };
     const LinkStructure links =
       linkgi::buildLinks(c.scene, geometry.origins, *geometry.tracer, geometry.faceNormals, sampleOptions);
     return double(links.transport.nonZeros() + links.environment.nonZeros()) / double(count);
@@ -101,6 +103,7 @@ private:
   {
     geometryTouched = true;
     geometry.update(c);
+    detail = detailNodes(c.scene, detailNodeBudget(c.scene.vertexCount()));
   }
 
 
@@ -108,7 +111,7 @@ private:
   {
     const SolverOptions& o = c.options;
     const LinkOptions linkOptions{ o.raysPerVertex, o.twoSided, o.twist, o.seed,
-      ownRows(o, Elements{ c.scene.vertexCount(), o.twoSided }.count()) };
+      ownRows(o, Elements{ c.scene.vertexCount(), o.twoSided }.count()), &detail };
     const auto within = [&c](double lo, double hi) -> ProgressCallback {
       return [&c, lo, hi](const char*, double f) { return !c.progress || c.progress("Links", lo + (hi - lo) * f); };
     };
@@ -132,6 +135,8 @@ private:
   {
     nextDirect = computeDirectLight(c.scene, geometry.topology, geometry.origins, *geometry.tracer, c.options.twoSided,
       c.options.lightOversampling, c.progress);
+    nextNodeDirect = detailNodeDirect(c.scene, detail, geometry.origins, geometry.faceNormals, *geometry.tracer,
+      c.options.twoSided, &nextDirect.shadowRays);
     directStaged = true;
   }
 
@@ -141,6 +146,7 @@ private:
     const SolverOptions& o = c.options;
     const LinkStructure& linksNow = linksStaged ? nextLinks : links;
     const DirectLightResult& directNow = directStaged ? nextDirect : direct;
+    const std::vector<Vec3f>& nodeDirectNow = directStaged ? nextNodeDirect : nodeDirect;
     const Elements elements{ s.vertexCount(), o.twoSided };
     const std::size_t ne = elements.count();
 
@@ -166,6 +172,20 @@ private:
       inputs.emission.assign(ne, Vec3f(0.f));
       std::copy(s.emission.begin(), s.emission.end(), inputs.emission.begin());
     }
+    // Detail nodes: their corners' radiance without the corners' direct light, and their own.
+    inputs.extraColumns = detail.columns(o.twoSided);
+    inputs.extraRadiance = [&](Vec3f* radiance) {
+      const std::size_t nodes = detail.nodes.size();
+      parallelRanges(inputs.extraColumns, 1024, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k)
+        {
+          const DetailNode& node = detail.nodes[k % nodes];
+          radiance[ne + k] = detailNodeRadiance(node, s.triangles[node.triangle], k >= nodes ? 1 : 0,
+            Index(s.vertexCount()), [radiance](Index e) { return radiance[e]; }, directNow.irradiance.data(),
+            s.albedo.data(), nodeDirectNow[k]);
+        }
+      });
+    };
     std::vector<Vec3f> indirect = iterateBounces(linksNow.transport, inputs, o.bounces, c.progress,
       exchangeOf(o));
     for (std::size_t e = 0; e < ne; ++e)
@@ -179,14 +199,22 @@ private:
   bool geometryTouched = false;
   LinkStructure links, nextLinks;
   bool linksDropped = false; ///< the cached links were freed for a re-link that has not committed
+  DetailNodes detail;
   DirectLightResult direct, nextDirect;
+  std::vector<Vec3f> nodeDirect, nextNodeDirect; ///< detailNodeDirect, staged as E_d
   bool linksStaged = false, directStaged = false;
 };
 }
 
+std::uint64_t detailColumnBound(const MemoryShape& shape, const SolverOptions& o)
+{
+  return std::uint64_t(detailNodeBudget(shape.vertices)) * (o.twoSided ? 2 : 1);
+}
+
 LinksPerElement linksPerElement(const MemoryShape& shape, const SolverOptions& o)
 {
-  return LinksPerElement::bound(o.raysPerVertex, shape.vertices * (o.twoSided ? 2 : 1), shape.texels);
+  return LinksPerElement::bound(o.raysPerVertex,
+    shape.vertices * (o.twoSided ? 2 : 1) + detailColumnBound(shape, o), shape.texels);
 }
 
 double estimatedLinksPerRow(const MemoryShape& shape, const SolverOptions& o)
@@ -205,6 +233,11 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
   const std::uint64_t n = o.raysPerVertex;
   constexpr std::uint64_t vec3 = sizeof(Vec3f), csrEntry = sizeof(Index) + sizeof(float);
   std::uint64_t bytes = 0;
+  // The detail nodes, at their budget: the grids (per triangle) and the nodes, their E_d
+  // staged beside the cached one and their radiance in the bounces.
+  const std::uint64_t nodeColumns = detailColumnBound(shape, o);
+  bytes += shape.triangles * (sizeof(Index) + sizeof(std::uint16_t)) + nodeColumns / (o.twoSided ? 2 : 1) *
+    sizeof(DetailNode) + nodeColumns * vec3 * 3;
   if (stale & (1u << kGeometryStage))
   {
     bytes += cpuGeometryBytes(shape);
@@ -214,11 +247,12 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
     // buildLinks: the CSR (linkRows reserves it at the links' bound; only the links
     // written become resident); a band's chunk buffers (a 32nd of the rows, at most 512
     // chunks of 64) with their vectors' growth; the row counts and offsets; per worker a
-    // dense scratch row, one element's rays and hits.
+    // dense scratch row, one element's rays, hits and links to detail nodes.
     const std::uint64_t perRow = std::uint64_t(std::ceil(estimatedLinksPerRow(shape, o) * double(csrEntry)));
     const std::uint64_t perElement = perRow + 2 * (sizeof(Index) + sizeof(Offset));
     const std::uint64_t bandRows = std::min<std::uint64_t>(e / 32 + 64, 512 * 64);
-    const std::uint64_t perWorker = (e + shape.texels) * sizeof(float) + n * (sizeof(Hit) + sizeof(Ray));
+    const std::uint64_t perWorker = (e + shape.texels) * sizeof(float) +
+      n * (sizeof(Hit) + sizeof(Ray) + 3 * sizeof(std::pair<Index, float>));
     bytes += bandRows * perRow * 2;
     bytes += e * perElement + std::uint64_t(workerCount()) * perWorker;
   }

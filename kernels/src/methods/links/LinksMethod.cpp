@@ -64,13 +64,14 @@ public:
     // falls back to the CPU when a GPU runs out.
     const std::uint64_t e = shape.vertices * (o.twoSided ? 2 : 1);
     MemoryEstimate m;
-    m.hostBytes = e * sizeof(Vec3f) * 16;
+    const std::uint64_t nodes = detailColumnBound(shape, o);
+    m.hostBytes = e * sizeof(Vec3f) * 16 + nodes * sizeof(DetailNode);
     if (stale & (1u << kLinkStage))
     {
       const LinksPerElement links = linksPerElement(shape, o);
       m.deviceBytes += e * (links.transport + links.environment) * (sizeof(Index) + sizeof(float));
     }
-    m.deviceBytes += shape.triangles * 128 + e * 16 * 12;
+    m.deviceBytes += shape.triangles * 128 + e * 16 * 12 + nodes * (sizeof(DetailNode) + 3 * 16);
     return m;
   }
 };

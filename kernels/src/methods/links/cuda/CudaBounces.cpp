@@ -90,12 +90,17 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
         copyFrom(d0, d, &EngineDevice::emission);
       }
       copyFrom(d0, d, &EngineDevice::direct);
+      copyFrom(d0, d, &EngineDevice::nodeDirect);
     }
     d.use();
     d.texelRadiance.upload(texels, d.stream);
-    for (GPUBuffer<Rgba>* b : { &d.envIrradiance, &d.fixedIrradiance, &d.radiance[0], &d.radiance[1], &d.indirect })
+    for (GPUBuffer<Rgba>* b : { &d.envIrradiance, &d.fixedIrradiance, &d.indirect })
     {
       b->resize(ne);
+    }
+    for (GPUBuffer<Rgba>& b : d.radiance)
+    {
+      b.resize(ne + detail.columns(options.twoSided)); // the detail nodes' after the elements'
     }
   }
   BounceParams b;
@@ -135,6 +140,17 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
     }
   }
   exchange([](EngineDevice& d) { return d.radiance[0].data(); }, true);
+  // The detail nodes' radiance from the whole vector of the elements', on every partition.
+  const auto nodeRadiance = [&](int which) {
+    for (const auto& dp : devices)
+    {
+      EngineDevice& d = *dp;
+      d.use();
+      detailRadiance(detailParams(d, options.twoSided), ne, b.vertexCount, d.direct.data(), d.albedo.data(),
+        d.nodeDirect.data(), d.radiance[which].data(), d.stream);
+    }
+  };
+  nodeRadiance(0);
   for (std::uint32_t i = 0; i < options.bounces; ++i)
   {
     const bool last = i + 1 == options.bounces;
@@ -155,6 +171,7 @@ void Engine::bounceAndFinish(const engine::StageContext& c)
       exchange(i % 2 ? +[](EngineDevice& d) { return d.radiance[0].data(); }
                      : +[](EngineDevice& d) { return d.radiance[1].data(); },
         true);
+      nodeRadiance(int((i + 1) % 2));
     }
   }
   // Smoothing reads neighbours' values: the first partition gathers E_ind and E_env.

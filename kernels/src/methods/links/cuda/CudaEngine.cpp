@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <future>
 #include <map>
 #include <mutex>
 
@@ -295,6 +296,7 @@ void Engine::describe(SolverStats& stats) const
   stats.setCounter("LinksRaw", rawLinks);
   stats.setCounter("LinksCompressed", compressed);
   stats.setCounter("LinkBytes", bytes);
+  stats.setCounter("DetailNodes", detail.nodes.size());
   stats.lightRays = *devices[0]->tracedLightRays; // the bounce stage has synchronized
 }
 
@@ -352,6 +354,12 @@ void Engine::updateGeometry(const engine::StageContext& c)
       copyFrom(d0, d, &EngineDevice::normals);
     }
   }
+  // The detail nodes on the host while the GPUs build their BVHs.
+  std::future<DetailNodes> nextDetail;
+  if (mask.geometry)
+  {
+    nextDetail = std::async(std::launch::async, [&s] { return detailNodes(s, detailNodeBudget(s.vertexCount())); });
+  }
   HostBvh sah; // CudaBvhBuild::HostSah: built once, uploaded to every device
   std::once_flag sahBuilt;
   // Every partition's BVH at once, each from its own thread: a build waits for its GPU
@@ -402,6 +410,19 @@ void Engine::updateGeometry(const engine::StageContext& c)
       stats.bvhRefits += stats.refitBvh;
     }
   });
+  if (mask.geometry)
+  {
+    // Small next to the mesh: each partition takes its own copy from the host.
+    detail = nextDetail.get();
+    for (const auto& d : devices)
+    {
+      d->use();
+      d->detailFirst.upload(detail.first, d->stream);
+      d->detailSteps.upload(detail.steps, d->stream);
+      d->detailNodes.upload(detail.nodes, d->stream);
+    }
+    d0.use();
+  }
   if (mask.geometry && devices.size() > 1)
   {
     d0.use();
@@ -419,12 +440,30 @@ void Engine::updateGeometry(const engine::StageContext& c)
   edgeCount = d0.topology.edgeCount();
 }
 
+DetailParams Engine::detailParams(const EngineDevice& d, bool twoSided) const
+{
+  DetailParams p;
+  p.bvh = d.bvh.view();
+  p.triangles = d.triangles.data();
+  p.positions = d.positions.data();
+  p.normals = d.normals.data();
+  p.faceNormals = d.faceNormals.data();
+  p.origins = d.origins.data();
+  p.nodes = d.detailNodes.data();
+  p.nodeCount = Index(detail.nodes.size());
+  p.sides = twoSided ? 2 : 1;
+  return p;
+}
+
 void Engine::computeDirectLight(const engine::StageContext& c)
 {
   EngineDevice& d = *devices[0];
   d.use();
   queueDirectLight(c.scene, c.options, { d.bvh, d.positions, d.normals, d.origins, d.topology, edgeCount },
     { d.lights, d.vertexVisible, d.edgeVisible, d.direct, d.counter }, d.stream);
+  d.nodeDirect.resize(detail.columns(c.options.twoSided));
+  detailDirect(detailParams(d, c.options.twoSided), d.lights.data(), Index(d.lights.size()), d.nodeDirect.data(),
+    d.counter.data(), d.stream);
   // No wait here: the bounces queue behind the light links, the ray count arrives with
   // their outputs, and the other partitions copy E_d after this event.
   LINKGI_CUDA_CHECK(cudaMemcpyAsync(d.tracedLightRays, d.counter.data(), sizeof(unsigned long long),

@@ -10,6 +10,7 @@
 #include "methods/links/LinksBackends.h"
 
 #include "methods/links/Links.h"
+#include "methods/links/cuda/DetailKernels.h"
 
 #include <functional>
 #include <memory>
@@ -99,5 +100,8 @@ private:
   bool identicalDevices = false;
   std::vector<BatchCost> lastBatches; ///< of the last link stage, over all partitions
   std::uint64_t rawLinks = 0, rays = 0;
+  DetailNodes detail; ///< of the geometry on the GPUs
+  /// What the detail kernels read on partition `d` under these options.
+  DetailParams detailParams(const EngineDevice& d, bool twoSided) const;
 };
 }

@@ -121,6 +121,7 @@ struct LinkJob
 {
   LinkCompressParams params;
   Index elements = 0;
+  Index detailNodes = 0; ///< per side
 };
 
 /// Largest batch whose scratch fits in about half of the device's free memory; at most
@@ -180,6 +181,10 @@ void linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
   p.trace.elementCount = count;
   p.triangles = d.triangles.data();
   p.faceNormals = d.faceNormals.data();
+  if (job.detailNodes)
+  {
+    p.detail = DetailGrid{ d.detailFirst.data(), d.detailSteps.data(), job.elements, job.detailNodes };
+  }
 
   LINKGI_CUDA_CHECK(cudaEventRecord(d.events[0], d.stream));
   traceLinks(p.trace, s.hits.data(), d.stream);
@@ -231,16 +236,18 @@ void linkBatch(EngineDevice& d, const LinkJob& job, Index first, Index count)
 
 namespace
 {
-LinkJob makeJob(const Scene& s, const SolverOptions& options)
+LinkJob makeJob(const Scene& s, const SolverOptions& options, const DetailNodes& detail)
 {
   const std::size_t elements = Elements{ s.vertexCount(), options.twoSided }.count();
-  if (elements >= kInvalidIndex)
+  if (elements + detail.columns(options.twoSided) >= kInvalidIndex)
   {
     throw Error("The CUDA backend links at most " + std::to_string(kInvalidIndex - 1) +
-      " elements (vertices, twice that for two-sided); got " + std::to_string(elements) + ".");
+      " elements and detail nodes (vertices, twice that for two-sided); got " +
+      std::to_string(elements + detail.columns(options.twoSided)) + ".");
   }
   LinkJob job;
   job.elements = Index(elements);
+  job.detailNodes = Index(detail.nodes.size());
   LinkTraceParams& t = job.params.trace;
   t.raysPerVertex = options.raysPerVertex;
   t.vertexCount = Index(s.vertexCount());
@@ -376,7 +383,7 @@ void Engine::buildLinks(const engine::StageContext& c)
 {
   const SolverOptions& options = c.options;
   const auto start = std::chrono::steady_clock::now();
-  const LinkJob job = makeJob(c.scene, options);
+  const LinkJob job = makeJob(c.scene, options, detail);
   const Index ne = job.elements, n = options.raysPerVertex;
   const std::vector<Vec3f> dirs = makeDirectionSet(n);
   std::vector<EngineDevice*> all;

@@ -78,6 +78,9 @@ struct EngineDevice
   GPUBuffer<Vec3f> positions, normals, faceNormals, directions;
   GPUBuffer<RayOrigin> origins;
   GPUBuffer<Triangle> triangles;
+  GPUBuffer<Index> detailFirst;          ///< DetailNodes::first
+  GPUBuffer<std::uint16_t> detailSteps;  ///< DetailNodes::steps
+  GPUBuffer<DetailNode> detailNodes;     ///< DetailNodes::nodes
   DeviceBvh bvh;
   double bvhBuildCost = 0.0; ///< DeviceBvh::cost() right after the last build
 
@@ -94,6 +97,7 @@ struct EngineDevice
 
   // Bounces (every partition: whole vectors, of which it computes its rows).
   GPUBuffer<Vec3f> albedo, emission, direct;
+  GPUBuffer<Vec3f> nodeDirect; ///< E_d at the detail nodes (both sides when two-sided)
   GPUBuffer<Rgba> texelRadiance, envIrradiance, fixedIrradiance, radiance[2], indirect;
 
   PinnedStaging staging; ///< this partition's uploads and downloads

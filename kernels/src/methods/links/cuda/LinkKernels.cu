@@ -118,6 +118,7 @@ __global__ void __launch_bounds__(kThreads) compressKernel(LinkCompressParams p,
   lp.weight = kPi / float(n);
   lp.envWidth = p.envWidth;
   lp.envHeight = p.envHeight;
+  lp.detail = p.detail;
 
   Key keys[C::kItems];
   float values[C::kItems];
@@ -285,8 +286,9 @@ bool compressLinks(const LinkCompressParams& p, const LinkHit* hits, const LinkR
   {
     return true;
   }
-  // Columns are elements (< 2 x vertices) or environment texels.
-  const Index elements = p.twoSided ? 2 * p.trace.vertexCount : p.trace.vertexCount;
+  // Columns are elements (< 2 x vertices) and detail nodes, or environment texels.
+  const Index elements = (p.twoSided ? 2 * p.trace.vertexCount : p.trace.vertexCount) +
+    p.detail.nodesPerSide * (p.twoSided ? 2 : 1);
   const unsigned texels = p.envWidth > 0 ? unsigned(p.envWidth) * unsigned(p.envHeight) : 1u;
   KeyLayout layout;
   layout.columnBits = bitsFor(std::max(unsigned(elements), texels));
