@@ -125,8 +125,7 @@ TEST(TestGaps, GatherHitsDoNotLightTheUndersideOfASlabOnTheFloor)
   // gap may read them there: instant radiosity's compensation interpolates those corners
   // (excludeGapCorners), photon mapping reads estimates made out there, implicit visibility
   // leaves drawn there. (The link method's rows have no such test, for its cost in link
-  // generation: 0.152 here, 0.185 reading the floor's corners alone;
-  // Methods.md, "Link structure".)
+  // generation: 0.185 here; Methods.md, "Link structure".)
   Index slab = 0;
   const Scene s = test::slabOnTheFloor(slab);
   const Index end = Index(s.vertexCount());

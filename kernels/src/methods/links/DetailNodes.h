@@ -153,9 +153,11 @@ struct DetailNodes
 /// mesh 8 per vertex up to 16,384, and at least 4,096.
 std::size_t detailNodeBudget(std::size_t vertices);
 
-/// Grids on the triangles whose longest edge spans at least two steps of one spacing for the
-/// whole mesh: the finest spacing whose nodes fit `budget`, but no finer than 1/256 of the
-/// mesh's diagonal (a mesh finer than that everywhere gets none).
+/// Grids on the triangles larger than the mesh's own detail: those whose longest edge is at
+/// least twice the median triangle's and twice 1/256 of the mesh's diagonal (a mesh of even
+/// triangles gets none, however coarse). Their steps are of one spacing for the whole mesh,
+/// the finest whose nodes fit `budget` but no finer than 1/256 of the diagonal; a triangle
+/// that spans fewer than two steps of it gets none.
 DetailNodes detailNodes(const Scene& scene, std::size_t budget);
 
 /// detailNodeDirect at every node, fronts then backs when two-sided.
