@@ -10,10 +10,11 @@ namespace linkgi
 {
 namespace
 {
+constexpr int kMostSteps = 64; // 2,142 nodes: a triangle larger still is a budget's worth
+
 /// Grid steps of a triangle whose longest edge is `longest` at `spacing`: 0 below two.
 int stepsFor(float longest, float spacing)
 {
-  constexpr int kMostSteps = 64; // 2,142 nodes: a triangle larger still is a budget's worth
   const float n = std::ceil(longest / spacing);
   return n < 2.f ? 0 : int(std::min(n, float(kMostSteps)));
 }
@@ -40,10 +41,15 @@ DetailGrid DetailNodes::grid(std::size_t elementCount) const
 std::size_t detailNodeBudget(std::size_t vertices)
 {
   // A light move traces the nodes' shadow rays beside the vertices' (the CAD motor of 1,710
-  // points: 1.1 ms without nodes, 2.3 ms with its 16k, on 2 cores) and the links that reach
+  // points: 1.1 ms without nodes, 2.3 ms with 16k, on 2 cores) and the links that reach
   // them spread over more columns. The motor's error against the path tracer: 13.6%
   // without nodes, 9.2% with 2,000, 8.2-8.7% with 4,096 to 32,000, 7.9% with 100,000.
-  return std::max<std::size_t>({ vertices, std::min<std::size_t>(8 * vertices, 16384), 4096 });
+  return std::max<std::size_t>(vertices, 4096);
+}
+
+std::size_t detailNodeBound(std::size_t vertices, std::size_t triangles)
+{
+  return std::min(detailNodeBudget(vertices), nodesOf(kMostSteps) * ((triangles + 1) / 2));
 }
 
 DetailNodes detailNodes(const Scene& scene, std::size_t budget)

@@ -149,9 +149,13 @@ struct DetailNodes
   std::size_t columns(bool twoSided) const { return nodes.size() * (twoSided ? 2 : 1); }
 };
 
-/// The node budget of a mesh of `vertices` vertices: as many as its vertices, on a smaller
-/// mesh 8 per vertex up to 16,384, and at least 4,096.
+/// The node budget of a mesh of `vertices` vertices: as many as its vertices, at least 4,096.
 std::size_t detailNodeBudget(std::size_t vertices);
+
+/// The most nodes detailNodes gives a mesh of this size: its budget, and no more than the
+/// largest grid on each triangle that may get one (at most half of them: those twice the
+/// median's size or larger).
+std::size_t detailNodeBound(std::size_t vertices, std::size_t triangles);
 
 /// Grids on the triangles larger than the mesh's own detail: those whose longest edge is at
 /// least twice the median triangle's and twice 1/256 of the mesh's diagonal (a mesh of even

@@ -208,7 +208,7 @@ private:
 
 std::uint64_t detailColumnBound(const MemoryShape& shape, const SolverOptions& o)
 {
-  return std::uint64_t(detailNodeBudget(shape.vertices)) * (o.twoSided ? 2 : 1);
+  return std::uint64_t(detailNodeBound(shape.vertices, shape.triangles)) * (o.twoSided ? 2 : 1);
 }
 
 LinksPerElement linksPerElement(const MemoryShape& shape, const SolverOptions& o)
@@ -233,14 +233,13 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
   const std::uint64_t n = o.raysPerVertex;
   constexpr std::uint64_t vec3 = sizeof(Vec3f), csrEntry = sizeof(Index) + sizeof(float);
   std::uint64_t bytes = 0;
-  // The detail nodes, at their budget: the grids (per triangle) and the nodes, their E_d
-  // staged beside the cached one and their radiance in the bounces.
+  // The detail nodes at their budget: their grids and nodes with the geometry, their E_d
+  // with the light links, their radiance in the bounces.
   const std::uint64_t nodeColumns = detailColumnBound(shape, o);
-  bytes += shape.triangles * (sizeof(Index) + sizeof(std::uint16_t)) + nodeColumns / (o.twoSided ? 2 : 1) *
-    sizeof(DetailNode) + nodeColumns * vec3 * 3;
   if (stale & (1u << kGeometryStage))
   {
-    bytes += cpuGeometryBytes(shape);
+    bytes += cpuGeometryBytes(shape) + shape.triangles * (sizeof(Index) + sizeof(std::uint16_t)) +
+      nodeColumns / (o.twoSided ? 2 : 1) * sizeof(DetailNode);
   }
   if (stale & (1u << kLinkStage))
   {
@@ -250,7 +249,7 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
     // dense scratch row, one element's rays, hits and links to detail nodes.
     const std::uint64_t perRow = std::uint64_t(std::ceil(estimatedLinksPerRow(shape, o) * double(csrEntry)));
     const std::uint64_t perElement = perRow + 2 * (sizeof(Index) + sizeof(Offset));
-    const std::uint64_t bandRows = std::min<std::uint64_t>(e / 32 + 64, 512 * 64);
+    const std::uint64_t bandRows = std::min<std::uint64_t>({ e, e / 32 + 64, 512 * 64 });
     const std::uint64_t perWorker = (e + shape.texels) * sizeof(float) +
       n * (sizeof(Hit) + sizeof(Ray) + 3 * sizeof(std::pair<Index, float>));
     bytes += bandRows * perRow * 2;
@@ -258,11 +257,11 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
   }
   if (stale & (1u << kLightLinkStage))
   {
-    bytes += e * vec3 * 2; // E_d, staged beside the cached one
+    bytes += (e + nodeColumns) * vec3 * 2; // E_d, staged beside the cached one
   }
   // Bounces: the environment's irradiance, the fixed irradiance, albedo, emission, two
   // Jacobi vectors, the smoothed copy and the solution's three arrays.
-  bytes += e * vec3 * 10;
+  bytes += e * vec3 * 10 + nodeColumns * vec3;
   return { bytes, 0 };
 }
 
