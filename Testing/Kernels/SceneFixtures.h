@@ -10,6 +10,8 @@
 
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace linkgi::test
 {
@@ -119,6 +121,24 @@ inline Scene plateInAPoolOfLight(Index& plateBegin)
   l.intensity = Vec3f(1.f);
   s.lights.push_back(l);
   return s;
+}
+
+/// The mean indirect light (red) over vertices [begin, vertexCount()) of a one-bounce
+/// solution of `s`, and the path tracer's there (4096 paths per vertex, one bounce).
+inline std::pair<double, double> meanIndirectAndReference(const Scene& s, const std::vector<Vec3f>& indirect, Index begin)
+{
+  ReferenceOptions ro;
+  ro.pathsPerVertex = 4096;
+  ro.bounces = 1;
+  const ReferenceSolution ref = solveReference(s, ro);
+  double sum = 0.0, reference = 0.0;
+  for (std::size_t v = begin; v < s.vertexCount(); ++v)
+  {
+    sum += indirect[v].x;
+    reference += ref.indirect[v].x;
+  }
+  const double n = double(s.vertexCount() - begin);
+  return { sum / n, reference / n };
 }
 
 /// The area-weighted mean luminance of e over the vertices [begin, end) whose normals point

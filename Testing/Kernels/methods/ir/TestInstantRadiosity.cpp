@@ -199,20 +199,10 @@ TEST(TestInstantRadiosity, CompensationSeesTheLightOnALargeTriangleWhoseCornersA
   const Scene s = test::plateInAPoolOfLight(plate);
   SolverOptions o = instantRadiosity(4096);
   o.bounces = 1;
-  const Solution ir = Solver().update(s, o);
-  ReferenceOptions ro;
-  ro.pathsPerVertex = 4096;
-  ro.bounces = 1;
-  const ReferenceSolution ref = solveReference(s, ro);
-  double sum = 0.0, reference = 0.0;
-  for (std::size_t v = plate; v < s.vertexCount(); ++v)
-  {
-    sum += ir.indirect[v].x;
-    reference += ref.indirect[v].x;
-  }
-  std::printf("plate in a pool of light: mean indirect %.5f, the reference %.5f\n", sum / 25.0, reference / 25.0);
+  const auto [mean, reference] = test::meanIndirectAndReference(s, Solver().update(s, o).indirect, plate);
+  std::printf("plate in a pool of light: mean indirect %.5f, the reference %.5f\n", mean, reference);
   EXPECT_GT(reference, 0.0);
-  EXPECT_NEAR(sum / reference, 1.0, 0.1);
+  EXPECT_NEAR(mean / reference, 1.0, 0.1);
 }
 
 TEST(TestInstantRadiosity, AgreesWithReference)

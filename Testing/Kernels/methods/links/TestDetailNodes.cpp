@@ -180,20 +180,11 @@ void expectPlateLitAsTheReference(Backend backend)
   Solver solver;
   const Solution& links = solver.update(s, o);
   ASSERT_EQ(solver.stats().backend, backend == Backend::Cpu ? "cpu" : "cuda") << solver.stats().backendNote;
-  ReferenceOptions ro;
-  ro.pathsPerVertex = 4096;
-  ro.bounces = 1;
-  const ReferenceSolution ref = solveReference(s, ro);
-  double sum = 0.0, reference = 0.0;
-  for (std::size_t v = plate; v < s.vertexCount(); ++v)
-  {
-    sum += links.indirect[v].x;
-    reference += ref.indirect[v].x;
-  }
+  const auto [mean, reference] = test::meanIndirectAndReference(s, links.indirect, plate);
   std::printf("plate in a pool of light (%s): links' mean indirect %.5f, the reference %.5f\n",
-    solver.stats().backend.c_str(), sum / 25.0, reference / 25.0);
+    solver.stats().backend.c_str(), mean, reference);
   EXPECT_GT(reference, 0.0);
-  EXPECT_NEAR(sum / reference, 1.0, 0.1);
+  EXPECT_NEAR(mean / reference, 1.0, 0.1);
 }
 }
 
