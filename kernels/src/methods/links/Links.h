@@ -70,7 +70,7 @@ struct LinkParams
   float weight = 0.f;  ///< pi / n_C
   int envWidth = 0;    ///< lat-long environment size, 0 x 0 for a constant colour (texel 0)
   int envHeight = 0;
-  DetailGrid detail;   ///< hits on subdivided triangles link to its nodes
+  DetailGrid detail;   ///< hits on subdivided triangles link to their nodes
 };
 
 /// The links one ray adds to its element's row: up to three (element, weight) pairs for a

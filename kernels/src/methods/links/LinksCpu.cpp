@@ -233,7 +233,7 @@ MemoryEstimate estimateCpuMemory(const MemoryShape& shape, const SolverOptions& 
   const std::uint64_t n = o.raysPerVertex;
   constexpr std::uint64_t vec3 = sizeof(Vec3f), csrEntry = sizeof(Index) + sizeof(float);
   std::uint64_t bytes = 0;
-  // The detail nodes at their budget: their grids and nodes with the geometry, their E_d
+  // The detail nodes at their bound: their grids and nodes with the geometry, their E_d
   // with the light links, their radiance in the bounces.
   const std::uint64_t nodeColumns = detailColumnBound(shape, o);
   if (stale & (1u << kGeometryStage))
