@@ -1,5 +1,6 @@
 #include "methods/links/DetailNodes.h"
 
+#include "cpu/Parallel.h"
 #include "shared/Surface.h"
 
 #include <algorithm>
@@ -60,12 +61,6 @@ DetailNodes detailNodes(const Scene& scene, std::size_t budget)
   {
     return out;
   }
-  Vec3f lo(3.0e38f), hi(-3.0e38f);
-  for (const Vec3f& p : scene.positions)
-  {
-    lo = Vec3f(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
-    hi = Vec3f(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
-  }
   std::vector<float> longest(nt, 0.f);
   for (std::size_t t = 0; t < nt; ++t)
   {
@@ -87,7 +82,7 @@ DetailNodes detailNodes(const Scene& scene, std::size_t budget)
   std::nth_element(sorted.begin(), sorted.begin() + nt / 2, sorted.end());
   const float median = sorted[nt / 2];
   std::vector<float>().swap(sorted);
-  const float finest = std::sqrt(dot(hi - lo, hi - lo)) / 256.f;
+  const float finest = sceneExtent(scene).diagonal / 256.f;
   if (!(finest > 0.f) || !std::isfinite(finest))
   {
     return out;

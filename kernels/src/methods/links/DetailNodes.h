@@ -7,7 +7,6 @@
 // environment's light, bounced light, emission) is interpolated from the corners.
 #pragma once
 
-#include "cpu/Parallel.h"
 #include "linkgi/Scene.h"
 #include "shared/DirectLight.h"
 #include "shared/RayOrigin.h"
