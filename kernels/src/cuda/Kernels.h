@@ -7,7 +7,7 @@
 #include "cuda/CudaCheck.h"
 
 #include "shared/Bvh.h"
-#include "methods/links/DetailNodes.h"
+#include "shared/DetailNodes.h"
 #include "shared/RayOrigin.h"
 #include "linkgi/Scene.h"
 

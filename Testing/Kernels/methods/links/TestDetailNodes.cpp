@@ -2,7 +2,7 @@
 #include "SceneFixtures.h"
 
 #include "linkgi/Solver.h"
-#include "methods/links/DetailNodes.h"
+#include "shared/DetailNodes.h"
 #include "shared/Surface.h"
 
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 
 #include "cpu/Parallel.h"
 #include "linkgi/Scene.h"
-#include "methods/links/DetailNodes.h"
+#include "shared/DetailNodes.h"
 #include "scene/Topology.h"
 #include "shared/Csr.h"
 #include "shared/RayOrigin.h"

@@ -3,6 +3,6 @@
 linkgi_method(ENUM Links VALUE 0 LABEL "Links"
   DESCRIPTION "rays between vertices, traced once, bounced over (a light move costs milliseconds, a deformation relinks)."
   SPEC links::linksMethod
-  SOURCES DetailNodes.cpp Links.cpp LinksCpu.cpp LinksMethod.cpp
-  CUDA_SOURCES cuda/CudaBounces.cpp cuda/CudaEngine.cpp cuda/CudaLinks.cpp cuda/DetailKernels.cu cuda/LinkKernels.cu
+  SOURCES Links.cpp LinksCpu.cpp LinksMethod.cpp
+  CUDA_SOURCES cuda/CudaBounces.cpp cuda/CudaEngine.cpp cuda/CudaLinks.cpp cuda/LinkKernels.cu
     cuda/LinksCuda.cpp)

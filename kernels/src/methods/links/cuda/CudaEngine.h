@@ -10,7 +10,7 @@
 #include "methods/links/LinksBackends.h"
 
 #include "methods/links/Links.h"
-#include "methods/links/cuda/DetailKernels.h"
+#include "cuda/DetailKernels.h"
 
 #include <functional>
 #include <memory>

@@ -1,4 +1,4 @@
-#include "methods/links/cuda/DetailKernels.h"
+#include "cuda/DetailKernels.h"
 
 namespace linkgi::cuda
 {

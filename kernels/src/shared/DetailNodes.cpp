@@ -1,4 +1,4 @@
-#include "methods/links/DetailNodes.h"
+#include "shared/DetailNodes.h"
 
 #include "cpu/Parallel.h"
 #include "shared/Surface.h"

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "cuda/Kernels.h"
-#include "methods/links/DetailNodes.h"
+#include "shared/DetailNodes.h"
 
 namespace linkgi::cuda
 {
