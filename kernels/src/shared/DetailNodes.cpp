@@ -188,4 +188,19 @@ std::vector<Vec3f> detailNodeDirect(const Scene& scene, const DetailNodes& detai
   }
   return out;
 }
+
+void detailNodeRadiance(const Scene& scene, const DetailNodes& detail, bool twoSided, const Vec3f* direct,
+  const Vec3f* nodeDirect, std::size_t columnBase, Vec3f* radiance)
+{
+  const std::size_t n = detail.nodes.size();
+  parallelRanges(detail.columns(twoSided), 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k)
+    {
+      const DetailNode& node = detail.nodes[k % n];
+      radiance[columnBase + k] = detailNodeRadiance(node, scene.triangles[node.triangle], k >= n ? 1 : 0,
+        Index(scene.vertexCount()), [radiance](Index e) { return radiance[e]; }, direct, scene.albedo.data(),
+        nodeDirect[k]);
+    }
+  });
+}
 }

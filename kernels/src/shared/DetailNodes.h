@@ -2,9 +2,10 @@
 // reads the hit's radiance from the triangle's corners; where a shadow edge or a spot's
 // rim crosses a triangle much larger than the scene's detail, the corners do not see it
 // (a CAD part of 1,710 points: 14% from the path tracer for this alone). Large triangles
-// therefore carry a grid of detail nodes: links that hit them go to the grid's nodes, whose
-// direct light is traced on every light change, while everything else they carry (the
-// environment's light, bounced light, emission) is interpolated from the corners.
+// therefore carry a grid of detail nodes: links that hit them (the link method's, and
+// implicit visibility's surface hits on the CPU) go to the grid's nodes, whose direct light
+// is traced on every light change, while everything else they carry (the environment's
+// light, bounced light, emission) is interpolated from the corners.
 #pragma once
 
 #include "linkgi/Scene.h"
@@ -167,5 +168,11 @@ DetailNodes detailNodes(const Scene& scene, std::size_t budget);
 std::vector<Vec3f> detailNodeDirect(const Scene& scene, const DetailNodes& detail,
   const std::vector<RayOrigin>& origins, const std::vector<Vec3f>& faceNormals,
   const RayTracer& tracer, bool twoSided, std::uint64_t* shadowRays = nullptr);
+
+/// radiance[columnBase + k] = detailNodeRadiance of node column k (fronts, then backs when
+/// two-sided), from the elements' radiance (radiance[0, elements)), their E_d `direct` and
+/// the nodes' E_d `nodeDirect` (detailNodeDirect's).
+void detailNodeRadiance(const Scene& scene, const DetailNodes& detail, bool twoSided, const Vec3f* direct,
+  const Vec3f* nodeDirect, std::size_t columnBase, Vec3f* radiance);
 
 }

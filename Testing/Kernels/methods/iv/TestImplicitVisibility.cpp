@@ -139,6 +139,24 @@ TEST(TestImplicitVisibility, TreeIsBinaryOverEveryVertex)
   EXPECT_EQ(t.parent[t.root()], kInvalidIndex);
 }
 
+TEST(TestImplicitVisibility, ALeafReachesAsFarAsItsElement)
+{
+  // One long thin triangle: each corner's element (where its barycentric is the largest)
+  // reaches to the centroid or an edge's midpoint, far beyond its disc of a third of the area.
+  MeshBuilder b;
+  const Vec3f n(0.f, 0.f, 1.f), rho(0.5f);
+  b.addVertex({ 0.f, 0.f, 0.f }, n, rho);
+  b.addVertex({ 10.f, 0.f, 0.f }, n, rho);
+  b.addVertex({ 0.f, 1.f, 0.f }, n, rho);
+  b.addTriangle(0, 1, 2);
+  const Scene s = b.take();
+  const iv::ClusterTree t = iv::ClusterTree::build(s, vertexAreas(s));
+  EXPECT_NEAR(t.radius[0], std::sqrt(5.f / 3.f / kPi), 1e-5f);
+  EXPECT_NEAR(t.extent[0], 5.f, 1e-5f);                           // the long edge's midpoint
+  EXPECT_NEAR(t.extent[1], std::sqrt(400.f + 1.f) / 3.f, 1e-5f); // the centroid
+  EXPECT_NEAR(t.extent[2], 0.5f * std::sqrt(101.f), 1e-5f);       // the long edge's midpoint
+}
+
 TEST(TestImplicitVisibility, RefitOfAMovedMeshEqualsRebuild)
 {
   // The structure comes from the pose the topology was first seen in; refit gives every

@@ -123,6 +123,7 @@ void ClusterTree::refit(const Scene& scene, const std::vector<float>& areas)
   radius.resize(nodes);
   coneAngle.resize(nodes);
   planeDeviation.resize(nodes);
+  extent.resize(leafCount);
   for (std::size_t v = 0; v < leafCount; ++v)
   {
     position[v] = scene.positions[v];
@@ -131,6 +132,19 @@ void ClusterTree::refit(const Scene& scene, const std::vector<float>& areas)
     radius[v] = std::sqrt(areas[v] / kPi);
     coneAngle[v] = 0.f;
     planeDeviation[v] = 0.f;
+    extent[v] = radius[v];
+  }
+  for (const Triangle& t : scene.triangles)
+  {
+    const Vec3f p[3] = { scene.positions[t.v[0]], scene.positions[t.v[1]], scene.positions[t.v[2]] };
+    const Vec3f centroid = (p[0] + p[1] + p[2]) * (1.f / 3.f);
+    for (int k = 0; k < 3; ++k)
+    {
+      const Vec3f& a = p[k];
+      const float farthest = std::max({ length(centroid - a), 0.5f * length(p[(k + 1) % 3] - a),
+        0.5f * length(p[(k + 2) % 3] - a) });
+      extent[t.v[k]] = std::max(extent[t.v[k]], farthest);
+    }
   }
   for (std::size_t i = 0; i < left.size(); ++i)
   {

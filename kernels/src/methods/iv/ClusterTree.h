@@ -29,6 +29,10 @@ struct ClusterTree
   /// Bound on |normal . (p - position)| over every disc point p below: the slab the
   /// cluster lies in (0 for a leaf and, up to rounding, for a flat patch).
   std::vector<float> planeDeviation;
+  /// Per leaf: how far its element reaches from its vertex (the farthest corner of its part
+  /// of each adjacent triangle: an edge's midpoint or the centroid), at least its disc's
+  /// radius. A long thin triangle's element reaches far beyond its disc.
+  std::vector<float> extent;
 
   std::size_t nodeCount() const { return position.size(); }
   Index root() const { return Index(nodeCount() - 1); }

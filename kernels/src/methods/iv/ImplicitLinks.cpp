@@ -74,7 +74,9 @@ public:
   {
     const Vec3f d = t.position[source] - t.position[node];
     const float d2 = dot(d, d);
-    if (!(d2 > 0.f) || keptWhole(t.isLeaf(source), t.radius[source], t.normal[source], d, d2, this->BinAngle))
+    const bool leaf = t.isLeaf(source);
+    if (!(d2 > 0.f) ||
+      keptWhole(leaf, t.radius[source], leaf ? t.extent[source] : 0.f, t.normal[source], d, d2, this->BinAngle))
     {
       return false;
     }
@@ -382,7 +384,7 @@ std::vector<Vec3f> iterateHierarchicalBounces(const ClusterTree& tree,
   const ProgressCallback& progress, const std::function<void(std::vector<Vec3f>&)>& exchange)
 {
   const std::size_t leaves = tree.leafCount;
-  std::vector<Vec3f> indirect(leaves, Vec3f(0.f)), radiance(tree.nodeCount());
+  std::vector<Vec3f> indirect(leaves, Vec3f(0.f)), radiance(tree.nodeCount() + inputs.extraColumns);
   for (std::uint32_t b = 0; b < bounces; ++b)
   {
     if (progress && !progress("Bounces", double(b) / bounces))
@@ -404,6 +406,10 @@ std::vector<Vec3f> iterateHierarchicalBounces(const ClusterTree& tree,
       radiance[id] = tree.area[id] > 0.f
         ? (radiance[l] * tree.area[l] + radiance[r] * tree.area[r]) / tree.area[id]
         : Vec3f(0.f);
+    }
+    if (inputs.extraColumns)
+    {
+      inputs.extraRadiance(radiance.data());
     }
     gatherRgb(transport, radiance.data(), indirect.data());
     if (exchange)

@@ -7,6 +7,7 @@
 #include "methods/iv/IvShared.h"
 
 #include "shared/Bounce.h"
+#include "shared/DetailNodes.h"
 #include "shared/RayOrigin.h"
 #include "shared/RayTracer.h"
 
@@ -148,17 +149,21 @@ struct LeafLinks
 /// the origin's offset along the normal, as link rays do).
 /// `tracer` (over `scene`, or null): a bin whose surface hit lies in a gap that its leaf's
 /// vertex is not in (hitInGap: the floor under an object resting on it, read from the lit
-/// floor beside it) gives black, as a back; it needs `receivers`' offsets.
+/// floor beside it) gives black, as a back; it needs `receivers`' offsets. A surface hit on
+/// a triangle with `detail` nodes goes to the nodes of its grid cell (columns after the
+/// tree's nodes, DetailNodes::grid(tree.nodeCount())), as a link's in the link method.
 /// `rows` (per leaf, or null for all): the leaves to push to; the others get empty rows
 /// (a process's share under MPI, SolverOptions::partition).
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
   const Scene& scene, const std::vector<Vec3f>& faceNormals, const ElementTriangles& elements,
-  const std::vector<RayOrigin>& receivers, const RayTracer* tracer, const ProgressCallback& progress = {},
-  const std::uint8_t* rows = nullptr);
+  const std::vector<RayOrigin>& receivers, const RayTracer* tracer, const DetailNodes& detail,
+  const ProgressCallback& progress = {}, const std::uint8_t* rows = nullptr);
 
 /// (Each function reports its own fraction in [0, 1] through `progress`.)
 /// n_B gather iterations: L at the leaves, pulled up the tree (area-weighted), gathered at
 /// the leaves through `transport`; as iterateBounces, from E_ind = 0, returns E_ind.
+/// `inputs.extraColumns` follow the tree's nodes (detail nodes), written from the leaves'
+/// radiance by `inputs.extraRadiance`.
 /// With `exchange` (a partition's), `transport` holds this process's rows only and each
 /// gather is completed by the other processes' rows before the next bounce pulls it up.
 std::vector<Vec3f> iterateHierarchicalBounces(const ClusterTree& tree,

@@ -43,6 +43,7 @@ public:
   {
     links.commit();
     direct.commit();
+    nodeDirect.commit();
     geometryTouched = false;
   }
 
@@ -50,6 +51,7 @@ public:
   {
     links.discard();
     direct.discard();
+    nodeDirect.discard();
     // The tree, the tracer and the one-ring are updated in place: after a failure they may
     // belong to the failed scene, and the next update must rebuild them.
     const bool whole = !geometryTouched;
@@ -67,6 +69,7 @@ public:
     st.setCounter("LinksEnvironment", l.leaves.environment.nonZeros());
     st.setCounter("LinksCompressed", l.leaves.transport.nonZeros());
     st.setCounter("LinkBytes", l.leaves.transport.bytes() + l.leaves.environment.bytes());
+    st.setCounter("DetailNodes", detail.nodes.size());
     st.lightRays = direct.committed().shadowRays;
   }
 
@@ -108,7 +111,7 @@ public:
     std::vector<Index> created;
     const NodeLinks nodes = createNodeLinks(tree, bins, LinkCreationOptions::of(c.scene), {}, sample.data(), &created);
     const LeafLinks leaves = pushToLeaves(tree, nodes, bins, c.scene, geometry.faceNormals, elements, geometry.origins,
-      geometry.tracer.get(), {}, sample.data());
+      geometry.tracer.get(), detail, {}, sample.data());
     std::vector<double> below(tree.nodeCount(), 1.0); // leaves below each node
     for (std::size_t i = 0; i < tree.left.size(); ++i)
     {
@@ -151,6 +154,7 @@ private:
     geometry.update(c); // one-ring, ray origins, shadow-ray BVH (shared)
     const auto t = std::chrono::steady_clock::now();
     areas = vertexAreas(s);
+    detail = detailNodes(s, detailNodeBudget(s.vertexCount()));
     if ((c.changes & kTopology) || tree.leafCount != s.vertexCount())
     {
       tree = ClusterTree::build(s, areas);
@@ -179,7 +183,7 @@ private:
     const auto t = std::chrono::steady_clock::now();
     Links& next = links.stage();
     next.leaves = pushToLeaves(tree, created, bins, c.scene, geometry.faceNormals, elements, geometry.origins,
-      geometry.tracer.get(), within(0.6, 1.0), rows);
+      geometry.tracer.get(), detail, within(0.6, 1.0), rows);
     next.nodeLinks = created.byReceiver.nonZeros();
     next.createdLinks = created.created;
     if (!rows)
@@ -194,8 +198,11 @@ private:
 
   void lightLinks(const StageContext& c)
   {
-    direct.stage() = computeDirectLight(c.scene, geometry.topology, geometry.origins, *geometry.tracer, false,
+    DirectLightResult& d = direct.stage();
+    d = computeDirectLight(c.scene, geometry.topology, geometry.origins, *geometry.tracer, false,
       c.options.lightOversampling, c.progress);
+    nodeDirect.stage() = detailNodeDirect(c.scene, detail, geometry.origins, geometry.faceNormals, *geometry.tracer,
+      false, &d.shadowRays);
   }
 
   void bounce(const StageContext& c)
@@ -222,6 +229,12 @@ private:
     }
     inputs.albedo = s.albedo;
     inputs.emission = s.emission;
+    // Detail nodes: their corners' radiance without the corners' direct light, and their own.
+    inputs.extraColumns = detail.columns(false);
+    inputs.extraRadiance = [&](Vec3f* radiance) {
+      detailNodeRadiance(s, detail, false, directNow.irradiance.data(), nodeDirect.now().data(), tree.nodeCount(),
+        radiance);
+    };
     std::vector<Vec3f> indirect = iterateHierarchicalBounces(tree, linksNow.transport, inputs, o.bounces, c.progress,
       exchangeOf(o));
     for (std::size_t v = 0; v < nv; ++v)
@@ -253,6 +266,9 @@ private:
     std::uint32_t binsPerSide = 0;
   } measured;
   Staged<DirectLightResult> direct;
+  /// Large triangles' nodes (surface hits on them read the nodes) and their E_d.
+  DetailNodes detail;
+  Staged<std::vector<Vec3f>> nodeDirect;
 };
 }
 

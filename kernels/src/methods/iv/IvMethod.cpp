@@ -2,6 +2,7 @@
 // makes each stale. Formulas in ClusterTree.h and ImplicitLinks.h; the CPU backend in
 // IvCpu.cpp, the CUDA backend in IvCuda.cpp. Documentation/Methods.md, "Implicit visibility".
 #include "methods/iv/IvBackends.h"
+#include "shared/DetailNodes.h"
 #include "engine/Progression.h"
 
 #include "cpu/CpuGeometry.h"
@@ -54,6 +55,14 @@ MemoryEstimate estimateIvMemory(const MemoryShape& shape, const SolverOptions& o
   if (!cuda && (stale & (1u << kElementStage)))
   {
     m.hostBytes += cpuGeometryBytes(shape);
+  }
+  if (!cuda)
+  {
+    // The detail nodes at their bound (the CPU's surface hits read them): the grids, each
+    // node, its E_d staged and kept, and its radiance in the bounces.
+    const std::uint64_t nodes = detailNodeBound(shape.vertices, shape.triangles);
+    m.hostBytes += shape.triangles * (sizeof(Index) + sizeof(std::uint16_t)) +
+      nodes * (sizeof(DetailNode) + 3 * sizeof(Vec3f));
   }
   if (stale & (1u << kLinkStage))
   {

@@ -176,7 +176,8 @@ enum class LeafReach
 
 /// `facing` = n_disc . (receiver - centre). A disc is its vertex's tangent plane; the
 /// surface bends away from it by about curvature x radius^2, so where a leaf is near
-/// (within twice its radius) its disc misplaces the surface by as much as the distance
+/// (within twice its `extent`, ClusterTree::extent: the element of a long thin triangle's
+/// corner reaches far beyond its disc's radius) its disc misplaces the surface by as much as the distance
 /// itself: at a crease the disc of a split twin at the same position covers up to the
 /// whole hemisphere from in front or from behind, whichever way the surface really turns;
 /// over a convex edge a rim reaches past the neighbouring faces. Such a leaf is drawn from
@@ -185,10 +186,10 @@ enum class LeafReach
 /// centre alone would let it through and its disc would blacken bins its surface does not
 /// reach. A leaf narrower than a bin fills it whole (the paper's Eq. 5), whichever side
 /// it shows.
-LINKGI_HOST_DEVICE inline LeafReach leafReach(float radius, float r2, float binAngle, float facing)
+LINKGI_HOST_DEVICE inline LeafReach leafReach(float radius, float extent, float r2, float binAngle, float facing)
 {
   const bool wide = radius * radius > 0.25f * binAngle * binAngle * r2;
-  return 4.f * radius * radius > r2 || (wide && !(facing > 0.f)) ? LeafReach::Surface
+  return 4.f * extent * extent > r2 || (wide && !(facing > 0.f)) ? LeafReach::Surface
     : wide                                                       ? LeafReach::Splat
                                                                  : LeafReach::Centre;
 }
@@ -197,10 +198,10 @@ LINKGI_HOST_DEVICE inline LeafReach leafReach(float radius, float r2, float binA
 /// whatever its bin's shortest is: a leaf the push draws from its surface covers bins
 /// beside its centre's, so a nearer link in its centre's bin hides only part of it (a
 /// split twin at a box's edge shares its bin and distance with the other face's vertex).
-LINKGI_HOST_DEVICE inline bool keptWhole(bool sourceIsLeaf, float radius, const Vec3f& normal, const Vec3f& d,
-  float d2, float binAngle)
+LINKGI_HOST_DEVICE inline bool keptWhole(bool sourceIsLeaf, float radius, float extent, const Vec3f& normal,
+  const Vec3f& d, float d2, float binAngle)
 {
-  return sourceIsLeaf && leafReach(radius, d2, binAngle, -dot(normal, d)) == LeafReach::Surface;
+  return sourceIsLeaf && leafReach(radius, extent, d2, binAngle, -dot(normal, d)) == LeafReach::Surface;
 }
 
 /// A bin's source drawn from its surface (surfaceHit) carries this bit, and its back the
@@ -214,9 +215,10 @@ constexpr Index kSourceMask = kSurfaceBack - 1;
 /// the largest (a third of its area; over its adjacent triangles, the vertex's area as
 /// vertexAreas counts it). Returns t > 0, or a negative value when it misses; `back` tells
 /// whether the ray meets the triangle's back: the side its `front` normal (frontFaceNormals:
-/// the side the vertex normals point to, whatever the winding) points away from.
+/// the side the vertex normals point to, whatever the winding) points away from; `hitU`,
+/// `hitV` the hit's barycentrics (1 - u - v, u, v) on the triangle.
 LINKGI_HOST_DEVICE inline float surfaceHit(const Vec3f& o, const Vec3f& dir, const Vec3f& p0, const Vec3f& p1,
-  const Vec3f& p2, int corner, const Vec3f& front, bool& back)
+  const Vec3f& p2, int corner, const Vec3f& front, bool& back, float& hitU, float& hitV)
 {
   const Vec3f e1 = p1 - p0, e2 = p2 - p0;
   const Vec3f pv = cross(dir, e2);
@@ -241,6 +243,8 @@ LINKGI_HOST_DEVICE inline float surfaceHit(const Vec3f& o, const Vec3f& dir, con
     return -1.f;
   }
   back = dot(dir, front) > 0.f;
+  hitU = u;
+  hitV = v;
   const float t = dot(e2, qv) * inv;
   return t > 0.f ? t : -1.f;
 }

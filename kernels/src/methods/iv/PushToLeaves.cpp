@@ -64,16 +64,31 @@ void concatenate(const std::vector<RowSlice>& slices, bool environment, SparseMa
   }
 }
 
+/// Where a bin's surface hit lies: its triangle and barycentrics (1 - u - v, u, v), read
+/// where the triangle carries detail nodes.
+struct SurfacePoint
+{
+  Index triangle = kInvalidIndex;
+  float u = 0.f, v = 0.f;
+};
+
+/// Whether a surface hit at `at` reads detail nodes: its triangle has a grid.
+inline bool onDetailNodes(const DetailGrid& grid, const SurfacePoint& at)
+{
+  return grid.steps && at.triangle != kInvalidIndex && grid.steps[at.triangle] > 0;
+}
+
 /// Offers the hit `source` (flagged kSurfaceHit, and kSurfaceBack for a back) at distance
-/// t to bin b.
-inline void offerHit(std::size_t b, float t, Index source, std::vector<float>& bestDistance,
-  std::vector<Index>& bestSource)
+/// t and point `at` to bin b.
+inline void offerHit(std::size_t b, float t, Index source, const SurfacePoint& at, std::vector<float>& bestDistance,
+  std::vector<Index>& bestSource, std::vector<SurfacePoint>& bestPoint)
 {
   const float d2 = t * t;
   if (bestSource[b] == kInvalidIndex || d2 < bestDistance[b] || (d2 == bestDistance[b] && source < bestSource[b]))
   {
     bestDistance[b] = d2;
     bestSource[b] = source;
+    bestPoint[b] = at;
   }
 }
 
@@ -141,7 +156,7 @@ bool faceBounds(const Vec3f q[3], int face, float& u0, float& u1, float& v0, flo
 /// cube face are tried (faceBounds).
 void drawSurfaces(const Scene& scene, const std::vector<Vec3f>& faceNormals, const ElementTriangles& elements,
   const std::vector<Index>& leaves, const Vec3f& o, const Vec3f& n, const CubeBins& bins,
-  std::vector<float>& bestDistance, std::vector<Index>& bestSource)
+  std::vector<float>& bestDistance, std::vector<Index>& bestSource, std::vector<SurfacePoint>& bestPoint)
 {
   const int side = bins.n;
   for (Index src : leaves)
@@ -155,10 +170,11 @@ void drawSurfaces(const Scene& scene, const std::vector<Vec3f>& faceNormals, con
       const auto tryBin = [&](std::size_t b) {
         const Vec3f& dir = bins.center[b];
         bool back = false;
-        const float t = dot(dir, n) > 0.f ? surfaceHit(o, dir, p[0], p[1], p[2], corner, front, back) : -1.f;
+        SurfacePoint at{ elements.triangles[k] };
+        const float t = dot(dir, n) > 0.f ? surfaceHit(o, dir, p[0], p[1], p[2], corner, front, back, at.u, at.v) : -1.f;
         if (t > 0.f)
         {
-          offerHit(b, t, src | kSurfaceHit | (back ? kSurfaceBack : 0u), bestDistance, bestSource);
+          offerHit(b, t, src | kSurfaceHit | (back ? kSurfaceBack : 0u), at, bestDistance, bestSource, bestPoint);
         }
       };
       const Vec3f q[3] = { p[0] - o, p[1] - o, p[2] - o };
@@ -194,17 +210,19 @@ void drawSurfaces(const Scene& scene, const std::vector<Vec3f>& faceNormals, con
 }
 
 /// Bins whose surface hit, at the receiver's `origin`, lies in a gap that the hit leaf's
-/// vertex is not in (hitInGap): black, as a back.
+/// vertex is not in (hitInGap): black, as a back. Not a hit on a triangle with detail nodes
+/// (`grid`): it reads the nodes around the hit, not the vertex.
 void darkenGaps(const ClusterTree& tree, const std::vector<Vec3f>& faceNormals, const std::vector<RayOrigin>& receivers,
-  const RayTracer& tracer, const Vec3f& origin, const Vec3f& n, const CubeBins& bins,
-  const std::vector<float>& bestDistance, std::vector<Index>& bestSource)
+  const RayTracer& tracer, const DetailGrid& grid, const Vec3f& origin, const Vec3f& n, const CubeBins& bins,
+  const std::vector<float>& bestDistance, std::vector<Index>& bestSource, const std::vector<SurfacePoint>& bestPoint)
 {
   const ClosestHit trace{ tracer };
   for (std::size_t b = 0; b < bins.count(); ++b)
   {
     const Index hit = bestSource[b];
     const Vec3f& dir = bins.center[b];
-    if (hit == kInvalidIndex || !(hit & kSurfaceHit) || (hit & kSurfaceBack) || dot(n, dir) <= 0.f)
+    if (hit == kInvalidIndex || !(hit & kSurfaceHit) || (hit & kSurfaceBack) || dot(n, dir) <= 0.f ||
+      onDetailNodes(grid, bestPoint[b]))
     {
       continue;
     }
@@ -228,8 +246,8 @@ ElementTriangles ElementTriangles::of(const Scene& scene)
 
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,
   const Scene& scene, const std::vector<Vec3f>& faceNormals, const ElementTriangles& elements,
-  const std::vector<RayOrigin>& receivers, const RayTracer* tracer, const ProgressCallback& progress,
-  const std::uint8_t* rows)
+  const std::vector<RayOrigin>& receivers, const RayTracer* tracer, const DetailNodes& detail,
+  const ProgressCallback& progress, const std::uint8_t* rows)
 {
   const std::size_t leaves = tree.leafCount, nb = bins.count();
   if (tree.nodeCount() > kSourceMask)
@@ -250,6 +268,7 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
   {
     binTexel[b] = environment.texelIndex(bins.center[b]);
   }
+  const DetailGrid grid = detail.grid(tree.nodeCount()); // node columns after the tree's
   std::vector<int> linkBin(m.nonZeros(), -1);
   parallelRanges(m.rows(), 1024, [&](std::size_t begin, std::size_t end) {
     for (std::size_t node = begin; node < end; ++node)
@@ -264,6 +283,7 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
   parallelFor("ImplicitLinks", sliceCount, 1, [&](std::size_t first, std::size_t last) {
     std::vector<float> bestDistance(nb);
     std::vector<Index> bestSource(nb, kInvalidIndex);
+    std::vector<SurfacePoint> bestPoint(nb);
     std::vector<std::pair<Index, float>> row, envRow;
     std::vector<Index> surfaces;
     for (std::size_t s = first; s < last; ++s)
@@ -314,7 +334,7 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
             {
               const Vec3f toSource = tree.position[src] - p;
               const float r2 = dot(toSource, toSource), radius = tree.radius[src];
-              const LeafReach reach = leafReach(radius, r2, binAngle, -dot(tree.normal[src], toSource));
+              const LeafReach reach = leafReach(radius, tree.extent[src], r2, binAngle, -dot(tree.normal[src], toSource));
               if (reach == LeafReach::Surface)
               {
                 surfaces.push_back(src); // a neighbour, a twin, a surface across a contact or behind
@@ -331,10 +351,10 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
         std::sort(surfaces.begin(), surfaces.end());
         surfaces.erase(std::unique(surfaces.begin(), surfaces.end()), surfaces.end());
         const Vec3f origin = receivers.empty() ? p : p + n * receivers[leaf].offset;
-        drawSurfaces(scene, faceNormals, elements, surfaces, origin, n, bins, bestDistance, bestSource);
+        drawSurfaces(scene, faceNormals, elements, surfaces, origin, n, bins, bestDistance, bestSource, bestPoint);
         if (tracer && !surfaces.empty() && !receivers.empty())
         {
-          darkenGaps(tree, faceNormals, receivers, *tracer, origin, n, bins, bestDistance, bestSource);
+          darkenGaps(tree, faceNormals, receivers, *tracer, grid, origin, n, bins, bestDistance, bestSource, bestPoint);
         }
         surfaces.clear();
         float hemisphere = 0.f;
@@ -359,7 +379,24 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
           // A surface hit shows the side it was met on; otherwise the side the disc faces.
           const bool front = (src & kSurfaceHit) ? !(src & kSurfaceBack)
                                                  : dot(tree.normal[src], p - tree.position[src]) > 0.f;
-          if (front)
+          if (!front)
+          {
+            continue;
+          }
+          if ((src & kSurfaceHit) && onDetailNodes(grid, bestPoint[b]))
+          {
+            const Index t = bestPoint[b].triangle;
+            // A hit on a triangle with detail nodes: the nodes of its grid cell.
+            Index column[3];
+            float weight[3];
+            detailCell(grid, t, scene.triangles[t], bestPoint[b].u, bestPoint[b].v, false, Index(leaves), column,
+              weight);
+            for (int k = 0; k < 3; ++k)
+            {
+              row.emplace_back(column[k], w * weight[k]);
+            }
+          }
+          else
           {
             row.emplace_back(src & kSourceMask, w);
           }

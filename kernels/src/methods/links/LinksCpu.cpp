@@ -175,16 +175,7 @@ private:
     // Detail nodes: their corners' radiance without the corners' direct light, and their own.
     inputs.extraColumns = detail.columns(o.twoSided);
     inputs.extraRadiance = [&](Vec3f* radiance) {
-      const std::size_t nodes = detail.nodes.size();
-      parallelRanges(inputs.extraColumns, 1024, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k)
-        {
-          const DetailNode& node = detail.nodes[k % nodes];
-          radiance[ne + k] = detailNodeRadiance(node, s.triangles[node.triangle], k >= nodes ? 1 : 0,
-            Index(s.vertexCount()), [radiance](Index e) { return radiance[e]; }, directNow.irradiance.data(),
-            s.albedo.data(), nodeDirectNow[k]);
-        }
-      });
+      detailNodeRadiance(s, detail, o.twoSided, directNow.irradiance.data(), nodeDirectNow.data(), ne, radiance);
     };
     std::vector<Vec3f> indirect = iterateBounces(linksNow.transport, inputs, o.bounces, c.progress,
       exchangeOf(o));

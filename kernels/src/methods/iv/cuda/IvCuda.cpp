@@ -81,6 +81,7 @@ private:
     }
     nodes.upload(nodeBounds(tree), stream);
     area.upload(tree.area, stream);
+    extents.upload(tree.extent, stream);
     linkOptions = LinkCreationOptions::of(s); // a pass over the positions: once per geometry
   }
 
@@ -178,7 +179,8 @@ private:
       frontierCount = std::size_t(pinned[0]);
       std::swap(frontier, next);
     }
-    gpu::keepShortestPerBin(links.data(), linkCount, nodes.data(), tree.nodeCount(), n, nodeRows, stream);
+    gpu::keepShortestPerBin(links.data(), linkCount, nodes.data(), extents.data(), tree.nodeCount(), n, nodeRows,
+      stream);
 
     if (tree.nodeCount() > kSourceMask)
     {
@@ -187,6 +189,7 @@ private:
     }
     gpu::PushParams p;
     p.nodes = nodes.data();
+    p.extents = extents.data();
     p.parent = parent.data();
     p.rowStarts = nodeRows.rowStarts.data();
     p.rowCounts = nodeRows.rowCounts.data();
@@ -322,7 +325,7 @@ private:
   LinkCreationOptions linkOptions;
   std::vector<Index> levelOffsets;
   GPUBuffer<NodeBounds> nodes;
-  GPUBuffer<float> area, binSolidAngles;
+  GPUBuffer<float> area, extents, binSolidAngles;
   GPUBuffer<Index> left, right, parent, levelNodes, binTexels, elementOffsets, elementTriangles;
   GPUBuffer<Vec3f> binCenters, albedo, emission;
   GPUBuffer<gpu::NodePair> frontier, next, links;

@@ -46,8 +46,9 @@ __global__ void visitKernel(PairRules rules, const NodePair* frontier, std::size
   rules.visit(frontier[i].a, frontier[i].b, emit, push);
 }
 
-__global__ void binKernel(const NodePair* links, std::size_t count, const NodeBounds* nodes, int n, int binCount,
-  float binAngle, std::uint64_t* best, Index* zeroCounts, NodePair* zero, unsigned long long* zeroCount)
+__global__ void binKernel(const NodePair* links, std::size_t count, const NodeBounds* nodes, const float* extents,
+  int n, int binCount, float binAngle, std::uint64_t* best, Index* zeroCounts, NodePair* zero,
+  unsigned long long* zeroCount)
 {
   const std::size_t i = std::size_t(blockIdx.x) * blockDim.x + threadIdx.x;
   if (i >= count)
@@ -58,7 +59,8 @@ __global__ void binKernel(const NodePair* links, std::size_t count, const NodeBo
   const Vec3f d = nodes[l.b].position - nodes[l.a].position;
   const float d2 = dot(d, d);
   const NodeBounds& source = nodes[l.b];
-  if (!(d2 > 0.f) || keptWhole(source.firstChild == kInvalidIndex, source.radius, source.normal, d, d2, binAngle))
+  const bool leaf = source.firstChild == kInvalidIndex;
+  if (!(d2 > 0.f) || keptWhole(leaf, source.radius, leaf ? extents[l.b] : 0.f, source.normal, d, d2, binAngle))
   {
     // No direction, or a leaf the push draws from its surface: kept. (The row's order does
     // not matter to the push.)
@@ -256,7 +258,7 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
       {
         const Vec3f toSource = s.position - bins.at;
         const float r2 = dot(toSource, toSource);
-        const LeafReach reach = leafReach(s.radius, r2, p.binAngle, -dot(s.normal, toSource));
+        const LeafReach reach = leafReach(s.radius, p.extents[src], r2, p.binAngle, -dot(s.normal, toSource));
         bool listed = false;
         for (int i = 0; reach == LeafReach::Surface && i < listedBefore && !listed; ++i)
         {
@@ -307,8 +309,9 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
         const Triangle tri = p.triangles[p.elementTriangles[k]];
         const int corner = tri.v[0] == src ? 0 : tri.v[1] == src ? 1 : 2;
         bool back = false;
+        float u, v;
         const float t = surfaceHit(origin, dir, p.positions[tri.v[0]], p.positions[tri.v[1]], p.positions[tri.v[2]],
-          corner, p.faceNormals[p.elementTriangles[k]], back);
+          corner, p.faceNormals[p.elementTriangles[k]], back, u, v);
         if (t > 0.f)
         {
           const std::uint64_t key = binKey(t * t, src | kSurfaceHit | (back ? kSurfaceBack : 0u));
@@ -460,8 +463,8 @@ void visitPairs(const PairRules& rules, const NodePair* frontier, std::size_t co
   }
 }
 
-void keepShortestPerBin(const NodePair* links, std::size_t linkCount, const NodeBounds* nodes, std::size_t nodeCount,
-  int binsPerSide, NodeRows& rows, cudaStream_t stream)
+void keepShortestPerBin(const NodePair* links, std::size_t linkCount, const NodeBounds* nodes, const float* extents,
+  std::size_t nodeCount, int binsPerSide, NodeRows& rows, cudaStream_t stream)
 {
   const int binCount = 6 * binsPerSide * binsPerSide;
   rows.best.resize(nodeCount * binCount);
@@ -475,7 +478,7 @@ void keepShortestPerBin(const NodePair* links, std::size_t linkCount, const Node
   {
     // CubeBins::meanSolidAngle's square root, as the CPU takes it.
     const float binAngle = std::sqrt(4.f * kPi / float(binCount));
-    binKernel<<<gridBlocks(linkCount), kThreads, 0, stream>>>(links, linkCount, nodes, binsPerSide, binCount,
+    binKernel<<<gridBlocks(linkCount), kThreads, 0, stream>>>(links, linkCount, nodes, extents, binsPerSide, binCount,
       binAngle, rows.best.data(), rows.zeroCounts.data(), rows.zero.data(), rows.zeroCount.data());
     LINKGI_CUDA_CHECK_LAUNCH("binKernel");
   }

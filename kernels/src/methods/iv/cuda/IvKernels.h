@@ -44,13 +44,14 @@ struct NodeRows
   cuda::GPUBuffer<unsigned long long> zeroCount;
   cuda::GPUBuffer<unsigned char> temp;
 };
-void keepShortestPerBin(const NodePair* links, std::size_t linkCount, const NodeBounds* nodes, std::size_t nodeCount,
-  int binsPerSide, NodeRows& rows, cudaStream_t stream);
+void keepShortestPerBin(const NodePair* links, std::size_t linkCount, const NodeBounds* nodes, const float* extents,
+  std::size_t nodeCount, int binsPerSide, NodeRows& rows, cudaStream_t stream);
 
 /// What the push to the leaves reads.
 struct PushParams
 {
   const NodeBounds* nodes = nullptr; ///< position, radius, normal per node
+  const float* extents = nullptr;    ///< per leaf: ClusterTree::extent
   const Index* parent = nullptr;
   const Offset* rowStarts = nullptr; ///< the node links' rows
   const Index* rowCounts = nullptr;
