@@ -79,6 +79,18 @@ LINKGI_HOST_DEVICE inline void detailCell(const DetailGrid& g, Index t, const Tr
   }
 }
 
+/// The grid point nearest barycentrics (1 - u - v, u, v) of a subdivided triangle: of its
+/// grid cell's corners (detailCell), the one of the largest weight.
+LINKGI_HOST_DEVICE inline Index detailNearestColumn(const DetailGrid& g, Index t, const Triangle& tri, float u,
+  float v, bool back, Index vertexCount)
+{
+  Index column[3];
+  float weight[3];
+  detailCell(g, t, tri, u, v, back, vertexCount, column, weight);
+  const int k = weight[0] >= weight[1] && weight[0] >= weight[2] ? 0 : weight[1] >= weight[2] ? 1 : 2;
+  return column[k];
+}
+
 /// One node of a subdivided triangle: the triangle and the node's barycentrics there.
 struct DetailNode
 {

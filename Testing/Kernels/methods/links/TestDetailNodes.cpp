@@ -203,6 +203,16 @@ TEST(TestDetailNodes, ImplicitLinksSeeTheLightOnALargeTriangleWhoseCornersAreDar
   expectPlateLitAsTheReference(Backend::Cpu, Method::ImplicitVisibility, 0.35);
 }
 
+TEST(TestDetailNodes, ImplicitLinksSeeTheLightOnALargeTriangleWhoseCornersAreDarkOnTheGpu)
+{
+  LINKGI_REQUIRE_CUDA_DEVICE();
+  expectPlateLitAsTheReference(Backend::Cuda, Method::ImplicitVisibility, 0.35);
+  Index plate = 0;
+  SolverOptions o;
+  o.method = Method::ImplicitVisibility;
+  test::expectBackendsAgree(test::plateInAPoolOfLight(plate), o, 2e-3f);
+}
+
 TEST(TestDetailNodes, LinksSeeTheLightOnALargeTriangleWhoseCornersAreDarkOnTheGpu)
 {
   LINKGI_REQUIRE_CUDA_DEVICE();

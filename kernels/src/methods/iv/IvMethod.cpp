@@ -56,13 +56,12 @@ MemoryEstimate estimateIvMemory(const MemoryShape& shape, const SolverOptions& o
   {
     m.hostBytes += cpuGeometryBytes(shape);
   }
-  if (!cuda)
   {
-    // The detail nodes at their bound (the CPU's surface hits read them): the grids, each
-    // node, its E_d staged and kept, and its radiance in the bounces.
+    // The detail nodes at their bound: the grids, each node, and on the CPU its E_d staged
+    // and kept and its radiance in the bounces (on the GPU those are the device's).
     const std::uint64_t nodes = detailNodeBound(shape.vertices, shape.triangles);
     m.hostBytes += shape.triangles * (sizeof(Index) + sizeof(std::uint16_t)) +
-      nodes * (sizeof(DetailNode) + 3 * sizeof(Vec3f));
+      nodes * (sizeof(DetailNode) + (cuda ? 0 : 3 * sizeof(Vec3f)));
   }
   if (stale & (1u << kLinkStage))
   {

@@ -385,16 +385,12 @@ LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const Cu
           }
           if ((src & kSurfaceHit) && onDetailNodes(grid, bestPoint[b]))
           {
-            const Index t = bestPoint[b].triangle;
-            // A hit on a triangle with detail nodes: the nodes of its grid cell.
-            Index column[3];
-            float weight[3];
-            detailCell(grid, t, scene.triangles[t], bestPoint[b].u, bestPoint[b].v, false, Index(leaves), column,
-              weight);
-            for (int k = 0; k < 3; ++k)
-            {
-              row.emplace_back(column[k], w * weight[k]);
-            }
+            // A hit on a triangle with detail nodes: the grid point nearest to it, one entry
+            // per bin as any other source's.
+            const SurfacePoint& at = bestPoint[b];
+            row.emplace_back(detailNearestColumn(grid, at.triangle, scene.triangles[at.triangle], at.u, at.v, false,
+                               Index(leaves)),
+              w);
           }
           else
           {

@@ -8,6 +8,7 @@
 #include "methods/iv/IvBackends.h"
 #include "methods/iv/cuda/IvKernels.h"
 
+#include "cuda/DetailKernels.h"
 #include "cuda/OneDevice.h"
 
 #include "cuda/Cuda.h"
@@ -53,6 +54,7 @@ public:
     st.setCounter("LinksRaw", nodeLinks);
     st.setCounter("LinksCompressed", transportEntries);
     st.setCounter("LinkBytes", (transportEntries + environmentEntries) * (sizeof(Index) + sizeof(float)));
+    st.setCounter("DetailNodes", detail.nodes.size());
     st.lightRays = lightRays;
   }
 
@@ -82,6 +84,11 @@ private:
     nodes.upload(nodeBounds(tree), stream);
     area.upload(tree.area, stream);
     extents.upload(tree.extent, stream);
+    // The large triangles' nodes, laid out on the host (1-4 ms on 150k triangles).
+    detail = detailNodes(s, detailNodeBudget(s.vertexCount()));
+    detailFirst.upload(detail.first, stream);
+    detailSteps.upload(detail.steps, stream);
+    detailNodeList.upload(detail.nodes, stream);
     linkOptions = LinkCreationOptions::of(s); // a pass over the positions: once per geometry
   }
 
@@ -182,7 +189,8 @@ private:
     gpu::keepShortestPerBin(links.data(), linkCount, nodes.data(), extents.data(), tree.nodeCount(), n, nodeRows,
       stream);
 
-    if (tree.nodeCount() > kSourceMask)
+    // A bin's key holds its column: the tree's nodes, then the detail nodes.
+    if (tree.nodeCount() + detail.nodes.size() > kSourceMask)
     {
       throw Error("The implicit-visibility method holds at most " + std::to_string(kSourceMask / 2) +
         " vertices; the scene has " + std::to_string(tree.leafCount) + ".");
@@ -207,6 +215,13 @@ private:
     p.leafCount = Index(tree.leafCount);
     p.binsPerSide = n;
     p.binAngle = std::sqrt(bins.meanSolidAngle());
+    if (!detail.empty())
+    {
+      p.detail.first = detailFirst.data();
+      p.detail.steps = detailSteps.data();
+      p.detail.columnBase = Index(tree.nodeCount());
+      p.detail.nodesPerSide = Index(detail.nodes.size());
+    }
     totals.resize(5);
     totals.fillZero(stream);
     stride = bins.count();
@@ -238,6 +253,13 @@ private:
   void lightLinks(const StageContext& c)
   {
     direct.queue(c.scene, c.options, mesh, device.counters + kLightSlot, stream);
+    nodeDirect.resize(std::max<std::size_t>(detail.nodes.size(), 1));
+    nodeRays.resize(1);
+    nodeRays.fillZero(stream);
+    cuda::detailDirect(detailParams(), direct.lights.data(), Index(direct.lights.size()), nodeDirect.data(),
+      nodeRays.data(), stream);
+    LINKGI_CUDA_CHECK(cudaMemcpyAsync(device.counters + kNodeLightSlot, nodeRays.data(), sizeof(unsigned long long),
+      cudaMemcpyDeviceToHost, stream));
     lightPending = true;
   }
 
@@ -254,6 +276,21 @@ private:
     v.nonZeros = entries;
     v.lanes = cuda::lanesForRows(entries, tree.leafCount);
     return v;
+  }
+
+  /// The detail nodes' kernels' view of the mesh (one-sided).
+  cuda::DetailParams detailParams() const
+  {
+    cuda::DetailParams d;
+    d.bvh = mesh.bvh.view();
+    d.triangles = mesh.triangles.data();
+    d.positions = mesh.positions.data();
+    d.normals = mesh.normals.data();
+    d.faceNormals = mesh.faceNormals.data();
+    d.origins = mesh.origins.data();
+    d.nodes = detailNodeList.data();
+    d.nodeCount = Index(detail.nodes.size());
+    return d;
   }
 
   void bounce(const StageContext& c)
@@ -279,7 +316,7 @@ private:
     {
       b->resize(std::max<std::size_t>(nv, 1));
     }
-    radiance.resize(std::max<std::size_t>(tree.nodeCount(), 1));
+    radiance.resize(std::max<std::size_t>(tree.nodeCount() + detail.nodes.size(), 1)); // the tree's, the nodes'
     cuda::gatherRgb(view(leafRows.envCounts, leafRows.envColumns, leafRows.envWeights, environmentEntries),
       texelRadiance.data(), envIrradiance.data(), stream);
     gpu::addDirect(direct.direct.data(), envIrradiance.data(), nv, fixed.data(), stream);
@@ -297,20 +334,22 @@ private:
       c.check(double(b) / std::max(1u, o.bounces));
       gpu::leafRadianceAndPullUp(levels, levelOffsets, albedo.data(), le, fixed.data(), indirect.data(),
         radiance.data(), stream);
+      cuda::detailRadiance(detailParams(), Index(tree.nodeCount()), Index(nv), direct.direct.data(), albedo.data(),
+        nodeDirect.data(), radiance.data(), stream);
       cuda::gatherRgb(w, radiance.data(), indirect.data(), stream);
     }
     gpu::addTo(envIrradiance.data(), nv, indirect.data(), stream);
     done.run(s, o, mesh, direct.direct.data(), indirect.data(), albedo.data(), le, c.solution, {}, stream);
     if (lightPending)
     {
-      lightRays = device.counters[kLightSlot];
+      lightRays = device.counters[kLightSlot] + device.counters[kNodeLightSlot];
       lightPending = false;
     }
   }
 
   /// counters' slots (pinned): the direct light's shadow rays, a level's [next pairs, links],
   /// the push's five totals.
-  static constexpr int kLightSlot = 0, kNextSlot = 1, kTotalsSlot = 3, kSlots = 8;
+  static constexpr int kLightSlot = 0, kNextSlot = 1, kTotalsSlot = 3, kNodeLightSlot = 8, kSlots = 9;
 
   cuda::DeviceContext device{ kSlots };
   cudaStream_t stream = device.stream;
@@ -327,7 +366,13 @@ private:
   GPUBuffer<NodeBounds> nodes;
   GPUBuffer<float> area, extents, binSolidAngles;
   GPUBuffer<Index> left, right, parent, levelNodes, binTexels, elementOffsets, elementTriangles;
-  GPUBuffer<Vec3f> binCenters, albedo, emission;
+  GPUBuffer<Vec3f> binCenters, albedo, emission, nodeDirect;
+  /// The large triangles' detail nodes (DetailNodes.h), their grids and E_d.
+  DetailNodes detail;
+  GPUBuffer<Index> detailFirst;
+  GPUBuffer<std::uint16_t> detailSteps;
+  GPUBuffer<DetailNode> detailNodeList;
+  GPUBuffer<unsigned long long> nodeRays;
   GPUBuffer<gpu::NodePair> frontier, next, links;
   GPUBuffer<unsigned long long> counters, totals;
   gpu::NodeRows nodeRows;

@@ -301,6 +301,8 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
     }
     std::uint64_t best = keys[b];
     float bestT = 0.f; // of a surface hit that is the best
+    Index bestTriangle = kInvalidIndex;
+    float bestU = 0.f, bestV = 0.f;
     for (int i = 0; i < nearCount; ++i)
     {
       const Index src = near[i];
@@ -315,13 +317,27 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
         if (t > 0.f)
         {
           const std::uint64_t key = binKey(t * t, src | kSurfaceHit | (back ? kSurfaceBack : 0u));
-          bestT = key < best ? t : bestT;
-          best = key < best ? key : best;
+          if (key < best)
+          {
+            best = key;
+            bestT = t;
+            bestTriangle = p.elementTriangles[k];
+            bestU = u;
+            bestV = v;
+          }
         }
       }
     }
     const Index hit = Index(best & 0xffffffffu);
-    if (bestT > 0.f && p.receivers && (hit & kSurfaceHit) && !(hit & kSurfaceBack))
+    if (bestT > 0.f && (hit & kSurfaceHit) && !(hit & kSurfaceBack) && p.detail.steps &&
+      p.detail.steps[bestTriangle] > 0)
+    {
+      // On a triangle with detail nodes: its grid point nearest the hit, in place of the leaf.
+      const Index column = detailNearestColumn(p.detail, bestTriangle, p.triangles[bestTriangle], bestU, bestV, false,
+        p.leafCount);
+      best = (best & ~std::uint64_t(0xffffffffu)) | column | kSurfaceHit;
+    }
+    else if (bestT > 0.f && p.receivers && (hit & kSurfaceHit) && !(hit & kSurfaceBack))
     {
       const NodeBounds& s = p.nodes[hit & kSourceMask];
       const Vec3f facing = dot(s.normal, dir) < 0.f ? s.normal : -s.normal;
@@ -375,9 +391,11 @@ __global__ void __launch_bounds__(kPushThreads) pushKernel(PushParams p, std::si
       {
         atomicAdd(&occupied, 1u);
         const Index src = Index(keys[b] & 0xffffffffu);
-        const NodeBounds& s = p.nodes[src & kSourceMask];
-        // A surface hit shows the side it was met on; otherwise the side the disc faces.
-        const bool front = (src & kSurfaceHit) ? !(src & kSurfaceBack) : dot(s.normal, bins.at - s.position) > 0.f;
+        // A surface hit shows the side it was met on (its column may be a detail node's);
+        // otherwise the side the disc faces.
+        const bool front = (src & kSurfaceHit)
+          ? !(src & kSurfaceBack)
+          : dot(p.nodes[src].normal, bins.at - p.nodes[src].position) > 0.f;
         if (front)
         {
           key = (std::uint64_t(src & kSourceMask) << 32) | std::uint32_t(b);

@@ -66,6 +66,9 @@ struct PushParams
   const Vec3f* binCenters = nullptr;
   const float* binSolidAngles = nullptr;
   const Index* binTexels = nullptr; ///< the environment texel each bin's centre sees
+  /// The large triangles' nodes (columns after the tree's nodes): a front surface hit on
+  /// one goes to its grid point nearest the hit, and is not tested for a gap.
+  DetailGrid detail;
   Index leafCount = 0;
   int binsPerSide = 0;
   float binAngle = 0.f; ///< sqrt of the mean bin solid angle
