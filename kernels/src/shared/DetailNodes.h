@@ -3,7 +3,7 @@
 // rim crosses a triangle much larger than the scene's detail, the corners do not see it
 // (a CAD part of 1,710 points: 14% from the path tracer for this alone). Large triangles
 // therefore carry a grid of detail nodes: links that hit them (the link method's, and
-// implicit visibility's surface hits on the CPU) go to the grid's nodes, whose direct light
+// implicit visibility's surface hits) go to the grid's nodes, whose direct light
 // is traced on every light change, while everything else they carry (the environment's
 // light, bounced light, emission) is interpolated from the corners.
 #pragma once

@@ -167,10 +167,10 @@ TEST(TestDetailNodes, OnlyTrianglesLargerThanTheMeshsDetailGetGrids)
 namespace
 {
 /// The plate's indirect light with `method` on `backend` over the reference's
-/// (test::plateInAPoolOfLight), within `tolerance`: a link from the plate that hits the
-/// floor, or an implicit link's surface hit there, must read the light where it lands. From
-/// the floor's dark corners alone, the plate got none.
-void expectPlateLitAsTheReference(Backend backend, Method method = Method::Links, double tolerance = 0.1)
+/// (test::plateInAPoolOfLight): a link from the plate that hits the floor, or an implicit
+/// link's surface hit there, must read the light where it lands. From the floor's dark
+/// corners alone, the plate got none.
+void expectPlateLitAsTheReference(Backend backend, Method method = Method::Links)
 {
   Index plate = 0;
   const Scene s = test::plateInAPoolOfLight(plate);
@@ -186,7 +186,7 @@ void expectPlateLitAsTheReference(Backend backend, Method method = Method::Links
   std::printf("plate in a pool of light (%s, method %d): mean indirect %.5f, the reference %.5f\n",
     solver.stats().backend.c_str(), int(method), mean, reference);
   EXPECT_GT(reference, 0.0);
-  EXPECT_NEAR(mean / reference, 1.0, tolerance);
+  EXPECT_NEAR(mean / reference, 1.0, 0.1);
 }
 }
 
@@ -197,16 +197,16 @@ TEST(TestDetailNodes, LinksSeeTheLightOnALargeTriangleWhoseCornersAreDark)
 
 TEST(TestDetailNodes, ImplicitLinksSeeTheLightOnALargeTriangleWhoseCornersAreDark)
 {
-  // The floor's four vertices are the plate's near leaves, drawn from their surface. 27%
-  // low at 8 to 24 bins per side: bins nearer to the plate's foot hold the clusters of the
-  // floor's corners, whose light is the corners' (Methods.md, "Implicit visibility").
-  expectPlateLitAsTheReference(Backend::Cpu, Method::ImplicitVisibility, 0.35);
+  // The floor's four vertices are the plate's near leaves, drawn from their surface; the
+  // two behind the plate's plane reach in front of it (ClusterTree::extent), and without
+  // them the bins towards the floor beside the plate's foot saw nothing (28% low).
+  expectPlateLitAsTheReference(Backend::Cpu, Method::ImplicitVisibility);
 }
 
 TEST(TestDetailNodes, ImplicitLinksSeeTheLightOnALargeTriangleWhoseCornersAreDarkOnTheGpu)
 {
   LINKGI_REQUIRE_CUDA_DEVICE();
-  expectPlateLitAsTheReference(Backend::Cuda, Method::ImplicitVisibility, 0.35);
+  expectPlateLitAsTheReference(Backend::Cuda, Method::ImplicitVisibility);
   Index plate = 0;
   SolverOptions o;
   o.method = Method::ImplicitVisibility;

@@ -124,6 +124,7 @@ void ClusterTree::refit(const Scene& scene, const std::vector<float>& areas)
   coneAngle.resize(nodes);
   planeDeviation.resize(nodes);
   extent.resize(leafCount);
+  extentSlab.resize(leafCount);
   for (std::size_t v = 0; v < leafCount; ++v)
   {
     position[v] = scene.positions[v];
@@ -133,6 +134,7 @@ void ClusterTree::refit(const Scene& scene, const std::vector<float>& areas)
     coneAngle[v] = 0.f;
     planeDeviation[v] = 0.f;
     extent[v] = radius[v];
+    extentSlab[v] = 0.f;
   }
   for (const Triangle& t : scene.triangles)
   {
@@ -140,10 +142,14 @@ void ClusterTree::refit(const Scene& scene, const std::vector<float>& areas)
     const Vec3f centroid = (p[0] + p[1] + p[2]) * (1.f / 3.f);
     for (int k = 0; k < 3; ++k)
     {
+      const Index v = t.v[k];
       const Vec3f& a = p[k];
-      const float farthest = std::max({ length(centroid - a), 0.5f * length(p[(k + 1) % 3] - a),
-        0.5f * length(p[(k + 2) % 3] - a) });
-      extent[t.v[k]] = std::max(extent[t.v[k]], farthest);
+      const Vec3f corners[3] = { centroid - a, 0.5f * (p[(k + 1) % 3] - a), 0.5f * (p[(k + 2) % 3] - a) };
+      for (const Vec3f& q : corners)
+      {
+        extent[v] = std::max(extent[v], length(q));
+        extentSlab[v] = std::max(extentSlab[v], std::abs(dot(normal[v], q)));
+      }
     }
   }
   for (std::size_t i = 0; i < left.size(); ++i)

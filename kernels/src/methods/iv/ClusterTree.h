@@ -33,6 +33,9 @@ struct ClusterTree
   /// of each adjacent triangle: an edge's midpoint or the centroid), at least its disc's
   /// radius. A long thin triangle's element reaches far beyond its disc.
   std::vector<float> extent;
+  /// Per leaf: bound on |normal . (q - vertex)| over those corners q: the slab its element
+  /// lies in (0 on a flat patch).
+  std::vector<float> extentSlab;
 
   std::size_t nodeCount() const { return position.size(); }
   Index root() const { return Index(nodeCount() - 1); }

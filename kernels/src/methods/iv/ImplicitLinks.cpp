@@ -239,11 +239,13 @@ LinkCreationOptions LinkCreationOptions::of(const Scene& scene)
   return o;
 }
 
-PairRules pairRules(const NodeBounds* nodes, const Index* left, const Index* right, std::size_t leafCount,
-  const CubeBins& bins, const LinkCreationOptions& options)
+PairRules pairRules(const NodeBounds* nodes, const Index* left, const Index* right, const float* extents,
+  const float* extentSlabs, std::size_t leafCount, const CubeBins& bins, const LinkCreationOptions& options)
 {
   PairRules r;
   r.nodes = nodes;
+  r.extents = extents;
+  r.extentSlabs = extentSlabs;
   r.left = left;
   r.right = right;
   r.leafCount = Index(leafCount);
@@ -289,7 +291,8 @@ NodeLinks createNodeLinks(const ClusterTree& tree, const CubeBins& bins,
   std::vector<Index>* createdPerReceiver)
 {
   const std::vector<NodeBounds> nodes = nodeBounds(tree);
-  PairRules rules = pairRules(nodes.data(), tree.left.data(), tree.right.data(), tree.leafCount, bins, options);
+  PairRules rules = pairRules(nodes.data(), tree.left.data(), tree.right.data(), tree.extent.data(),
+    tree.extentSlab.data(), tree.leafCount, bins, options);
   std::vector<std::uint8_t> ownBelow;
   if (rows)
   {

@@ -105,10 +105,11 @@ struct NodeLinks
 
 /// The pair recursion's record of every node (positions, bounds, first child).
 std::vector<NodeBounds> nodeBounds(const ClusterTree& tree);
-/// The pair recursion's rules over a tree: `nodes`, `left`, `right` (ClusterTree's, or
-/// their copies on a GPU) and the thresholds of `bins` and `options`.
-PairRules pairRules(const NodeBounds* nodes, const Index* left, const Index* right, std::size_t leafCount,
-  const CubeBins& bins, const LinkCreationOptions& options);
+/// The pair recursion's rules over a tree: `nodes`, `left`, `right`, `extents`,
+/// `extentSlabs` (ClusterTree's, or their copies on a GPU) and the thresholds of `bins` and
+/// `options`.
+PairRules pairRules(const NodeBounds* nodes, const Index* left, const Index* right, const float* extents,
+  const float* extentSlabs, std::size_t leafCount, const CubeBins& bins, const LinkCreationOptions& options);
 
 /// `rows` (per leaf, or null for all): only the links that reach these leaves' ancestors
 /// (a process's share under MPI, or a sample's); pairs of which neither holds such a leaf

@@ -29,9 +29,18 @@ struct NodeBounds
   Index firstChild; ///< left child, kInvalidIndex for a leaf
 };
 
-/// Whether some disc point of `a` can see some disc point of `b` in front of it (a can
-/// receive from b); conservative, from the nodes' bounds. d = p_b - p_a, r2 = |d|^2.
-LINKGI_HOST_DEVICE inline bool canReceive(const NodeBounds& a, const NodeBounds& b, const Vec3f& d, float r2, float eps)
+/// How far a node's surface reaches from its position, and the slab about its plane that
+/// holds it: a cluster's bounding sphere and slab, a leaf's element (ClusterTree::extent,
+/// extentSlab), which reaches beyond its disc.
+struct Reach
+{
+  float radius, slab;
+};
+
+/// Whether some disc point of `a` can see some point of `b` in front of it (a can receive
+/// from b); conservative, from the nodes' bounds and b's `reach`. d = p_b - p_a, r2 = |d|^2.
+LINKGI_HOST_DEVICE inline bool canReceive(const NodeBounds& a, const NodeBounds& b, const Reach& reachB,
+  const Vec3f& d, float r2, float eps)
 {
   if (a.coneAngle < kFlatCone)
   {
@@ -40,15 +49,15 @@ LINKGI_HOST_DEVICE inline bool canReceive(const NodeBounds& a, const NodeBounds&
     // points rise above the plane through b's centre with a's normal. Most pairs are
     // decided by the bounds of rise, without its square root.
     const float front = dot(a.normal, d) + a.planeDeviation - eps;
-    if (front > 0.f || front + b.radius <= 0.f)
+    if (front > 0.f || front + reachB.radius <= 0.f)
     {
       return front > 0.f;
     }
     const float along = std::abs(dot(a.normal, b.normal));
     const float across = std::sqrt(std::max(0.f, 1.f - along * along));
-    return front + std::min(b.radius, along * b.planeDeviation + across * b.radius) > 0.f;
+    return front + std::min(reachB.radius, along * reachB.slab + across * reachB.radius) > 0.f;
   }
-  const float reach = a.radius + b.radius;
+  const float reach = a.radius + reachB.radius;
   if (r2 <= reach * reach || a.coneCos <= 0.f)
   {
     return true;
@@ -76,6 +85,10 @@ struct PairRules
   /// row). Links are then made only into such nodes, and a pair of which neither is one is
   /// not followed: what the process pushes to its leaves is unchanged.
   const std::uint8_t* ownBelow = nullptr;
+  /// Per leaf, or null: how far its element reaches and the slab it lies in
+  /// (ClusterTree::extent, extentSlab), for canReceive.
+  const float* extents = nullptr;
+  const float* extentSlabs = nullptr;
 
   /// One step of the recursion over the pair (a, b): links it (emit(receiver, source), for
   /// each end that can receive), prunes it, or pushes the pairs of a subdivision.
@@ -101,8 +114,8 @@ struct PairRules
     const NodeBounds& nb = nodes[b];
     const Vec3f d = nb.position - na.position;
     const float r2 = dot(d, d);
-    const bool aReceives = canReceive(na, nb, d, r2, planeEpsilon);
-    const bool bReceives = canReceive(nb, na, -d, r2, planeEpsilon);
+    const bool aReceives = canReceive(na, nb, reach(b), d, r2, planeEpsilon);
+    const bool bReceives = canReceive(nb, na, reach(a), -d, r2, planeEpsilon);
     if (!aReceives && !bReceives)
     {
       return;
@@ -127,6 +140,12 @@ struct PairRules
     {
       emit(b, a);
     }
+  }
+
+  LINKGI_HOST_DEVICE Reach reach(Index x) const
+  {
+    return extents && x < leafCount ? Reach{ extents[x], extentSlabs[x] }
+                                    : Reach{ nodes[x].radius, nodes[x].planeDeviation };
   }
 
   LINKGI_HOST_DEVICE bool tooBig(const NodeBounds& x, float limit) const

@@ -84,6 +84,7 @@ private:
     nodes.upload(nodeBounds(tree), stream);
     area.upload(tree.area, stream);
     extents.upload(tree.extent, stream);
+    extentSlabs.upload(tree.extentSlab, stream);
     // The large triangles' nodes, laid out on the host (1-4 ms on 150k triangles).
     detail = detailNodes(s, detailNodeBudget(s.vertexCount()));
     detailFirst.upload(detail.first, stream);
@@ -154,7 +155,8 @@ private:
 
     // The pair recursion, breadth first: one launch per level of pairs, each level's
     // links and next pairs appended; a level that overflows its buffers runs again.
-    const PairRules rules = pairRules(nodes.data(), left.data(), right.data(), tree.leafCount, bins, linkOptions);
+    const PairRules rules = pairRules(nodes.data(), left.data(), right.data(), extents.data(), extentSlabs.data(),
+      tree.leafCount, bins, linkOptions);
     const gpu::NodePair root{ tree.root(), tree.root() };
     frontier.upload(&root, 1, stream);
     std::size_t frontierCount = 1, linkCount = 0;
@@ -364,7 +366,7 @@ private:
   LinkCreationOptions linkOptions;
   std::vector<Index> levelOffsets;
   GPUBuffer<NodeBounds> nodes;
-  GPUBuffer<float> area, extents, binSolidAngles;
+  GPUBuffer<float> area, extents, extentSlabs, binSolidAngles;
   GPUBuffer<Index> left, right, parent, levelNodes, binTexels, elementOffsets, elementTriangles;
   GPUBuffer<Vec3f> binCenters, albedo, emission, nodeDirect;
   /// The large triangles' detail nodes (DetailNodes.h), their grids and E_d.
