@@ -1,5 +1,6 @@
 #include "methods/iv/ClusterTree.h"
 
+#include "cpu/Parallel.h"
 #include "linkgi/Error.h"
 
 #include <algorithm>
@@ -136,20 +137,38 @@ void ClusterTree::refit(const Scene& scene, const std::vector<float>& areas)
     extent[v] = radius[v];
     extentSlab[v] = 0.f;
   }
-  for (const Triangle& t : scene.triangles)
+  // Each triangle's corners in parallel, then the vertices' maxima in one pass.
+  const std::size_t nt = scene.triangles.size();
+  std::vector<float> cornerExtent(3 * nt), cornerSlab(3 * nt);
+  parallelRanges(nt, 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t)
+    {
+      const Triangle& tri = scene.triangles[t];
+      const Vec3f p[3] = { scene.positions[tri.v[0]], scene.positions[tri.v[1]], scene.positions[tri.v[2]] };
+      const Vec3f centroid = (p[0] + p[1] + p[2]) * (1.f / 3.f);
+      for (int k = 0; k < 3; ++k)
+      {
+        const Vec3f& a = p[k];
+        const Vec3f& n = normal[tri.v[k]];
+        const Vec3f corners[3] = { centroid - a, 0.5f * (p[(k + 1) % 3] - a), 0.5f * (p[(k + 2) % 3] - a) };
+        float e = 0.f, slab = 0.f;
+        for (const Vec3f& q : corners)
+        {
+          e = std::max(e, length(q));
+          slab = std::max(slab, std::abs(dot(n, q)));
+        }
+        cornerExtent[3 * t + k] = e;
+        cornerSlab[3 * t + k] = slab;
+      }
+    }
+  });
+  for (std::size_t t = 0; t < nt; ++t)
   {
-    const Vec3f p[3] = { scene.positions[t.v[0]], scene.positions[t.v[1]], scene.positions[t.v[2]] };
-    const Vec3f centroid = (p[0] + p[1] + p[2]) * (1.f / 3.f);
     for (int k = 0; k < 3; ++k)
     {
-      const Index v = t.v[k];
-      const Vec3f& a = p[k];
-      const Vec3f corners[3] = { centroid - a, 0.5f * (p[(k + 1) % 3] - a), 0.5f * (p[(k + 2) % 3] - a) };
-      for (const Vec3f& q : corners)
-      {
-        extent[v] = std::max(extent[v], length(q));
-        extentSlab[v] = std::max(extentSlab[v], std::abs(dot(normal[v], q)));
-      }
+      const Index v = scene.triangles[t].v[k];
+      extent[v] = std::max(extent[v], cornerExtent[3 * t + k]);
+      extentSlab[v] = std::max(extentSlab[v], cornerSlab[3 * t + k]);
     }
   }
   for (std::size_t i = 0; i < left.size(); ++i)
