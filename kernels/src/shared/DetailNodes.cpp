@@ -26,13 +26,13 @@ std::size_t nodesOf(int n)
 }
 }
 
-DetailGrid DetailNodes::grid(std::size_t elementCount) const
+DetailGrid DetailNodes::grid(std::size_t elementCount, const Index* firstCopy, const std::uint16_t* stepsCopy) const
 {
   DetailGrid g;
   if (!empty())
   {
-    g.first = first.data();
-    g.steps = steps.data();
+    g.first = firstCopy;
+    g.steps = stepsCopy;
     g.columnBase = Index(elementCount);
     g.nodesPerSide = Index(nodes.size());
   }

@@ -156,7 +156,9 @@ struct DetailNodes
 
   bool empty() const { return nodes.empty(); }
   /// Node columns per element count (the column space is elements, then nodes per side).
-  DetailGrid grid(std::size_t elementCount) const;
+  DetailGrid grid(std::size_t elementCount) const { return grid(elementCount, first.data(), steps.data()); }
+  /// The same over copies of `first` and `steps` elsewhere (a GPU's).
+  DetailGrid grid(std::size_t elementCount, const Index* firstCopy, const std::uint16_t* stepsCopy) const;
   /// Columns beyond the elements: the nodes, once per side.
   std::size_t columns(bool twoSided) const { return nodes.size() * (twoSided ? 2 : 1); }
 };

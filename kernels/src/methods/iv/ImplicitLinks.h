@@ -150,9 +150,9 @@ struct LeafLinks
 /// the origin's offset along the normal, as link rays do).
 /// `tracer` (over `scene`, or null): a bin whose surface hit lies in a gap that its leaf's
 /// vertex is not in (hitInGap: the floor under an object resting on it, read from the lit
-/// floor beside it) gives black, as a back; it needs `receivers`' offsets. A surface hit on
-/// a triangle with `detail` nodes goes to the nodes of its grid cell (columns after the
-/// tree's nodes, DetailNodes::grid(tree.nodeCount())), as a link's in the link method.
+/// floor beside it) gives black, as a back; it needs `receivers`' offsets. A front surface
+/// hit on a triangle with `detail` nodes goes to the grid point nearest it (columns after
+/// the tree's nodes, DetailNodes::grid(tree.nodeCount())) and is not tested for a gap.
 /// `rows` (per leaf, or null for all): the leaves to push to; the others get empty rows
 /// (a process's share under MPI, SolverOptions::partition).
 LeafLinks pushToLeaves(const ClusterTree& tree, const NodeLinks& links, const CubeBins& bins,

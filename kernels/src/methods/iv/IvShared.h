@@ -196,8 +196,8 @@ enum class LeafReach
 /// `facing` = n_disc . (receiver - centre). A disc is its vertex's tangent plane; the
 /// surface bends away from it by about curvature x radius^2, so where a leaf is near
 /// (within twice its `extent`, ClusterTree::extent: the element of a long thin triangle's
-/// corner reaches far beyond its disc's radius) its disc misplaces the surface by as much as the distance
-/// itself: at a crease the disc of a split twin at the same position covers up to the
+/// corner reaches far beyond its disc's radius) its disc misplaces the surface by as much
+/// as the distance itself: at a crease the disc of a split twin at the same position covers up to the
 /// whole hemisphere from in front or from behind, whichever way the surface really turns;
 /// over a convex edge a rim reaches past the neighbouring faces. Such a leaf is drawn from
 /// its surface (surfaceHit). So is one seen from behind that spans several bins: its back

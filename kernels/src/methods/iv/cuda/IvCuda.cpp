@@ -221,13 +221,7 @@ private:
     p.leafCount = Index(tree.leafCount);
     p.binsPerSide = n;
     p.binAngle = std::sqrt(bins.meanSolidAngle());
-    if (!detail.empty())
-    {
-      p.detail.first = detailFirst.data();
-      p.detail.steps = detailSteps.data();
-      p.detail.columnBase = Index(tree.nodeCount());
-      p.detail.nodesPerSide = Index(detail.nodes.size());
-    }
+    p.detail = detail.grid(tree.nodeCount(), detailFirst.data(), detailSteps.data()); // after the tree's nodes
     totals.resize(5);
     totals.fillZero(stream);
     stride = bins.count();
