@@ -304,8 +304,11 @@ public:
    * split at its midpoint, and the refined surface is solved again, for up to
    * RefinementRounds rounds and at most RefinementMaxVertices points (0: four times the
    * input's). The output is then the refined surface: the input's point arrays interpolated
-   * onto the new points, its cell arrays inherited by the pieces of each cell, and the light
-   * arrays. Its triangles lie inside the input's, so edges, boundaries and creases stay.
+   * onto the new points, its cell arrays inherited by the pieces of each cell, the light
+   * arrays, and the point normals the light was solved with (the input's, or those computed
+   * for it, at its points; their edge ends' normalized mean at the new points), so that the
+   * refined surface is shaded as it was lit. Its triangles lie inside the input's, so edges,
+   * boundaries and creases stay.
    * Synchronous updates of a vtkPolyData input only; not with ProxyVertices. Defaults: off,
    * 0.1, 0 and 3.
    */

@@ -485,9 +485,24 @@ void vtkGlobalIlluminationFilter::vtkInternals::ShapeOutput(vtkPolyData* input, 
         refined.midpointOf[k][1], array, 0.5);
     }
   }
-  if (vtkDataArray* normals = outPoints->GetNormals())
+  // The normals the light was solved with: the input's, or those computed for it (then a
+  // new array), at its points; their edge ends' normalized mean at the new points. Without
+  // them a refined surface would be shaded with normals of its own faces.
+  vtkDataArray* normals = outPoints->GetNormals();
+  vtkIdType from = static_cast<vtkIdType>(first);
+  if (this->Mesh.NormalsComputed)
   {
-    for (vtkIdType v = static_cast<vtkIdType>(first); v < n; ++v)
+    vtkNew<vtkFloatArray> computed;
+    computed->SetName("Normals");
+    computed->SetNumberOfComponents(3);
+    computed->SetNumberOfTuples(n);
+    outPoints->SetNormals(computed);
+    normals = computed;
+    from = 0;
+  }
+  if (normals)
+  {
+    for (vtkIdType v = from; v < n; ++v)
     {
       const linkgi::Vec3f& nv = scene.normals[static_cast<std::size_t>(v)];
       normals->SetTuple3(v, nv.x, nv.y, nv.z);

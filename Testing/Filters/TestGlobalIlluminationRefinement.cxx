@@ -1,6 +1,6 @@
 // vtkGlobalIlluminationFilter's Refinement: the output is the refined surface, the input's
-// point arrays interpolated onto it and its cell arrays inherited; bad settings are named
-// and keep the previous output.
+// point arrays interpolated onto it and its cell arrays inherited, with the normals it was
+// lit with; bad settings are named and keep the previous output.
 #include "FilterTestUtilities.h"
 
 #include "vtkCellData.h"
@@ -8,6 +8,7 @@
 #include "vtkGlobalIlluminationFilter.h"
 #include "vtkIntArray.h"
 #include "vtkMultiBlockDataSet.h"
+#include "vtkSphereSource.h"
 
 #include <gtest/gtest.h>
 
@@ -135,4 +136,65 @@ TEST(TestGlobalIlluminationRefinement, BadSettingsAreNamedAndKeepThePreviousOutp
   MessageCapture messages(composite);
   composite->Update();
   EXPECT_TRUE(messages.HasError("vtkPolyData input"));
+}
+
+TEST(TestGlobalIlluminationRefinement, TheRefinedSurfaceCarriesTheNormalsItWasLitWith)
+{
+  // A coarse sphere without normals: the filter computes them, and a new point gets its edge
+  // ends' normals averaged, not its flat faces'. The refined output, solved again as an
+  // input, must give the same direct light; from its faces' normals it does not.
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(8);
+  sphere->SetPhiResolution(6);
+  sphere->Update();
+  vtkNew<vtkPolyData> input;
+  input->DeepCopy(sphere->GetOutput());
+  input->GetPointData()->Initialize(); // no normals
+  const double position[3] = { 2.0, 1.5, 1.0 }, origin[3] = { 0, 0, 0 };
+  vtkNew<vtkGlobalIlluminationFilter> refined;
+  refined->SetInputData(input);
+  refined->AddLight(MakeLight(position, origin, 4.0));
+  refined->SetBackendToCPU();
+  refined->SetLightOversampling(false);
+  refined->SetRefinement(true);
+  refined->Update();
+  vtkPolyData* out = refined->GetOutput();
+  ASSERT_GT(out->GetNumberOfPoints(), input->GetNumberOfPoints());
+  vtkDataArray* normals = out->GetPointData()->GetNormals();
+  ASSERT_NE(normals, nullptr) << "the refined surface carries its normals";
+  ASSERT_EQ(normals->GetNumberOfTuples(), out->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    const double* n = normals->GetTuple3(i);
+    ASSERT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0, 1e-5) << "point " << i;
+  }
+
+  const auto directOf = [&](vtkPolyData* surface) {
+    vtkNew<vtkGlobalIlluminationFilter> again;
+    again->SetInputData(surface);
+    again->AddLight(MakeLight(position, origin, 4.0));
+    again->SetBackendToCPU();
+    again->SetLightOversampling(false);
+    again->Update();
+    std::vector<double> e;
+    for (vtkIdType i = 0; i < again->GetOutput()->GetNumberOfPoints(); ++i)
+    {
+      e.push_back(Value(again->GetOutput(), "DirectIrradiance", i));
+    }
+    return e;
+  };
+  vtkNew<vtkPolyData> withNormals, facesOnly;
+  withNormals->CopyStructure(out);
+  withNormals->GetPointData()->SetNormals(normals);
+  facesOnly->CopyStructure(out);
+  const std::vector<double> relit = directOf(withNormals), fromFaces = directOf(facesOnly);
+  double differs = 0.0, differsFromFaces = 0.0;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    const double e = Value(out, "DirectIrradiance", i);
+    differs = std::max(differs, std::abs(relit[static_cast<std::size_t>(i)] - e));
+    differsFromFaces = std::max(differsFromFaces, std::abs(fromFaces[static_cast<std::size_t>(i)] - e));
+  }
+  EXPECT_LT(differs, 1e-4) << "the same normals, the same direct light";
+  EXPECT_GT(differsFromFaces, 0.01) << "the faces' normals light it otherwise (else this test shows nothing)";
 }
