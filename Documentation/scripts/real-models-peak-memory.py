@@ -7,7 +7,8 @@ filter, in a process of its own (a process's peak resident set only grows).
 
 Arguments: the model's file in Testing/Data/Models, its vertical axis (0, 1, 2) and the
 method (the filter's numbering: 0 links, 1 instant radiosity, 2 implicit visibility, 3 photon
-mapping). The room is the one of filters.TestGlobalIlluminationAgreement: twice the model's
+mapping). Under `mpirun -np N` each rank lights its piece of the scene (the appended cells
+split in N runs of equal length) and prints its own peak and estimate. The room is the one of filters.TestGlobalIlluminationAgreement: twice the model's
 height on each side, 2.5 times it high, cells of 0.08 of it, a lamp under the ceiling.
 """
 import math
@@ -17,6 +18,7 @@ import time
 
 import linkgi
 from vtkmodules.vtkFiltersCore import vtkAppendPolyData, vtkReverseSense
+from vtkmodules.vtkFiltersParallel import vtkExtractPolyDataPiece
 from vtkmodules.vtkFiltersSources import vtkPlaneSource
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from vtkmodules.vtkRenderingCore import vtkLight
@@ -79,6 +81,12 @@ def main(model, up, method):
     for wall in room_faces(lo, hi, 0.08 * height):
         scene.AddInputData(wall)
     scene.Update()
+    rank, ranks = mpi_rank()
+    piece = scene
+    if ranks > 1:
+        piece = vtkExtractPolyDataPiece()
+        piece.SetInputConnection(scene.GetOutputPort())
+        piece.UpdatePiece(rank, ranks, 0)
 
     lamp = vtkLight()
     lamp.SetPositional(True)
@@ -89,7 +97,7 @@ def main(model, up, method):
     lamp.SetPosition(*position)
     lamp.SetIntensity(height * height)
     gi = linkgi.vtkGlobalIlluminationFilter()
-    gi.SetInputConnection(scene.GetOutputPort())
+    gi.SetInputData(piece.GetOutput())
     gi.AddLight(lamp)
     gi.SetBackendToCPU()
     gi.SetMethod(method)
@@ -100,9 +108,27 @@ def main(model, up, method):
     seconds = time.time() - start
     peak = resident("VmHWM:") - before
     estimate = gi.GetOutput().GetFieldData().GetArray("LinkGI.HostBytesEstimated").GetValue(0)
-    print("%s method %d: %d points, %.2f s, peak %.0f MiB above the start, estimated %.0f MiB (%.2fx)"
-          % (model, method, scene.GetOutput().GetNumberOfPoints(), seconds, peak / 2**20,
-             estimate / 2**20, estimate / peak))
+    print("%s method %d%s: %d points, %.2f s, peak %.0f MiB above the start, estimated %.0f MiB (%.2fx)"
+          % (model, method, " rank %d of %d" % (rank, ranks) if ranks > 1 else "",
+             piece.GetOutput().GetNumberOfPoints(), seconds, peak / 2**20, estimate / 2**20, estimate / peak),
+          flush=True)
+    if ranks > 1:
+        mpi_rank.controller.Finalize(1)  # mpi4py finalizes MPI
+
+
+def mpi_rank():
+    """(rank, ranks) under mpirun, with the MPI controller made global for the filter; (0, 1)
+    otherwise."""
+    if int(os.environ.get("OMPI_COMM_WORLD_SIZE", "1")) < 2:
+        return 0, 1
+    from mpi4py import MPI  # noqa: F401 (initializes MPI before VTK's controller exists)
+    from vtkmodules.vtkParallelMPI import vtkMPIController
+    from vtkmodules.vtkParallelCore import vtkMultiProcessController
+    controller = vtkMPIController()
+    controller.Initialize()  # MPI is already initialized (mpi4py)
+    vtkMultiProcessController.SetGlobalController(controller)
+    mpi_rank.controller = controller
+    return controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 
 
 if __name__ == "__main__":

@@ -3,6 +3,8 @@
 // give, together, the one-process result bit for bit. Two threads stand in for two MPI ranks.
 #include "SceneFixtures.h"
 
+#include "methods/iv/IvBackends.h"
+
 #include "linkgi/Memory.h"
 #include "linkgi/Scenes.h"
 #include "linkgi/Solver.h"
@@ -10,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <condition_variable>
 #include <functional>
 #include <stdexcept>
@@ -236,6 +239,44 @@ TEST(TestPartition, ImplicitVisibilityPushesAndGathersOnlyItsRows)
   EXPECT_EQ(two.stats[0].counter("LinksCompressed") + two.stats[1].counter("LinksCompressed"), whole.stats().counter("LinksCompressed"));
 }
 
+// Under MPI each process samples the link stage's memory on its own rows (a quarter of the
+// mesh on one, three quarters on the other) and judges what it will hold itself: each
+// sample within the sample's error of what that process's links take, less than one
+// process that links all rows takes.
+TEST(TestPartition, EachProcessSamplesTheMemoryOfItsOwnRows)
+{
+  const Scene s = makeStandardScene("cornell");
+  const double nv = double(s.vertexCount());
+  for (Method method : { Method::Links, Method::ImplicitVisibility })
+  {
+    SolverOptions o;
+    o.backend = Backend::Cpu;
+    o.method = method;
+    o.raysPerVertex = 64;
+    o.implicitVisibility.binsPerSide = 8;
+    Solver whole;
+    whole.update(s, o);
+    const TwoProcesses two = solveAsTwo(s, o, [nv](std::size_t v) { return int(double(v) >= nv / 4); });
+    const char* name = method == Method::Links ? "links" : "implicit visibility";
+    for (int p = 0; p < 2; ++p)
+    {
+      // What this process's link stage holds, per vertex of the whole mesh, in the sample's
+      // units: links, or bytes of node links and leaf entries.
+      const SolverStats& st = two.stats[p];
+      const double leaves = double(st.counter("LinksCompressed") + st.counter("LinksEnvironment"));
+      const double held = method == Method::Links ? leaves / nv :
+        iv::linkStageBytesPerVertex({ double(st.counter("LinksCreated")) / nv, double(st.counter("LinksRaw")) / nv,
+          leaves / nv });
+      const double sampled = st.memorySampledPerElement;
+      std::printf("%s, process %d: sampled %.1f per vertex, holds %.1f (one process: sampled %.1f)\n", name, p,
+        sampled, held, whole.stats().memorySampledPerElement);
+      EXPECT_NEAR(sampled / held, 1.0, 0.15) << name << ", process " << p;
+      EXPECT_LT(sampled, 0.9 * whole.stats().memorySampledPerElement) << name << ", process " << p;
+      EXPECT_LT(st.hostBytesEstimated, whole.stats().hostBytesEstimated) << name << ", process " << p;
+    }
+  }
+}
+
 // Photon mapping splits its final gather by the clusters' samples and its caustics by rows:
 // exchanges complete them, and every process interpolates the whole surface.
 TEST(TestPartition, PhotonMappingGathersOnlyItsClusters)
@@ -282,18 +323,22 @@ TEST(TestPartition, AMaskOfTheWrongSizeIsNamed)
 
 TEST(TestPartition, ProcessesAgreeOnTheMemoryBudget)
 {
-  // Process 0 has a budget too small for the update, process 1 the machine's: both must
-  // refuse it. Had process 1 gone on alone, it would have waited in the first exchange.
-  const Scene s = test::roomWithBlock(0.5f);
+  // Process 0 has a budget too small for its part of the update, process 1 the machine's:
+  // both must refuse it, and advise the same mesh. Had process 1 gone on alone, it would
+  // have waited in the first exchange.
+  const Scene s = makeStandardScene("cornell");
   SolverOptions o = test::quickOptions();
   o.backend = Backend::Cpu;
+  Solver alone;
+  alone.update(s, o);
   Collectives collectives(2);
   std::string refused[2];
+  std::uint64_t fit[2] = { 0, 0 };
   const auto run = [&](int p) {
     auto part = collectives.partition(s.vertexCount(), p, [](std::size_t e) { return int(e % 2); });
     SolverOptions mine = o;
     mine.partition = part;
-    mine.memoryBudget = p == 0 ? 64 * 1024 : 0;
+    mine.memoryBudget = p == 0 ? alone.stats().hostBytesEstimated * 4 / 5 : 0;
     Solver solver;
     try
     {
@@ -302,6 +347,7 @@ TEST(TestPartition, ProcessesAgreeOnTheMemoryBudget)
     catch (const OutOfMemoryBudget& e)
     {
       refused[p] = e.what();
+      fit[p] = e.verticesThatFit();
     }
     catch (const std::exception& e)
     {
@@ -313,7 +359,10 @@ TEST(TestPartition, ProcessesAgreeOnTheMemoryBudget)
   other.join();
   EXPECT_EQ(collectives.sum.exchanges, 0) << "nobody solved";
   EXPECT_NE(refused[0].find("Not enough memory"), std::string::npos) << refused[0];
-  EXPECT_NE(refused[1].find("the smallest of the budgets of the processes"), std::string::npos) << refused[1];
+  EXPECT_NE(refused[1].find("Not enough memory on another process"), std::string::npos) << refused[1];
+  EXPECT_GT(fit[0], 0u) << refused[0];
+  EXPECT_LT(fit[0], s.vertexCount()) << refused[0];
+  EXPECT_EQ(fit[1], fit[0]) << refused[1];
 }
 
 // A process that fails in the middle of a partitioned update (here an abort at a chosen

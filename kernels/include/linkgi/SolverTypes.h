@@ -44,8 +44,8 @@ struct Partition
   /// Completes `values` (sum) once no process has failed; else throws PeerFailed.
   void exchange(std::vector<Vec3f>& values) const;
   /// The smallest `value` of the processes once no process has failed; else throws
-  /// PeerFailed. Called once per update, for the memory budget: all processes refuse an
-  /// update or all run it.
+  /// PeerFailed. Called at each check of the memory budget (once per update, twice where
+  /// a method samples its memory): all processes refuse an update or all run it.
   std::uint64_t smallest(std::uint64_t value) const;
   /// One agreement step: throws PeerFailed when a process failed since the last one.
   void check() const;

@@ -69,9 +69,7 @@ void raiseEstimate(SolverStats& stats, std::uint64_t bytes)
 void checkMemoryBudget(const MethodSpec& spec, const MemoryShape& shape, const SolverOptions& options,
   std::uint32_t stale, bool cuda, SolverStats& stats, std::uint32_t first)
 {
-  const std::uint64_t own = hostMemoryBudget(options.memoryBudget);
-  // Under MPI every process takes the smallest budget, so all give the same verdict.
-  const std::uint64_t budget = options.partition ? options.partition->smallest(own) : own;
+  const std::uint64_t budget = hostMemoryBudget(options.memoryBudget);
   MemoryVerdict v = judgeMemory(spec, shape, options, stale & first, cuda, budget);
   if (!v.fits && (stale & first) != stale)
   {
@@ -82,30 +80,42 @@ void checkMemoryBudget(const MethodSpec& spec, const MemoryShape& shape, const S
   stats.memorySampledPerElement = shape.sampledPerElement;
   stats.deviceBytesEstimated = v.estimate.deviceBytes;
   stats.memoryBudget = v.budget;
-  if (v.fits)
+  // Under MPI each process judges its own part (its rows, its sample) under its own budget,
+  // and all agree in one allreduce: every process runs the update, or every one refuses it
+  // with the smallest mesh that fits them all.
+  constexpr std::uint64_t kFits = std::numeric_limits<std::uint64_t>::max();
+  const std::uint64_t fitAll =
+    options.partition ? options.partition->smallest(v.fits ? kFits : v.verticesThatFit) : kFits;
+  if (v.fits && fitAll == kFits)
   {
     return;
   }
+  const std::uint64_t fit = std::min(v.fits ? kFits : v.verticesThatFit, fitAll);
   const std::string rays = std::to_string(options.raysPerVertex);
+  const std::string fits = fit > 0 ?
+    " a mesh of at most " + std::to_string(fit) + " vertices at " + rays +
+      " rays per vertex (decimate the input, or light it through a proxy of that size: ProxyVertices);" :
+    " no mesh at " + rays + " rays per vertex;";
+  if (v.fits)
+  {
+    throw OutOfMemoryBudget("Not enough memory on another process that shares the surface: its part of this "
+                            "update of the " + std::string(spec.name()) +
+        " method is over its memory budget. What would fit every process:" + fits +
+        " or larger memory budgets, if the machines have the memory.",
+      fit);
+  }
   std::string message = "Not enough memory: this update of the " + std::string(spec.name()) +
     " method would need about " + formatBytes(v.estimate.hostBytes) + " of host memory (" +
-    std::to_string(shape.vertices) + " vertices, " + rays + " rays per vertex), over the memory budget of " +
-    formatBytes(budget) +
-    (budget < own             ? " (the smallest of the budgets of the processes that share the surface)" :
-        options.memoryBudget ? " (MemoryBudget)" :
-                               " (what the machine has available, " + formatBytes(availableHostBytes()) +
-          ", less a margin)") +
-    ". What would fit:";
-  if (v.raysThatFit > 0)
+    std::to_string(shape.vertices) + " vertices" + (options.partition ? ", this process's rows of them, " : ", ") +
+    rays + " rays per vertex), over the memory budget of " + formatBytes(budget) +
+    (options.memoryBudget ? " (MemoryBudget)" :
+                            " (what the machine has available, " + formatBytes(availableHostBytes()) + ", less a margin)") +
+    ". What would fit" + (options.partition ? " every process" : "") + ":";
+  if (v.raysThatFit > 0 && !options.partition)
   {
     message += " " + std::to_string(v.raysThatFit) + " rays per vertex on this mesh;";
   }
-  message += v.verticesThatFit > 0 ?
-    " a mesh of at most " + std::to_string(v.verticesThatFit) + " vertices at " + rays +
-      " rays per vertex (decimate the input, or light it through a proxy of that size:"
-      " ProxyVertices);" :
-    " no mesh at " + rays + " rays per vertex;";
-  message += " or a larger MemoryBudget, if the machine has the memory.";
-  throw OutOfMemoryBudget(message, v.verticesThatFit);
+  message += fits + " or a larger MemoryBudget, if the machine has the memory.";
+  throw OutOfMemoryBudget(message, fit);
 }
 }

@@ -30,6 +30,9 @@ MemoryVerdict judgeMemory(const MethodSpec& spec, const MemoryShape& shape,
 /// solution has not been written at that point, so the previous result stays. With `first`,
 /// only the stages `stale & first` are judged now (those before a method samples its
 /// memory; it is judged again then); a refusal still says what would fit the whole update.
+/// Under MPI (options.partition) a collective step: each process judges its own estimate
+/// under its own budget, and every process refuses when one does, with the smallest mesh
+/// that fits them all.
 void checkMemoryBudget(const MethodSpec& spec, const MemoryShape& shape, const SolverOptions& options,
   std::uint32_t stale, bool cuda, SolverStats& stats, std::uint32_t first = ~0u);
 

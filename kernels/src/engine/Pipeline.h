@@ -123,7 +123,9 @@ public:
   virtual void describe(SolverStats& stats) const = 0;
   /// Before stage MethodSpec::memorySampleStage() runs, the stages before it having run:
   /// measures on a sample of the elements what that stage allocates per element
-  /// (MemoryShape::sampledPerElement), allocating little and keeping nothing.
+  /// (MemoryShape::sampledPerElement), allocating little and keeping nothing. Under MPI on
+  /// a sample of this process's rows, per element of the whole mesh: what this process
+  /// will hold.
   virtual double sampleMemory(const StageContext& /*context*/) { return 0.0; }
   /// After a commit: a ray tracer over the committed scene, for checks of the result
   /// (litOnlyOnTheirBacks): the CPU backends' own, the GPU backends' BVH through copies of

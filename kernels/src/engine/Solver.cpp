@@ -316,11 +316,11 @@ void Solver::Impl::runStages(BackendSlot& slot, bool onCuda, const engine::Metho
   // every stage; the budget is checked before the old backend's memory is given up.
   const engine::Changes seen = slot.fits(opt, onCuda) && slot.synced ? changes : engine::kEverything;
   const std::uint32_t stale = engine::staleStages(spec.stages(), seen);
-  // A method that samples a stage's memory (on the CPU; a partition's processes would each
-  // sample their own rows and might disagree) is judged for the stages before it first, and
-  // for all of them before that stage, with what it sampled: the solution is written by
-  // the last stage only, so a refusal there keeps the previous result too.
-  const int sampled = onCuda || opt.partition ? -1 : spec.memorySampleStage();
+  // A method that samples a stage's memory (on the CPU) is judged for the stages before it
+  // first, and for all of them before that stage, with what it sampled: the solution is
+  // written by the last stage only, so a refusal there keeps the previous result too. Under
+  // MPI each process samples and judges its own rows (engine/MemoryBudget.h).
+  const int sampled = onCuda ? -1 : spec.memorySampleStage();
   const bool samples = sampled >= 0 && (stale >> sampled & 1u);
   MemoryShape shape = MemoryShape::of(s);
   engine::checkMemoryBudget(spec, shape, opt, stale, onCuda, st, samples ? (1u << sampled) - 1u : ~0u);

@@ -12,6 +12,7 @@
 #include "shared/Metrics.h"
 #include "shared/Sampling.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -84,23 +85,28 @@ public:
     // probability p; each is weighted by one over that probability (Horvitz-Thompson), so
     // the sum estimates the whole tree's. The leaves' entries: their mean over those drawn.
     // 4-11% over the whole tree's on the standard scenes, at 2-25% of a first update's time
-    // (TestImplicitVisibility.TheSampledLeavesEstimateTheWholeTreesLinks).
+    // (TestImplicitVisibility.TheSampledLeavesEstimateTheWholeTreesLinks). Under MPI the
+    // leaves are drawn from this process's own, whose ancestors are all it links: a node's
+    // chance is that of its own leaves, and the sum is what this process holds.
     const std::uint32_t n = c.options.implicitVisibility.binsPerSide;
-    if (measured.bytesPerVertex > 0.0 && measured.binsPerSide == n)
+    const std::size_t nv = c.scene.vertexCount();
+    const std::uint8_t* own = ownRows(c.options, nv);
+    if (measured.bytesPerVertex > 0.0 && measured.binsPerSide == n &&
+      (own ? measured.rows == c.options.partition->rows : measured.rows.empty()))
     {
       return measured.bytesPerVertex;
     }
-    const std::size_t nv = c.scene.vertexCount();
-    if (nv == 0)
+    const std::size_t mine = own ? std::size_t(std::count_if(own, own + nv, [](std::uint8_t r) { return r != 0; })) : nv;
+    if (mine == 0)
     {
       return 0.0;
     }
-    const double p = std::min(1.0, std::max(256.0, double(nv) / 256.0) / double(nv));
+    const double p = std::min(1.0, std::max(256.0, double(mine) / 256.0) / double(mine));
     std::vector<std::uint8_t> sample(nv, 0);
     std::size_t drawn = 0;
     for (std::size_t v = 0; v < nv; ++v)
     {
-      sample[v] = p >= 1.0 || hashToUnit(kSampleSeed, std::uint32_t(v)) < p;
+      sample[v] = (!own || own[v]) && (p >= 1.0 || hashToUnit(kSampleSeed, std::uint32_t(v)) < p);
       drawn += sample[v];
     }
     if (drawn == 0)
@@ -112,7 +118,11 @@ public:
     const NodeLinks nodes = createNodeLinks(tree, bins, LinkCreationOptions::of(c.scene), {}, sample.data(), &created);
     const LeafLinks leaves = pushToLeaves(tree, nodes, bins, c.scene, geometry.faceNormals, elements, geometry.origins,
       geometry.tracer.get(), detail, {}, sample.data());
-    std::vector<double> below(tree.nodeCount(), 1.0); // leaves below each node
+    std::vector<double> below(tree.nodeCount(), 0.0); // own leaves below each node
+    for (std::size_t v = 0; v < tree.leafCount; ++v)
+    {
+      below[v] = !own || own[v] ? 1.0 : 0.0;
+    }
     for (std::size_t i = 0; i < tree.left.size(); ++i)
     {
       below[tree.leafCount + i] = below[tree.left[i]] + below[tree.right[i]];
@@ -130,7 +140,7 @@ public:
     }
     total.created /= double(nv);
     total.kept /= double(nv);
-    total.leafEntries = double(leaves.entries()) / double(drawn);
+    total.leafEntries = double(leaves.entries()) / double(drawn) * double(mine) / double(nv);
     return linkStageBytesPerVertex(total);
   }
 
@@ -186,13 +196,10 @@ private:
       geometry.tracer.get(), detail, within(0.6, 1.0), rows);
     next.nodeLinks = created.byReceiver.nonZeros();
     next.createdLinks = created.created;
-    if (!rows)
-    {
-      const double nv = double(c.scene.vertexCount());
-      measured = { linkStageBytesPerVertex({ double(next.createdLinks) / nv, double(next.nodeLinks) / nv,
-                     double(next.leaves.entries()) / nv }),
-        c.options.implicitVisibility.binsPerSide };
-    }
+    const double nv = double(c.scene.vertexCount());
+    measured = { linkStageBytesPerVertex({ double(next.createdLinks) / nv, double(next.nodeLinks) / nv,
+                   double(next.leaves.entries()) / nv }),
+      c.options.implicitVisibility.binsPerSide, rows ? c.options.partition->rows : std::vector<std::uint8_t>{} };
     c.part("RefinePush", msSince(t));
   }
 
@@ -259,11 +266,13 @@ private:
   };
   Staged<Links> links;
   /// What the last link build on this tree took per vertex (linkStageBytesPerVertex of its
-  /// counts) at `binsPerSide`; none once the tree is rebuilt.
+  /// counts) at `binsPerSide`, for the partition's `rows` (empty: all); none once the tree
+  /// is rebuilt.
   struct Measured
   {
     double bytesPerVertex = 0.0;
     std::uint32_t binsPerSide = 0;
+    std::vector<std::uint8_t> rows;
   } measured;
   Staged<DirectLightResult> direct;
   /// Large triangles' nodes (surface hits on them read the nodes) and their E_d.

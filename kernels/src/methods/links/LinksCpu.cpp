@@ -68,6 +68,7 @@ public:
     st.rays = links.rays;
     st.setCounter("LinksRaw", links.rawLinks);
     st.setCounter("LinksCompressed", links.transport.nonZeros());
+    st.setCounter("LinksEnvironment", links.environment.nonZeros());
     st.setCounter("LinkBytes", links.transport.bytes() + links.environment.bytes());
     st.setCounter("DetailNodes", detail.nodes.size());
     st.lightRays = direct.shadowRays;
@@ -80,9 +81,20 @@ public:
     // Rows spread evenly over the mesh (a 64th of them, at least 256) linked as the stage
     // links them: their mean count of links, where the sizes alone give only the bound of
     // three per ray. At most 1.6% of the stage's rays, more on meshes under 16k elements.
+    // Under MPI spread over this process's rows, their mean weighted by its share of rows.
     const SolverOptions& o = c.options;
     const std::size_t rows = Elements{ c.scene.vertexCount(), o.twoSided }.count();
-    const std::size_t count = std::min(rows, std::max<std::size_t>(256, rows / 64));
+    const std::uint8_t* own = ownRows(o, rows);
+    std::vector<Index> mine;
+    mine.reserve(rows);
+    for (std::size_t r = 0; r < rows; ++r)
+    {
+      if (!own || own[r])
+      {
+        mine.push_back(Index(r));
+      }
+    }
+    const std::size_t count = std::min(mine.size(), std::max<std::size_t>(256, mine.size() / 64));
     if (count == 0)
     {
       return 0.0;
@@ -90,12 +102,13 @@ public:
     std::vector<std::uint8_t> sample(rows, 0);
     for (std::size_t k = 0; k < count; ++k)
     {
-      sample[k * rows / count] = 1;
+      sample[mine[k * mine.size() / count]] = 1;
     }
     const LinkOptions sampleOptions{ o.raysPerVertex, o.twoSided, o.twist, o.seed, sample.data(), &detail };
     const LinkStructure links =
       linkgi::buildLinks(c.scene, geometry.origins, *geometry.tracer, geometry.faceNormals, sampleOptions);
-    return double(links.transport.nonZeros() + links.environment.nonZeros()) / double(count);
+    const double share = double(mine.size()) / double(rows);
+    return share * double(links.transport.nonZeros() + links.environment.nonZeros()) / double(count);
   }
 
 private:
