@@ -353,15 +353,19 @@ TEST(TestOrientation, SurfacesLitOnlyOnTheirBacksAmongLitOnesAreWarnedAbout)
   EXPECT_EQ(r.triangles, map.scene.triangleCount() / 3);
   EXPECT_TRUE(map.warned("1 of 3 lit surfaces"));
   // A box whose faces are surfaces of their own (split at its edges), lit from one side: its
-  // far faces face away from the light, but their backs look into the box.
-  MeshBuilder box;
-  box.addBox({ -1.f, -1.f, -1.f }, { 1.f, 1.f, 1.f }, 0.25f, Vec3f(0.5f));
-  const Lit lit = Solve(box, { 4.f, 1.f, 2.f });
-  std::size_t faces = 0;
-  surfaceLabels(lit.scene, faces);
-  EXPECT_EQ(faces, 6u);
-  EXPECT_EQ(BackLit(lit).surfaces, 0u);
-  EXPECT_FALSE(lit.warned("lit only on their backs"));
+  // far faces face away from the light, but their backs look into the box. Also with two
+  // triangles per face (vtkCubeSource's box), whose vertices all lie on its edges.
+  for (const float cell : { 0.25f, 2.f })
+  {
+    MeshBuilder box;
+    box.addBox({ -1.f, -1.f, -1.f }, { 1.f, 1.f, 1.f }, cell, Vec3f(0.5f));
+    const Lit lit = Solve(box, { 4.f, 1.f, 2.f });
+    std::size_t faces = 0;
+    surfaceLabels(lit.scene, faces);
+    EXPECT_EQ(faces, 6u) << cell;
+    EXPECT_EQ(BackLit(lit).surfaces, 0u) << cell;
+    EXPECT_FALSE(lit.warned("lit only on their backs")) << cell;
+  }
 }
 
 TEST(TestOrientation, EveryGpuBackendChecksWhichSurfacesAreLitOnlyOnTheirBacks)

@@ -15,23 +15,40 @@ LitOnTheirBacks litOnlyOnTheirBacks(const Scene& scene, const std::vector<Index>
   {
     front[surfaceOf[v]] |= maxComponent(direct[v]) > 0.f ? 1 : 0;
   }
-  // Up to kBackRays back shadow rays per surface without front light, from its vertices
-  // in order (every vertex of a small surface, the first ones of a large one), and at most
-  // kBackSamples in all (a triangle soup is as many surfaces as triangles): the surfaces
-  // past those are left unknown.
+  // Up to kBackRays back shadow rays per surface without front light, from the centres of
+  // its triangles in order (every triangle of a small surface, the first ones of a large
+  // one), and at most kBackSamples in all (a triangle soup is as many surfaces as
+  // triangles): the surfaces past those are left unknown. From a triangle's centre, not a
+  // vertex: a vertex on a sharp edge (each face of a cube is a surface of its own) lies in
+  // the planes of its neighbours, and a ray from just behind it slips out along the edge.
   const float offset = 1e-4f * boundingDiagonal(scene.positions); // one for all: a check, not the light
   std::vector<int> cast(surfaces, 0);
   std::vector<Ray> rays;
   std::vector<Index> rayOf;
-  for (std::size_t v = 0; v < nv && rays.size() < kBackSamples; ++v)
+  for (const Triangle& t : scene.triangles)
   {
-    const Index k = surfaceOf[v];
+    if (rays.size() >= kBackSamples)
+    {
+      break;
+    }
+    if (t.v[0] >= nv || t.v[1] >= nv || t.v[2] >= nv)
+    {
+      continue;
+    }
+    const Index k = surfaceOf[t.v[0]];
     if (front[k] || cast[k] >= kBackRays)
     {
       continue;
     }
-    const Vec3f& p = scene.positions[v];
-    const Vec3f back = -normalize(scene.normals[v]);
+    const Vec3f a = scene.positions[t.v[0]], b = scene.positions[t.v[1]], c = scene.positions[t.v[2]];
+    const Vec3f p = (a + b + c) * (1.f / 3.f);
+    Vec3f back = cross(b - a, c - a);
+    const Vec3f normals = scene.normals[t.v[0]] + scene.normals[t.v[1]] + scene.normals[t.v[2]];
+    if (dot(back, back) == 0.f)
+    {
+      continue;
+    }
+    back = normalize(dot(back, normals) < 0.f ? back : -back); // away from the normals' side
     for (const Light& light : scene.lights)
     {
       Vec3f toLight;

@@ -13,8 +13,8 @@ namespace linkgi
 {
 /// The surfaces of a one-sided scene that its lights reach only on their backs while others
 /// are lit in front: none of their vertices has direct light (`direct`), and of the shadow
-/// rays from the backs of up to kBackRays of their vertices that face away from a light, at
-/// least half reach it. Polygons of mixed orientation (GIS data), sheets turned away from
+/// rays from the backs of the centres of up to kBackRays of their triangles that face away
+/// from a light, at least half reach it. Polygons of mixed orientation (GIS data), sheets turned away from
 /// the lights. A closed object's far side is not one (its back looks into the object), nor a
 /// lamp shade's outside behind its inside. At most kBackSamples rays in all. `surfaceOf`:
 /// surfaceLabels' of the scene; `tracer`: over the scene.
