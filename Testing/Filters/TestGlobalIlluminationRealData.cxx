@@ -4,8 +4,11 @@
 #include "FilterTestUtilities.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkCleanPolyData.h"
+#include "vtkCubeSource.h"
 #include "vtkFieldData.h"
 #include "vtkGlobalIlluminationFilter.h"
+#include "vtkPolyDataNormals.h"
 #include "vtkReverseSense.h"
 #include "vtkStringArray.h"
 #include "vtkTransform.h"
@@ -189,6 +192,45 @@ TEST(TestGlobalIlluminationRealData, SurfaceLitOnlyFromBehindSaysHowToLightIt)
   vtkDataArray* back = PointArray(filter->GetOutput(), "DirectIrradianceBack");
   ASSERT_NE(back, nullptr);
   EXPECT_GT(back->GetRange(0)[1], 0.0);
+}
+
+TEST(TestGlobalIlluminationRealData, NormalsSmoothedAcrossSharpEdgesSayHowToSplitThem)
+{
+  // A box on a floor, its corners merged and their normals averaged over its faces (as CAD
+  // exports write them): the update says that those points are lit as a tilted surface, and
+  // how to split them. vtkCubeSource's own normals (a normal per face), or ComputeNormals
+  // on, say nothing of it.
+  const double light[3] = { 2.0, 3.0, 4.0 }, at[3] = { 0, 0, 0 };
+  vtkNew<vtkCubeSource> cube;
+  cube->SetBounds(-0.25, 0.25, -0.25, 0.25, 0.0, 0.5);
+  vtkNew<vtkCleanPolyData> merged;
+  merged->SetInputConnection(cube->GetOutputPort());
+  vtkNew<vtkPolyDataNormals> averaged;
+  averaged->SetInputConnection(merged->GetOutputPort());
+  averaged->SplittingOff();
+  averaged->Update();
+  cube->Update();
+  for (vtkPolyData* box : { averaged->GetOutput(), cube->GetOutput() })
+  {
+    const bool bent = box == averaged->GetOutput();
+    vtkNew<vtkPolyDataNormals> floorNormals;
+    floorNormals->SetInputData(MakeFloor(1.0, 1));
+    floorNormals->Update();
+    vtkNew<vtkAppendPolyData> scene;
+    scene->AddInputData(box);
+    scene->AddInputData(floorNormals->GetOutput());
+    scene->Update();
+    vtkNew<vtkGlobalIlluminationFilter> filter;
+    filter->SetInputData(scene->GetOutput());
+    filter->AddLight(MakeLight(light, at, 1.0));
+    filter->SetBackendToCPU();
+    filter->Update();
+    EXPECT_EQ(MessageCapture::Contains(Warnings(filter->GetOutput()), "smoothed across sharp edges"), bent) << bent;
+    filter->ComputeNormalsOn();
+    filter->Update();
+    EXPECT_FALSE(MessageCapture::Contains(Warnings(filter->GetOutput()), "smoothed across sharp edges")) << bent;
+    EXPECT_TRUE(Warnings(filter->GetOutput()).empty()) << bent << ": " << Warnings(filter->GetOutput()).front();
+  }
 }
 
 TEST(TestGlobalIlluminationRealData, TranslationUpTo1e7ChangesNoResult)

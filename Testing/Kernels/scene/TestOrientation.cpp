@@ -211,6 +211,38 @@ TEST(TestOrientation, NormalsAgainstTheWindingAreCounted)
   EXPECT_TRUE(found.inward.empty()); // the normals decide which side is the front
 }
 
+TEST(TestOrientation, NormalsSmoothedAcrossSharpEdgesAreMeasured)
+{
+  // A cube of 8 shared corners whose normals average its three faces (55 degrees from each,
+  // as CAD exports write them): every corner is bent, all of the area. Split at its edges
+  // (a normal per face) or a sphere's smooth normals: none.
+  Scene cube;
+  for (int i = 0; i < 8; ++i)
+  {
+    const Vec3f p(i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 1.f : -1.f);
+    cube.positions.push_back(p);
+    cube.normals.push_back(normalize(p));
+  }
+  const Index faces[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 }, { 0, 4, 6, 2 },
+    { 1, 3, 7, 5 } }; // each counter-clockwise seen from outside
+  for (const auto& f : faces)
+  {
+    cube.triangles.push_back({ { f[0], f[1], f[2] } });
+    cube.triangles.push_back({ { f[0], f[2], f[3] } });
+  }
+  cube.albedo.assign(8, Vec3f(0.5f));
+  const SurfaceOrientation bent = findInwardSurfaces(cube, {});
+  EXPECT_EQ(bent.againstWinding, 0u);
+  EXPECT_TRUE(bent.inward.empty());
+  EXPECT_EQ(bent.bentNormals, 8u);
+  EXPECT_NEAR(bent.bentNormalArea, 1.0, 1e-9);
+
+  MeshBuilder split;
+  split.addBox({ -1.f, -1.f, -1.f }, { 1.f, 1.f, 1.f }, 2.f, Vec3f(0.5f));
+  EXPECT_EQ(findInwardSurfaces(split.scene(), {}).bentNormals, 0u);
+  EXPECT_EQ(findInwardSurfaces(Sphere(Vec3f(0.f), 1.f, kPi, false), {}).bentNormals, 0u);
+}
+
 TEST(TestOrientation, ALampInsideMakesARoomOfAnInwardSurface)
 {
   Scene room = Sphere(Vec3f(10.f, 0.f, 0.f), 3.f, kPi, true);

@@ -25,7 +25,19 @@ struct SurfaceOrientation
   /// Triangles whose winding disagrees with their vertices' normals (the engine follows the
   /// normals; VTK's two-sided lighting follows the winding and draws them dark).
   std::size_t againstWinding = 0;
+  /// Vertices whose normal lies more than kBentNormalDegrees from the front of one of their
+  /// triangles, and their share of the surface's area (a third of each triangle per
+  /// corner): normals smoothed across sharp edges, as CAD exports write them, which tilt the
+  /// hemisphere such a vertex is lit over away from its faces.
+  std::size_t bentNormals = 0;
+  double bentNormalArea = 0.0;
 };
+
+/// How far a vertex normal may lie from one of its triangles before it counts as bent
+/// (SurfaceOrientation::bentNormals): beyond what smoothing within a feature angle of 30
+/// to 45 degrees gives (a scanned bunny's normals: 0.9% of its area), short of a cube's
+/// corner normals averaged over its three faces (55 degrees).
+constexpr double kBentNormalDegrees = 45.0;
 
 /// Finds the closed surfaces whose normals point inward. A surface is a set of triangles
 /// connected through shared points: `pointIds` gives each vertex the id of the point it was

@@ -167,6 +167,9 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
       s.hi[k] = std::max(s.hi[k], x[k]);
     }
   }
+  const double bentCosine = std::cos(kBentNormalDegrees * double(kPi) / 180.0);
+  std::vector<std::uint8_t> bent(nv, 0);
+  std::vector<double> vertexArea(nv, 0.0);
   for (const Triangle& t : scene.triangles)
   {
     SurfaceSums& s = sums[surfaceOf(point[t.v[0]])];
@@ -185,7 +188,15 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
     const double front = facing < 0.0 ? -1.0 : 1.0;
     // The tetrahedron (centre, a, b, d), signed by the winding, turned to the normals' side.
     s.volume += front * (a[0] * w[0] + a[1] * w[1] + a[2] * w[2]) / 6.0;
-    s.area += 0.5 * std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    const double twiceArea = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    s.area += 0.5 * twiceArea;
+    for (int k = 0; k < 3; ++k)
+    {
+      const Vec3f& nk = scene.normals[t.v[k]];
+      const double along = front * (w[0] * nk.x + w[1] * nk.y + w[2] * nk.z);
+      bent[t.v[k]] |= along < bentCosine * twiceArea * double(length(nk)) ? 1 : 0;
+      vertexArea[t.v[k]] += twiceArea / 6.0;
+    }
     for (int k = 0; k < 3; ++k)
     {
       s.vectorArea[k] += 0.5 * front * w[k];
@@ -193,6 +204,14 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
     ++s.triangles;
   }
 
+  double totalArea = 0.0;
+  for (std::size_t v = 0; v < nv; ++v)
+  {
+    totalArea += vertexArea[v];
+    report.bentNormals += bent[v];
+    report.bentNormalArea += bent[v] ? vertexArea[v] : 0.0;
+  }
+  report.bentNormalArea = totalArea > 0.0 ? report.bentNormalArea / totalArea : 0.0;
   report.surfaces = sums.size();
   std::vector<Index> inwardOf(sums.size(), kInvalidIndex);
   for (std::size_t i = 0; i < sums.size(); ++i)
