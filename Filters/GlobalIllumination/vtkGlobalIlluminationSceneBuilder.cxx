@@ -186,12 +186,12 @@ std::array<double, 3> BoundsCentre(vtkPolyData* mesh, const std::vector<unsigned
 
 /// The share of a surface's area at bent normals (SurfaceOrientation::bentNormalArea)
 /// that is warned about: a CAD part exported with normals averaged across its edges holds
-/// 61-78%, scanned models with their own normals about 1%.
+/// 40%, scanned models with their own normals and contours with gradient normals 0-3%.
 constexpr double kBentNormalWarning = 0.1;
 
 // Finds the inward closed surfaces (OrientToLights turns them), and warns where normals
 // and winding disagree (LinkGI's filter and mappers follow the normals there, VTK's own
-// two-sided lighting the winding) and where given normals are smoothed across sharp edges.
+// two-sided lighting the winding) and where given normals are averaged across sharp edges.
 void FindInwardSurfaces(vtkGlobalIlluminationSceneBuilder::Mesh& mesh)
 {
   std::vector<std::uint64_t> points(mesh.ElementPoint.begin(), mesh.ElementPoint.end());
@@ -214,7 +214,7 @@ void FindInwardSurfaces(vtkGlobalIlluminationSceneBuilder::Mesh& mesh)
     msg << "The point normals of " << mesh.Orientation.bentNormals << " of " << mesh.Scene.vertexCount()
         << " points (" << std::lround(100.0 * mesh.Orientation.bentNormalArea)
         << "% of the surface's area) lie more than " << linkgi::kBentNormalDegrees
-        << " degrees from one of their triangles: normals smoothed across sharp edges. Those points"
+        << " degrees from every one of their triangles: normals averaged across sharp edges. Those points"
         << " are lit, and shaded, as if their surface were tilted; turn ComputeNormals on to"
         << " split them at sharp edges (FeatureAngle).";
     mesh.Warnings.push_back(msg.str());

@@ -145,26 +145,33 @@ TEST(TestOrientation, OnlyTheInwardOfTwoSurfacesIsFound)
 TEST(TestOrientation, VerticesSplitFromOnePointBelongToOneSurface)
 {
   // Every vertex of the inward sphere duplicated per triangle (as splitting at sharp edges
-  // does to a cube): without the point ids no edge is shared and nothing is closed.
+  // does to a cube, or a triangle soup): the copies of a point are one through the point
+  // ids, and where they lie at one position through that. Copies moved apart (by less than
+  // the sphere notices) are one through the ids only: without them no edge is shared and
+  // nothing is closed.
   const Scene welded = Sphere(Vec3f(0.f), 1.f, kPi, true, 8, 12);
-  Scene split;
-  std::vector<std::uint64_t> pointIds;
-  for (const Triangle& t : welded.triangles)
+  for (const bool apart : { false, true })
   {
-    Triangle copy;
-    for (int k = 0; k < 3; ++k)
+    Scene split;
+    std::vector<std::uint64_t> pointIds;
+    for (const Triangle& t : welded.triangles)
     {
-      copy.v[k] = Index(split.positions.size());
-      split.positions.push_back(welded.positions[t.v[k]]);
-      split.normals.push_back(welded.normals[t.v[k]]);
-      pointIds.push_back(t.v[k] * 7919u + 3u); // any ids, equal for copies of one point
+      Triangle copy;
+      for (int k = 0; k < 3; ++k)
+      {
+        copy.v[k] = Index(split.positions.size());
+        const float shift = apart ? 1e-5f * float(split.positions.size() % 7) : 0.f;
+        split.positions.push_back(welded.positions[t.v[k]] + Vec3f(shift, 0.f, 0.f));
+        split.normals.push_back(welded.normals[t.v[k]]);
+        pointIds.push_back(t.v[k] * 7919u + 3u); // any ids, equal for copies of one point
+      }
+      split.triangles.push_back(copy);
     }
-    split.triangles.push_back(copy);
+    EXPECT_EQ(findInwardSurfaces(split, {}).inward.empty(), apart) << apart;
+    const SurfaceOrientation found = findInwardSurfaces(split, pointIds);
+    EXPECT_EQ(found.surfaces, 1u) << apart;
+    EXPECT_EQ(found.inward.size(), 1u) << apart;
   }
-  EXPECT_TRUE(findInwardSurfaces(split, {}).inward.empty());
-  const SurfaceOrientation found = findInwardSurfaces(split, pointIds);
-  EXPECT_EQ(found.surfaces, 1u);
-  EXPECT_EQ(found.inward.size(), 1u);
 }
 
 TEST(TestOrientation, SmallHolesStillCloseASurface)
@@ -197,6 +204,41 @@ TEST(TestOrientation, OpenSurfacesHaveNoInside)
       EXPECT_TRUE(findInwardSurfaces(s, {}).inward.empty()) << inward;
     }
   }
+}
+
+TEST(TestOrientation, ASeamOfRepeatedPointsStillClosesASurface)
+{
+  // An inward sphere whose first meridian is repeated: the triangles of its last segment use
+  // copies of that meridian's points (a structured grid's surface that wraps around, an OBJ
+  // file's vertices split by texture coordinates). Its points at one position are one, so
+  // it is closed and found inward; without the copies it is the same sphere.
+  const int segments = 32;
+  Scene s = Sphere(Vec3f(0.f), 1.f, kPi, true, 24, segments);
+  const std::size_t ringVertices = s.vertexCount() - 2;
+  std::vector<Index> copyOf(s.vertexCount(), kInvalidIndex);
+  for (Triangle& t : s.triangles)
+  {
+    const auto column = [&](Index v) { return v == 0 || v > ringVertices ? -1 : int((v - 1) % segments); };
+    const bool last = column(t.v[0]) == segments - 1 || column(t.v[1]) == segments - 1 ||
+      column(t.v[2]) == segments - 1;
+    for (Index& v : t.v)
+    {
+      if (last && column(v) == 0)
+      {
+        if (copyOf[v] == kInvalidIndex)
+        {
+          copyOf[v] = Index(s.positions.size());
+          s.positions.push_back(s.positions[v]);
+          s.normals.push_back(s.normals[v]);
+        }
+        v = copyOf[v];
+      }
+    }
+  }
+  ASSERT_GT(s.vertexCount(), ringVertices + 2) << "the seam was repeated";
+  const SurfaceOrientation found = findInwardSurfaces(s, {});
+  ASSERT_EQ(found.inward.size(), 1u);
+  EXPECT_EQ(found.inward[0].vertices.size(), s.vertexCount()) << "the copies belong to it";
 }
 
 TEST(TestOrientation, NormalsAgainstTheWindingAreCounted)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iterator>
 #include <numeric>
+#include <tuple>
 
 namespace linkgi
 {
@@ -56,6 +57,48 @@ struct UnionFind
   void join(Index a, Index b) { parent[find(a)] = find(b); }
 };
 
+/// `point` with the points that lie at the same position made one (renumbered densely,
+/// `points` their new count): a surface's seam where its points are repeated, as on the
+/// surface of a structured grid that wraps around or an OBJ file's vertices split by their
+/// texture coordinates, closes it.
+void joinCoincidentPoints(const Scene& scene, std::vector<Index>& point, std::size_t& points)
+{
+  const std::size_t nv = point.size();
+  std::vector<Index> order(nv);
+  std::iota(order.begin(), order.end(), Index(0));
+  const auto key = [&scene](Index v) {
+    const Vec3f& p = scene.positions[v];
+    return std::make_tuple(p.x, p.y, p.z);
+  };
+  std::sort(order.begin(), order.end(), [&key](Index a, Index b) { return key(a) < key(b); });
+  UnionFind same(points);
+  bool joined = false;
+  for (std::size_t i = 1; i < nv; ++i)
+  {
+    if (key(order[i]) == key(order[i - 1]) && point[order[i]] != point[order[i - 1]])
+    {
+      same.join(point[order[i]], point[order[i - 1]]);
+      joined = true;
+    }
+  }
+  if (!joined)
+  {
+    return;
+  }
+  std::vector<Index> renumbered(points, kInvalidIndex);
+  std::size_t count = 0;
+  for (Index& p : point)
+  {
+    const Index root = same.find(p);
+    if (renumbered[root] == kInvalidIndex)
+    {
+      renumbered[root] = Index(count++);
+    }
+    p = renumbered[root];
+  }
+  points = count;
+}
+
 /// Per surface: its bounds, the length of its holes' borders, and integrals over its
 /// front sides: area, vector area and enclosed volume.
 struct SurfaceSums
@@ -83,7 +126,8 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
     return report;
   }
   std::size_t points = 0;
-  const std::vector<Index> point = densePoints(nv, pointIds, points);
+  std::vector<Index> point = densePoints(nv, pointIds, points);
+  joinCoincidentPoints(scene, point, points);
   std::vector<Index> vertexOf(points);
   for (std::size_t v = 0; v < nv; ++v)
   {
@@ -168,8 +212,7 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
     }
   }
   const double bentCosine = std::cos(kBentNormalDegrees * double(kPi) / 180.0);
-  std::vector<std::uint8_t> bent(nv, 0);
-  std::vector<double> vertexArea(nv, 0.0);
+  std::vector<double> nearest(nv, -1.0), vertexArea(nv, 0.0); // the cosine to the nearest triangle
   for (const Triangle& t : scene.triangles)
   {
     SurfaceSums& s = sums[surfaceOf(point[t.v[0]])];
@@ -193,8 +236,12 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
     for (int k = 0; k < 3; ++k)
     {
       const Vec3f& nk = scene.normals[t.v[k]];
-      const double along = front * (w[0] * nk.x + w[1] * nk.y + w[2] * nk.z);
-      bent[t.v[k]] |= along < bentCosine * twiceArea * double(length(nk)) ? 1 : 0;
+      const double scale = twiceArea * double(length(nk));
+      if (scale > 0.0)
+      {
+        const double cosine = front * (w[0] * nk.x + w[1] * nk.y + w[2] * nk.z) / scale;
+        nearest[t.v[k]] = std::max(nearest[t.v[k]], cosine);
+      }
       vertexArea[t.v[k]] += twiceArea / 6.0;
     }
     for (int k = 0; k < 3; ++k)
@@ -207,9 +254,10 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
   double totalArea = 0.0;
   for (std::size_t v = 0; v < nv; ++v)
   {
+    const bool bent = vertexArea[v] > 0.0 && nearest[v] < bentCosine;
     totalArea += vertexArea[v];
-    report.bentNormals += bent[v];
-    report.bentNormalArea += bent[v] ? vertexArea[v] : 0.0;
+    report.bentNormals += bent ? 1 : 0;
+    report.bentNormalArea += bent ? vertexArea[v] : 0.0;
   }
   report.bentNormalArea = totalArea > 0.0 ? report.bentNormalArea / totalArea : 0.0;
   report.surfaces = sums.size();

@@ -26,9 +26,10 @@ using namespace engine;
 /// Node links that the link stage holds at its peak (each task's links after keeping
 /// each receiver's shortest per bin, and their CSR), per vertex and bin per side, where
 /// nothing was sampled yet (what a refusal before the sample advises): calibrated on the
-/// peaks of rooms from 8.6k to 121k vertices. The count depends on how much of the scene each part sees, not on sizes
-/// alone: the CPU backend's sample found 11 on the torso, 30 on colorlamp, 36 on cornell,
-/// 60 on iphi and 69 on tearoom (Documentation/Methods.md, "Memory").
+/// peaks of rooms from 8.6k to 121k vertices. The count depends on how much of the scene
+/// each part sees, not on sizes alone: the CPU backend's sample found 11 on the torso, 30
+/// on colorlamp, 36 on cornell, 60 on iphi and 69 on tearoom (Documentation/Methods.md,
+/// "Memory").
 constexpr double kKeptLinks = 42.0;
 
 /// What each worker's allocator arena keeps of the links its tasks created and freed,
