@@ -57,33 +57,104 @@ struct UnionFind
   void join(Index a, Index b) { parent[find(a)] = find(b); }
 };
 
-/// `point` with the points that lie at the same position made one (renumbered densely,
-/// `points` their new count): a surface's seam where its points are repeated, as on the
-/// surface of a structured grid that wraps around or an OBJ file's vertices split by their
-/// texture coordinates, closes it.
-void joinCoincidentPoints(const Scene& scene, std::vector<Index>& point, std::size_t& points)
+/// The edges (a, b), a < b, of the triangles over their points, bucketed by a (a counting
+/// sort), each bucket sorted by b: the edges in (a, b) order. An edge of one triangle
+/// borders a hole.
+struct Edges
 {
-  const std::size_t nv = point.size();
-  std::vector<Index> order(nv);
-  std::iota(order.begin(), order.end(), Index(0));
-  const auto key = [&scene](Index v) {
-    const Vec3f& p = scene.positions[v];
-    return std::make_tuple(p.x, p.y, p.z);
+  std::vector<std::size_t> first; ///< bucket a: higher[first[a], first[a + 1])
+  std::vector<Index> higher;
+
+  Edges(const Scene& scene, const std::vector<Index>& point, std::size_t points) : first(points + 1, 0)
+  {
+    for (const Triangle& t : scene.triangles)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        ++first[std::min(point[t.v[k]], point[t.v[(k + 1) % 3]]) + 1];
+      }
+    }
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    higher.resize(first.back());
+    std::vector<std::size_t> next(first.begin(), first.end() - 1);
+    for (const Triangle& t : scene.triangles)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const Index a = point[t.v[k]], b = point[t.v[(k + 1) % 3]];
+        higher[next[std::min(a, b)]++] = std::max(a, b);
+      }
+    }
+    for (std::size_t a = 0; a < points; ++a)
+    {
+      std::sort(higher.begin() + std::ptrdiff_t(first[a]), higher.begin() + std::ptrdiff_t(first[a + 1]));
+    }
+  }
+
+  /// Calls border(a, b) for every edge that one triangle alone has.
+  template <typename Border>
+  void forEachBorder(Border&& border) const
+  {
+    for (std::size_t a = 0; a + 1 < first.size(); ++a)
+    {
+      const auto begin = higher.begin() + std::ptrdiff_t(first[a]), end = higher.begin() + std::ptrdiff_t(first[a + 1]);
+      for (auto i = begin; i != end;)
+      {
+        auto j = std::next(i);
+        while (j != end && *j == *i)
+        {
+          ++j;
+        }
+        if (j - i == 1)
+        {
+          border(Index(a), *i);
+        }
+        i = j;
+      }
+    }
+  }
+};
+
+/// Makes the points on the borders of `edges` that lie at one position one point
+/// (renumbering `point` densely, `points` their new count); true where any were joined. A
+/// surface whose points repeat along a seam (the surface of a structured grid that wraps
+/// around, an OBJ file's vertices split by their texture coordinates, a triangle soup) has
+/// borders there; joined, it is closed. Only border points are compared: a closed surface
+/// costs nothing.
+bool joinCoincidentPoints(const Scene& scene, const Edges& edges, std::vector<Index>& point, std::size_t& points)
+{
+  std::vector<Index> border;
+  edges.forEachBorder([&border](Index a, Index b) {
+    border.push_back(a);
+    border.push_back(b);
+  });
+  if (border.empty())
+  {
+    return false;
+  }
+  std::vector<Index> vertexOf(points);
+  for (std::size_t v = 0; v < point.size(); ++v)
+  {
+    vertexOf[point[v]] = Index(v);
+  }
+  const auto key = [&](Index p) {
+    const Vec3f& x = scene.positions[vertexOf[p]];
+    return std::make_tuple(x.x, x.y, x.z);
   };
-  std::sort(order.begin(), order.end(), [&key](Index a, Index b) { return key(a) < key(b); });
+  std::sort(border.begin(), border.end(), [&key](Index a, Index b) { return key(a) < key(b); });
   UnionFind same(points);
   bool joined = false;
-  for (std::size_t i = 1; i < nv; ++i)
+  for (std::size_t i = 1; i < border.size(); ++i)
   {
-    if (key(order[i]) == key(order[i - 1]) && point[order[i]] != point[order[i - 1]])
+    if (border[i] != border[i - 1] && key(border[i]) == key(border[i - 1]))
     {
-      same.join(point[order[i]], point[order[i - 1]]);
+      same.join(border[i], border[i - 1]);
       joined = true;
     }
   }
   if (!joined)
   {
-    return;
+    return false;
   }
   std::vector<Index> renumbered(points, kInvalidIndex);
   std::size_t count = 0;
@@ -97,6 +168,7 @@ void joinCoincidentPoints(const Scene& scene, std::vector<Index>& point, std::si
     p = renumbered[root];
   }
   points = count;
+  return true;
 }
 
 /// Per surface: its bounds, the length of its holes' borders, and integrals over its
@@ -127,7 +199,11 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
   }
   std::size_t points = 0;
   std::vector<Index> point = densePoints(nv, pointIds, points);
-  joinCoincidentPoints(scene, point, points);
+  Edges edges(scene, point, points);
+  if (joinCoincidentPoints(scene, edges, point, points))
+  {
+    edges = Edges(scene, point, points);
+  }
   std::vector<Index> vertexOf(points);
   for (std::size_t v = 0; v < nv; ++v)
   {
@@ -157,49 +233,9 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
     }
     return surfaceOfRoot[root];
   };
-
-  // Edges (a, b), a < b, bucketed by a (a counting sort), each bucket sorted by b: the
-  // edges in (a, b) order, and an edge of one triangle borders a hole.
-  std::vector<std::size_t> first(points + 1, 0);
-  for (const Triangle& t : scene.triangles)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      ++first[std::min(point[t.v[k]], point[t.v[(k + 1) % 3]]) + 1];
-    }
-  }
-  std::partial_sum(first.begin(), first.end(), first.begin());
-  std::vector<Index> higher(first.back());
-  {
-    std::vector<std::size_t> next(first.begin(), first.end() - 1);
-    for (const Triangle& t : scene.triangles)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        const Index a = point[t.v[k]], b = point[t.v[(k + 1) % 3]];
-        higher[next[std::min(a, b)]++] = std::max(a, b);
-      }
-    }
-  }
-  for (std::size_t a = 0; a < points; ++a)
-  {
-    const auto begin = higher.begin() + std::ptrdiff_t(first[a]), end = higher.begin() + std::ptrdiff_t(first[a + 1]);
-    std::sort(begin, end);
-    for (auto i = begin; i != end;)
-    {
-      auto j = std::next(i);
-      while (j != end && *j == *i)
-      {
-        ++j;
-      }
-      if (j - i == 1)
-      {
-        sums[surfaceOf(Index(a))].boundary +=
-          length(scene.positions[vertexOf[a]] - scene.positions[vertexOf[*i]]);
-      }
-      i = j;
-    }
-  }
+  edges.forEachBorder([&](Index a, Index b) {
+    sums[surfaceOf(a)].boundary += length(scene.positions[vertexOf[a]] - scene.positions[vertexOf[b]]);
+  });
   for (std::size_t v = 0; v < nv; ++v)
   {
     SurfaceSums& s = sums[surfaceOf(point[v])];
