@@ -81,7 +81,8 @@ def main(model, up, method):
     for wall in room_faces(lo, hi, 0.08 * height):
         scene.AddInputData(wall)
     scene.Update()
-    rank, ranks = mpi_rank()
+    controller = mpi_controller()
+    rank, ranks = (controller.GetLocalProcessId(), controller.GetNumberOfProcesses()) if controller else (0, 1)
     piece = scene
     if ranks > 1:
         piece = vtkExtractPolyDataPiece()
@@ -112,23 +113,21 @@ def main(model, up, method):
           % (model, method, " rank %d of %d" % (rank, ranks) if ranks > 1 else "",
              piece.GetOutput().GetNumberOfPoints(), seconds, peak / 2**20, estimate / 2**20, estimate / peak),
           flush=True)
-    if ranks > 1:
-        mpi_rank.controller.Finalize(1)  # mpi4py finalizes MPI
+    if controller:
+        controller.Finalize(1)  # mpi4py finalizes MPI
 
 
-def mpi_rank():
-    """(rank, ranks) under mpirun, with the MPI controller made global for the filter; (0, 1)
-    otherwise."""
+def mpi_controller():
+    """Under mpirun, the MPI controller, made global for the filter; None otherwise."""
     if int(os.environ.get("OMPI_COMM_WORLD_SIZE", "1")) < 2:
-        return 0, 1
+        return None
     from mpi4py import MPI  # noqa: F401 (initializes MPI before VTK's controller exists)
     from vtkmodules.vtkParallelMPI import vtkMPIController
     from vtkmodules.vtkParallelCore import vtkMultiProcessController
     controller = vtkMPIController()
     controller.Initialize()  # MPI is already initialized (mpi4py)
     vtkMultiProcessController.SetGlobalController(controller)
-    mpi_rank.controller = controller
-    return controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
+    return controller
 
 
 if __name__ == "__main__":
