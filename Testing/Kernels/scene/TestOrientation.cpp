@@ -251,6 +251,21 @@ TEST(TestOrientation, NormalsAgainstTheWindingAreCounted)
   const SurfaceOrientation found = findInwardSurfaces(s, {});
   EXPECT_EQ(found.againstWinding, s.triangleCount());
   EXPECT_TRUE(found.inward.empty()); // the normals decide which side is the front
+
+  // Slivers and specks have no side to disagree with: a triangle whose corners are a
+  // rounding apart (vtkParametricTorus's seam) is not counted, whichever way it turns.
+  Scene outward = Sphere(Vec3f(0.f), 1.f, kPi, false);
+  const Index base = Index(outward.positions.size());
+  const Vec3f at(1.f, 0.f, 0.f);
+  for (const Vec3f& p : { at, at + Vec3f(0.f, 0.5f, 0.f), at + Vec3f(0.f, 0.25f, 1e-8f), // a sliver
+         at, at + Vec3f(0.f, 1e-9f, 0.f), at + Vec3f(0.f, 0.f, 1e-9f) }) // a speck
+  {
+    outward.positions.push_back(p);
+    outward.normals.push_back(Vec3f(1.f, 0.f, 0.f));
+  }
+  outward.triangles.push_back({ { base, base + 2, base + 1 } });
+  outward.triangles.push_back({ { base + 3, base + 5, base + 4 } }); // facing -x: against
+  EXPECT_EQ(findInwardSurfaces(outward, {}).againstWinding, 0u);
 }
 
 TEST(TestOrientation, NormalsSmoothedAcrossSharpEdgesAreMeasured)

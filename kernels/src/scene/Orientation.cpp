@@ -181,6 +181,11 @@ struct SurfaceSums
   double vectorArea[3] = { 0.0, 0.0, 0.0 };
 };
 
+/// Twice a triangle's area over its longest edge squared below which it is a sliver (its
+/// height under a millionth of its length), and over its surface's size squared below
+/// which it is a speck (a millionth squared of that size).
+constexpr double kSliver = 1e-6;
+
 void sub(const Vec3f& a, const double c[3], double out[3])
 {
   out[0] = double(a.x) - c[0];
@@ -263,17 +268,25 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
       e1[0] * e2[1] - e1[1] * e2[0] };
     const Vec3f n = scene.normals[t.v[0]] + scene.normals[t.v[1]] + scene.normals[t.v[2]];
     const double facing = w[0] * n.x + w[1] * n.y + w[2] * n.z;
-    report.againstWinding += facing < 0.0 ? 1 : 0;
+    const double twiceArea = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    // A sliver's winding says nothing of a side, nor does a speck's: corners a rounding apart
+    // (the seam of vtkParametricTorus: 2.5e-15 of its size) turn its cross product any way.
+    const double e3[3] = { d[0] - b[0], d[1] - b[1], d[2] - b[2] };
+    const double longest2 = std::max({ e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2],
+      e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2], e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2] });
+    const double size2 = (s.hi[0] - s.lo[0]) * (s.hi[0] - s.lo[0]) + (s.hi[1] - s.lo[1]) * (s.hi[1] - s.lo[1]) +
+      (s.hi[2] - s.lo[2]) * (s.hi[2] - s.lo[2]);
+    const bool sided = twiceArea > kSliver * std::max(longest2, kSliver * size2);
+    report.againstWinding += sided && facing < 0.0 ? 1 : 0;
     const double front = facing < 0.0 ? -1.0 : 1.0;
     // The tetrahedron (centre, a, b, d), signed by the winding, turned to the normals' side.
     s.volume += front * (a[0] * w[0] + a[1] * w[1] + a[2] * w[2]) / 6.0;
-    const double twiceArea = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
     s.area += 0.5 * twiceArea;
     for (int k = 0; k < 3; ++k)
     {
       const Vec3f& nk = scene.normals[t.v[k]];
       const double scale = twiceArea * double(length(nk));
-      if (scale > 0.0)
+      if (sided && scale > 0.0)
       {
         const double cosine = front * (w[0] * nk.x + w[1] * nk.y + w[2] * nk.z) / scale;
         nearest[t.v[k]] = std::max(nearest[t.v[k]], cosine);
