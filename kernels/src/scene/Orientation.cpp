@@ -181,9 +181,9 @@ struct SurfaceSums
   double vectorArea[3] = { 0.0, 0.0, 0.0 };
 };
 
-/// Twice a triangle's area over its longest edge squared below which it is a sliver (its
-/// height under a millionth of its length), and over its surface's size squared below
-/// which it is a speck (a millionth squared of that size).
+/// A triangle is a sliver where twice its area is under kSliver times its longest edge
+/// squared (its height under a millionth of its length), and a speck where it is under
+/// kSliver squared times its surface's size squared (about a millionth of that size across).
 constexpr double kSliver = 1e-6;
 
 void sub(const Vec3f& a, const double c[3], double out[3])
