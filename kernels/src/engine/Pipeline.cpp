@@ -5,6 +5,7 @@
 #include "linkgi/Error.h"
 #include "shared/Sampling.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -202,6 +203,12 @@ const std::uint8_t* ownRows(const SolverOptions& o, std::size_t elements)
       std::to_string(elements) + " elements, or has no exchange; give one flag per element.");
   }
   return o.partition->rows.data();
+}
+
+std::size_t ownRowCount(const SolverOptions& o, std::size_t elements)
+{
+  const std::uint8_t* own = ownRows(o, elements);
+  return own ? std::size_t(std::count_if(own, own + elements, [](std::uint8_t r) { return r != 0; })) : elements;
 }
 
 std::function<void(std::vector<Vec3f>&)> exchangeOf(const SolverOptions& o)

@@ -233,6 +233,9 @@ public:
 /// partition's exchange.
 const std::uint8_t* ownRows(const SolverOptions& options, std::size_t elements);
 
+/// How many rows of `elements` are this process's (all without a partition).
+std::size_t ownRowCount(const SolverOptions& options, std::size_t elements);
+
 /// The partition's exchange (Partition::exchange) as the bounce loops take it; empty without
 /// a partition.
 std::function<void(std::vector<Vec3f>&)> exchangeOf(const SolverOptions& options);

@@ -96,8 +96,7 @@ public:
     {
       return measured.bytesPerVertex;
     }
-    const std::size_t mine =
-      own ? std::size_t(std::count_if(own, own + nv, [](std::uint8_t r) { return r != 0; })) : nv;
+    const std::size_t mine = ownRowCount(c.options, nv);
     if (mine == 0)
     {
       return 0.0;

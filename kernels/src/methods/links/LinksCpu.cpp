@@ -85,29 +85,29 @@ public:
     const SolverOptions& o = c.options;
     const std::size_t rows = Elements{ c.scene.vertexCount(), o.twoSided }.count();
     const std::uint8_t* own = ownRows(o, rows);
-    std::vector<Index> mine;
-    mine.reserve(rows);
-    for (std::size_t r = 0; r < rows; ++r)
-    {
-      if (!own || own[r])
-      {
-        mine.push_back(Index(r));
-      }
-    }
-    const std::size_t count = std::min(mine.size(), std::max<std::size_t>(256, mine.size() / 64));
+    const std::size_t mine = ownRowCount(o, rows);
+    const std::size_t count = std::min(mine, std::max<std::size_t>(256, mine / 64));
     if (count == 0)
     {
       return 0.0;
     }
     std::vector<std::uint8_t> sample(rows, 0);
-    for (std::size_t k = 0; k < count; ++k)
+    for (std::size_t r = 0, ordinal = 0, k = 0; r < rows && k < count; ++r)
     {
-      sample[mine[k * mine.size() / count]] = 1;
+      if (own && !own[r])
+      {
+        continue;
+      }
+      if (ordinal++ == k * mine / count) // the k-th of `count` own rows spread evenly
+      {
+        sample[r] = 1;
+        ++k;
+      }
     }
     const LinkOptions sampleOptions{ o.raysPerVertex, o.twoSided, o.twist, o.seed, sample.data(), &detail };
     const LinkStructure links =
       linkgi::buildLinks(c.scene, geometry.origins, *geometry.tracer, geometry.faceNormals, sampleOptions);
-    const double share = double(mine.size()) / double(rows);
+    const double share = double(mine) / double(rows);
     return share * double(links.transport.nonZeros() + links.environment.nonZeros()) / double(count);
   }
 
