@@ -49,8 +49,11 @@
  * Surfaces: triangles are lit on the side their normal points to. Normals come from the
  * input's point normals, or are computed with vtkPolyDataNormals (feature angle
  * FeatureAngle, splitting on, consistent ordering) when the input has none or
- * ComputeNormals is on. A point split at a sharp edge is solved once per side; its output
- * value is the mean of its copies (by count). With TwoSided off, a ray that hits the back
+ * ComputeNormals is on, and, with a warning, when the input's normals are averaged across
+ * sharp edges (points whose normal lies more than 30 degrees from every one of their
+ * triangles hold a tenth of the surface's area or more, as in CAD exports). A point split
+ * at a sharp edge is solved once per side; its output value is the mean of its copies (by
+ * count). With TwoSided off, a ray that hits the back
  * of a triangle is blocked and sees black. Real data (the user guide's section of that
  * name): a closed surface wound inward is lit from outside unless a light is inside it, and
  * coordinates are taken relative to the surface's centre, in double precision.
@@ -366,8 +369,8 @@ public:
   ///@{
   /**
    * Always compute point normals (splitting at FeatureAngle), even when the input has
-   * point normals. When off, the input's normals are used if present. The default value is
-   * off.
+   * point normals. When off, the input's normals are used if present, unless they are
+   * averaged across sharp edges (see the class description). The default value is off.
    */
   vtkSetMacro(ComputeNormals, vtkTypeBool);
   vtkGetMacro(ComputeNormals, vtkTypeBool);

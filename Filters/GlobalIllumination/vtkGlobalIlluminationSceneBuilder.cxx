@@ -185,13 +185,14 @@ std::array<double, 3> BoundsCentre(vtkPolyData* mesh, const std::vector<unsigned
 }
 
 /// The share of a surface's area at bent normals (SurfaceOrientation::bentNormalArea)
-/// that is warned about: a CAD part exported with normals averaged across its edges holds
-/// 40%, scanned models with their own normals and contours with gradient normals 0-3%.
-constexpr double kBentNormalWarning = 0.1;
+/// from which given normals are replaced by computed ones: a CAD part exported with normals
+/// averaged across its edges holds 40%, scanned models with their own normals and contours
+/// with gradient normals 0-3%.
+constexpr double kBentNormalShare = 0.1;
 
 // Finds the inward closed surfaces (OrientToLights turns them), and warns where normals
 // and winding disagree (LinkGI's filter and mappers follow the normals there, VTK's own
-// two-sided lighting the winding) and where given normals are averaged across sharp edges.
+// two-sided lighting the winding).
 void FindInwardSurfaces(vtkGlobalIlluminationSceneBuilder::Mesh& mesh)
 {
   std::vector<std::uint64_t> points(mesh.ElementPoint.begin(), mesh.ElementPoint.end());
@@ -208,17 +209,21 @@ void FindInwardSurfaces(vtkGlobalIlluminationSceneBuilder::Mesh& mesh)
         << " of those cells.";
     mesh.Warnings.push_back(msg.str());
   }
-  if (mesh.Orientation.bentNormalArea >= kBentNormalWarning && !mesh.NormalsComputed)
-  {
-    std::ostringstream msg;
-    msg << "The point normals of " << mesh.Orientation.bentNormals << " of " << mesh.Scene.vertexCount()
-        << " points (" << std::lround(100.0 * mesh.Orientation.bentNormalArea)
-        << "% of the surface's area) lie more than " << linkgi::kBentNormalDegrees
-        << " degrees from every one of their triangles: normals averaged across sharp edges. Those points"
-        << " are lit, and shaded, as if their surface were tilted; turn ComputeNormals on to"
-        << " split them at sharp edges (FeatureAngle).";
-    mesh.Warnings.push_back(msg.str());
-  }
+}
+
+/// What replacing the given normals of `given` (a mesh built with them) says.
+std::string BentNormalsReplaced(const vtkGlobalIlluminationSceneBuilder::Mesh& given)
+{
+  std::ostringstream msg;
+  msg << "The point normals of " << given.Orientation.bentNormals << " of " << given.Scene.vertexCount()
+      << " points (" << std::lround(100.0 * given.Orientation.bentNormalArea)
+      << "% of the surface's area) lie more than " << linkgi::kBentNormalDegrees
+      << " degrees from every one of their triangles: normals averaged across sharp edges, which"
+      << " would light those points as if their surface were tilted. The surface is lit with"
+      << " normals computed from its triangles instead, split at sharp edges (FeatureAngle), as"
+      << " with ComputeNormals on. To shade with the same normals, split the input's"
+      << " (vtkPolyDataNormals; in ParaView, Generate Surface Normals).";
+  return msg.str();
 }
 }
 
@@ -352,6 +357,12 @@ vtkGlobalIlluminationSceneBuilder::Mesh vtkGlobalIlluminationSceneBuilder::Build
     Fail("The input's polygons and strips make no triangles (they have fewer than 3 points).");
   }
   FindInwardSurfaces(mesh);
+  if (!mesh.NormalsComputed && mesh.Orientation.bentNormalArea >= kBentNormalShare)
+  {
+    Mesh split = BuildMesh(input, true, featureAngle);
+    split.Warnings.insert(split.Warnings.begin(), BentNormalsReplaced(mesh));
+    return split;
+  }
   return mesh;
 }
 

@@ -226,12 +226,11 @@ TEST(TestGlobalIlluminationRealData, SurfaceLitOnlyFromBehindSaysHowToLightIt)
   EXPECT_GT(back->GetRange(0)[1], 0.0);
 }
 
-TEST(TestGlobalIlluminationRealData, NormalsSmoothedAcrossSharpEdgesSayHowToSplitThem)
+TEST(TestGlobalIlluminationRealData, NormalsSmoothedAcrossSharpEdgesAreSplit)
 {
   // A box on a floor, its corners merged and their normals averaged over its faces (as CAD
-  // exports write them): the update says that those points are lit as a tilted surface, and
-  // how to split them. vtkCubeSource's own normals (a normal per face), or ComputeNormals
-  // on, say nothing of it.
+  // exports write them): the box is lit as with ComputeNormals on, exactly, and the update
+  // says so. vtkCubeSource's own normals (a normal per face) are kept, and say nothing.
   const double light[3] = { 2.0, 3.0, 4.0 }, at[3] = { 0, 0, 0 };
   vtkNew<vtkCubeSource> cube;
   cube->SetBounds(-0.25, 0.25, -0.25, 0.25, 0.0, 0.5);
@@ -252,16 +251,30 @@ TEST(TestGlobalIlluminationRealData, NormalsSmoothedAcrossSharpEdgesSayHowToSpli
     scene->AddInputData(box);
     scene->AddInputData(floorNormals->GetOutput());
     scene->Update();
-    vtkNew<vtkGlobalIlluminationFilter> filter;
-    filter->SetInputData(scene->GetOutput());
-    filter->AddLight(MakeLight(light, at, 1.0));
-    filter->SetBackendToCPU();
-    filter->Update();
-    EXPECT_EQ(MessageCapture::Contains(Warnings(filter->GetOutput()), "averaged across sharp edges"), bent) << bent;
-    filter->ComputeNormalsOn();
-    filter->Update();
-    EXPECT_FALSE(MessageCapture::Contains(Warnings(filter->GetOutput()), "averaged across sharp edges")) << bent;
-    EXPECT_TRUE(Warnings(filter->GetOutput()).empty()) << bent << ": " << Warnings(filter->GetOutput()).front();
+    for (const int method : Methods)
+    {
+      vtkNew<vtkGlobalIlluminationFilter> filter;
+      filter->SetInputData(scene->GetOutput());
+      filter->AddLight(MakeLight(light, at, 1.0));
+      filter->SetBackendToCPU();
+      filter->SetMethod(method);
+      filter->Update();
+      const std::vector<std::string> warnings = Warnings(filter->GetOutput());
+      EXPECT_EQ(MessageCapture::Contains(warnings, "averaged across sharp edges"), bent) << bent;
+      EXPECT_EQ(MessageCapture::Contains(warnings, "lit with normals computed"), bent) << bent;
+      vtkNew<vtkPolyData> given;
+      given->DeepCopy(filter->GetOutput());
+      filter->ComputeNormalsOn();
+      filter->Update();
+      EXPECT_TRUE(Warnings(filter->GetOutput()).empty()) << bent << ": " << Warnings(filter->GetOutput()).front();
+      if (bent)
+      {
+        for (const char* name : Arrays)
+        {
+          EXPECT_EQ(Compare(given, filter->GetOutput(), name).Largest, 0.0) << method << ' ' << name;
+        }
+      }
+    }
   }
 }
 
