@@ -284,11 +284,12 @@ SurfaceOrientation findInwardSurfaces(const Scene& scene, const std::vector<std:
     s.area += 0.5 * twiceArea;
     for (int k = 0; k < 3; ++k)
     {
-      const Vec3f& nk = scene.normals[t.v[k]];
-      const double scale = twiceArea * double(length(nk));
+      // In double: a normal scaled by a transform (1e-30 of unit length) squares to zero in float.
+      const double nk[3] = { scene.normals[t.v[k]].x, scene.normals[t.v[k]].y, scene.normals[t.v[k]].z };
+      const double scale = twiceArea * std::sqrt(nk[0] * nk[0] + nk[1] * nk[1] + nk[2] * nk[2]);
       if (sided && scale > 0.0)
       {
-        const double cosine = front * (w[0] * nk.x + w[1] * nk.y + w[2] * nk.z) / scale;
+        const double cosine = front * (w[0] * nk[0] + w[1] * nk[1] + w[2] * nk[2]) / scale;
         nearest[t.v[k]] = std::max(nearest[t.v[k]], cosine);
       }
       vertexArea[t.v[k]] += twiceArea / 6.0;
