@@ -136,16 +136,40 @@ TEST(TestPhotonMapping, EstimatesDivideByTheSurfaceTheirPhotonsCanCover)
   MeshBuilder wide;
   wide.addQuadGrid({ -1.f, -1.f, 0.f }, { 2.f, 0.f, 0.f }, { 0.f, 2.f, 0.f }, 50, 50, Vec3f(0.5f));
   const pm::SurfaceTree plane(wide.take());
-  EXPECT_EQ(pm::photonArea(plane.view(false), Vec3f(0.f), Vec3f(0.f, 0.f, 1.f), 0.09f), kPi * 0.09f);
-  // Photons on the strip's back count its vertices only where backs take photons.
+  EXPECT_NEAR(pm::photonArea(plane.view(false), Vec3f(0.f), Vec3f(0.f, 0.f, 1.f), 0.09f), kPi * 0.09f, 1e-5f);
+  // Photons on the strip's back count its area only where backs take photons.
   const Vec3f down(0.f, 0.f, -1.f);
   EXPECT_EQ(pm::photonArea(surface.view(false), Vec3f(0.f), down, 0.09f), kPi * 0.09f);
-  EXPECT_NEAR(pm::photonArea(surface.view(true), Vec3f(0.f), down, 0.09f), 0.6f * 0.04f, 0.2f * 0.024f);
-  // Too few vertices within the disc to measure it by: the disc.
+  // The band: the disc (r = 0.3) between y = -0.02 and 0.02, the integral of its chord.
+  const float band = 2.f * (0.02f * std::sqrt(0.09f - 0.0004f) + 0.09f * std::asin(0.02f / 0.3f));
+  EXPECT_NEAR(pm::photonArea(surface.view(true), Vec3f(0.f), down, 0.09f), band, 1e-5f);
+  // The same strip of eight large triangles (a CAD export's) is measured as finely.
   MeshBuilder coarse;
   coarse.addQuadGrid({ -1.f, -0.02f, 0.f }, { 2.f, 0.f, 0.f }, { 0.f, 0.04f, 0.f }, 4, 1, Vec3f(0.5f));
   const pm::SurfaceTree few(coarse.take());
-  EXPECT_EQ(pm::photonArea(few.view(false), Vec3f(0.f), Vec3f(0.f, 0.f, 1.f), 0.09f), kPi * 0.09f);
+  EXPECT_NEAR(pm::photonArea(few.view(false), Vec3f(0.f), Vec3f(0.f, 0.f, 1.f), 0.09f), band, 1e-5f);
+}
+
+TEST(TestPhotonMapping, EstimatesAtAContactDivideByTheSurfaceBesideIt)
+{
+  // A floor of two large triangles meeting a wall along x = 0 (the wall stands on the
+  // floor's edge, facing +x): a disc on the floor at the wall's foot holds photons on half
+  // of it, on the floor; at the floor's corner with a second wall, on a quarter of it.
+  // Dividing by the whole disc darkened every point where two surfaces meet (a CAD case's
+  // corners, a box's foot), whatever the photons' count.
+  MeshBuilder b;
+  b.addQuadGrid({ 0.f, -1.f, 0.f }, { 1.f, 0.f, 0.f }, { 0.f, 2.f, 0.f }, 1, 1, Vec3f(0.5f)); // the floor, +z
+  b.addQuadGrid({ 0.f, -1.f, 0.f }, { 0.f, 2.f, 0.f }, { 0.f, 0.f, 1.f }, 1, 1, Vec3f(0.5f)); // a wall, +x
+  b.addQuadGrid({ 0.f, -1.f, 0.f }, { 0.f, 0.f, 1.f }, { 1.f, 0.f, 0.f }, 1, 1, Vec3f(0.5f)); // a wall, +y
+  const pm::SurfaceTree surface(b.take());
+  const Vec3f up(0.f, 0.f, 1.f);
+  const float r2 = 0.01f;
+  EXPECT_NEAR(pm::photonArea(surface.view(false), Vec3f(0.f, 0.f, 0.f), up, r2), 0.5f * kPi * r2, 1e-6f);
+  EXPECT_NEAR(pm::photonArea(surface.view(false), Vec3f(0.f, -1.f, 0.f), up, r2), 0.25f * kPi * r2, 1e-6f);
+  EXPECT_NEAR(pm::photonArea(surface.view(false), Vec3f(0.5f, 0.f, 0.f), up, r2), kPi * r2, 1e-6f);
+  // Off the surface by a third of the radius: the disc the ball cuts from the floor.
+  EXPECT_NEAR(pm::photonArea(surface.view(false), Vec3f(0.5f, 0.f, 0.1f / 3.f), up, r2),
+    kPi * (r2 - 0.01f / 9.f), 1e-6f);
 }
 
 TEST(TestPhotonMapping, GatherReadsTheEstimateOfItsOwnSurface)

@@ -196,17 +196,93 @@ std::vector<Vec3f> causticIrradiance(const Scene& s, const PhotonMap& map, std::
   return out;
 }
 
+namespace
+{
+/// Calls emit(a, b, c, barycentric centroid) for the pieces of triangle (a, b, c) cut by
+/// halving its longest edge until no edge is longer than sqrt(edge2); returns how many (emit
+/// may do nothing, to count them). Longest-edge bisection keeps the pieces' angles bounded.
+template <typename Emit>
+std::uint64_t bisect(const Vec3f& a, const Vec3f& b, const Vec3f& c, const Vec3f& ua, const Vec3f& ub,
+  const Vec3f& uc, float edge2, const Emit& emit)
+{
+  const float ab = dot(b - a, b - a), bc = dot(c - b, c - b), ca = dot(a - c, a - c);
+  const float longest = std::max({ ab, bc, ca });
+  if (!(longest > edge2))
+  {
+    emit(a, b, c, (ua + ub + uc) * (1.f / 3.f));
+    return 1;
+  }
+  if (longest == ab)
+  {
+    const Vec3f m = (a + b) * 0.5f, um = (ua + ub) * 0.5f;
+    return bisect(a, m, c, ua, um, uc, edge2, emit) + bisect(m, b, c, um, ub, uc, edge2, emit);
+  }
+  if (longest == bc)
+  {
+    const Vec3f m = (b + c) * 0.5f, um = (ub + uc) * 0.5f;
+    return bisect(a, b, m, ua, ub, um, edge2, emit) + bisect(a, m, c, ua, um, uc, edge2, emit);
+  }
+  const Vec3f m = (c + a) * 0.5f, um = (uc + ua) * 0.5f;
+  return bisect(a, b, m, ua, ub, um, edge2, emit) + bisect(m, b, c, um, ub, uc, edge2, emit);
+}
+}
+
+SurfacePieces surfacePieces(const Scene& scene)
+{
+  const std::vector<Vec3f>& x = scene.positions;
+  double total = 0.0;
+  for (const Triangle& t : scene.triangles)
+  {
+    total += 0.5 * double(length(cross(x[t.v[1]] - x[t.v[0]], x[t.v[2]] - x[t.v[0]])));
+  }
+  const Vec3f u0(1.f, 0.f, 0.f), u1(0.f, 1.f, 0.f), u2(0.f, 0.f, 1.f);
+  const auto count = [](const Vec3f&, const Vec3f&, const Vec3f&, const Vec3f&) {};
+  float edge2 = float(4.0 * total / kSurfacePieces);
+  for (int attempt = 0; attempt < 16 && edge2 > 0.f; ++attempt, edge2 *= 4.f)
+  {
+    std::uint64_t added = 0;
+    for (std::size_t t = 0; t < scene.triangles.size() && added <= kSurfacePieces; ++t)
+    {
+      const Triangle& tri = scene.triangles[t];
+      added += bisect(x[tri.v[0]], x[tri.v[1]], x[tri.v[2]], u0, u1, u2, edge2, count) - 1;
+    }
+    if (added <= kSurfacePieces)
+    {
+      break;
+    }
+  }
+  SurfacePieces out;
+  out.centroids.reserve(scene.triangles.size());
+  out.normals.reserve(scene.triangles.size());
+  out.corners.reserve(3 * scene.triangles.size());
+  float reach2 = 0.f;
+  for (const Triangle& t : scene.triangles)
+  {
+    bisect(x[t.v[0]], x[t.v[1]], x[t.v[2]], u0, u1, u2, edge2, [&](const Vec3f& a, const Vec3f& b, const Vec3f& c, const Vec3f& w) {
+      const Vec3f centroid = (a + b + c) * (1.f / 3.f);
+      const Vec3f n = scene.normals[t.v[0]] * w.x + scene.normals[t.v[1]] * w.y + scene.normals[t.v[2]] * w.z;
+      out.centroids.push_back(centroid);
+      out.normals.push_back(unitOr(n, scene.normals[t.v[0]]));
+      for (const Vec3f* p : { &a, &b, &c })
+      {
+        out.corners.push_back(*p);
+        reach2 = std::max(reach2, dot(*p - centroid, *p - centroid));
+      }
+    });
+  }
+  out.reach = std::sqrt(reach2);
+  return out;
+}
+
 SurfaceTree::SurfaceTree(const Scene& scene)
-  : positions(scene.positions)
-  , normals(scene.normals)
-  , areas(vertexAreas(scene))
-  , tree(positions)
+  : pieces(surfacePieces(scene))
+  , tree(pieces.centroids)
 {
 }
 
 SurfaceView SurfaceTree::view(bool twoSided) const
 {
-  return { tree.view(), normals.data(), areas.data(), twoSided };
+  return { tree.view(), pieces.corners.data(), pieces.normals.data(), pieces.reach, twoSided };
 }
 
 void estimateRadiance(PhotonMap& map, const SurfaceView& surface, std::uint32_t k, std::uint32_t siteStride,

@@ -79,16 +79,33 @@ std::uint64_t tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNor
   const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress = {},
   std::uint64_t secondPassBytes = UINT64_MAX);
 
-/// The mesh's vertices as the estimates measure thin parts by (SurfaceView, PmMath.h), in
-/// arrays of its own: built with the geometry, read by every photon stage after it.
+/// At most this many pieces beyond the mesh's triangles measure the surface for the
+/// estimates (surfacePieces).
+constexpr std::uint32_t kSurfacePieces = 65536;
+
+/// The mesh cut into pieces small enough to measure a disc's area by (photonArea): every
+/// triangle whose longest edge is longer than that of a right isosceles triangle of area
+/// A / kSurfacePieces (A the mesh's area) is cut by halving its longest edge until none is,
+/// and the others stay whole; a sliver is cut along its length only. That edge is made longer
+/// while the cuts would add more than kSurfacePieces pieces. Each piece has its corners, its
+/// centroid and the vertex normals interpolated there; `reach`: the farthest a corner lies
+/// from its centroid.
+struct SurfacePieces
+{
+  std::vector<Vec3f> centroids, corners, normals;
+  float reach = 0.f;
+};
+SurfacePieces surfacePieces(const Scene& scene);
+
+/// surfacePieces and the kd-tree of their centroids: built with the geometry, read by
+/// every photon stage after it.
 struct SurfaceTree
 {
-  std::vector<Vec3f> positions, normals;
-  std::vector<float> areas;
+  SurfacePieces pieces;
   PointTree tree;
 
   explicit SurfaceTree(const Scene& scene);
-  SurfaceTree(const SurfaceTree&) = delete; // the tree points into `positions`
+  SurfaceTree(const SurfaceTree&) = delete; // the tree points into `pieces`
   SurfaceView view(bool twoSided) const;
 };
 

@@ -41,28 +41,87 @@ struct PhotonsView
   const Vec3f* flux = nullptr;
 };
 
-/// The mesh as the estimates measure the area their photons can cover by: its vertices'
-/// tree, unit normals and one-ring areas (a third of each adjacent triangle's). Empty: every
-/// estimate divides by its whole disc.
+/// The surface as the estimates measure the area their photons can cover by: small
+/// triangles that tile it (surfacePieces, PhotonMapping.h), a tree over their centroids,
+/// their corners (three per piece) and unit normals, and the farthest any corner lies from
+/// its piece's centroid. Empty: every estimate divides by its whole disc.
 struct SurfaceView
 {
-  PointTreeView tree; ///< over the vertex positions, indices the vertices'
+  PointTreeView tree; ///< over the pieces' centroids
+  const Vec3f* corners = nullptr;
   const Vec3f* normals = nullptr;
-  const float* areas = nullptr;
+  float reach = 0.f;
   bool twoSided = false; ///< photons land on backs too, with the back's normal
 };
 
-/// The fewest vertices within a disc that measure its surface's area (photonArea).
-constexpr std::uint32_t kThinPartVertices = 8;
-/// A disc whose surface measures less than this share of it lies on a thin part.
-constexpr float kThinPartShare = 0.5f;
+/// The signed area that the disc of radius sqrt(R2) about the origin shares with the
+/// triangle (origin, a, b) in a plane (a and b as 2D coordinates): positive where a to b
+/// turns counter-clockwise. Summed over a polygon's edges, the area the disc shares with it.
+LINKGI_HOST_DEVICE inline float discWedgeArea(float ax, float ay, float bx, float by, float R2)
+{
+  const float dx = bx - ax, dy = by - ay;
+  const float dd = dx * dx + dy * dy, ad = ax * dx + ay * dy, aa = ax * ax + ay * ay;
+  // |a + t d|^2 = R2 at t = (-ad -+ sqrt(ad^2 - dd (aa - R2))) / dd: the segment's pieces
+  // inside the disc are triangles with the origin, those outside sectors of the disc.
+  float cuts[4] = { 0.f, 0.f, 1.f, 1.f };
+  const float disc = ad * ad - dd * (aa - R2);
+  if (dd > 0.f && disc > 0.f)
+  {
+    const float root = std::sqrt(disc);
+    cuts[1] = fminf(fmaxf((-ad - root) / dd, 0.f), 1.f);
+    cuts[2] = fminf(fmaxf((-ad + root) / dd, 0.f), 1.f);
+  }
+  float area = 0.f;
+  for (int i = 0; i < 3; ++i)
+  {
+    const float s = cuts[i], e = cuts[i + 1];
+    const float sx = ax + s * dx, sy = ay + s * dy, ex = ax + e * dx, ey = ay + e * dy;
+    const float cr = sx * ey - sy * ex;
+    const float m = 0.5f * (s + e), mx = ax + m * dx, my = ay + m * dy;
+    const bool inside = i == 1 && dd > 0.f && disc > 0.f && mx * mx + my * my <= R2;
+    area += inside ? 0.5f * cr : 0.5f * R2 * atan2f(cr, sx * ex + sy * ey);
+  }
+  return area;
+}
+
+/// The area of the triangle (p0, p1, p2) within distance sqrt(r2) of q.
+LINKGI_HOST_DEVICE inline float triangleAreaInBall(const Vec3f& q, float r2, const Vec3f& p0, const Vec3f& p1,
+  const Vec3f& p2)
+{
+  const Vec3f e1 = p1 - p0, e2 = p2 - p0, c = cross(e1, e2);
+  const float twice = length(c);
+  if (!(twice > 0.f))
+  {
+    return 0.f;
+  }
+  const auto in = [&](const Vec3f& p) { return dot(p - q, p - q) <= r2; };
+  if (in(p0) && in(p1) && in(p2))
+  {
+    return 0.5f * twice; // a ball is convex
+  }
+  const Vec3f m = c * (1.f / twice);
+  const float h = dot(q - p0, m), R2 = r2 - h * h;
+  if (!(R2 > 0.f))
+  {
+    return 0.f;
+  }
+  const Vec3f centre = q - m * h, u = normalize(e1), w = cross(m, u);
+  const Vec3f p[3] = { p0 - centre, p1 - centre, p2 - centre };
+  float area = 0.f;
+  for (int i = 0; i < 3; ++i)
+  {
+    const Vec3f& a = p[i];
+    const Vec3f& b = p[(i + 1) % 3];
+    area += discWedgeArea(dot(a, u), dot(a, w), dot(b, u), dot(b, w), R2);
+  }
+  return fabsf(area);
+}
 
 /// The area of surface that the photons within distance sqrt(r2) of q facing within 37
-/// degrees of n can cover: pi r2 where the surface is wider than the disc; on a part
-/// narrower than it (a leg, a wire, a fold's ridge) a band of it, which the mesh measures as
-/// the areas of its vertices within the disc that face n's way, where at least
-/// kThinPartVertices do and they cover less than kThinPartShare of the disc (fewer vertices
-/// measure too coarsely; more area is the disc's own within the noise).
+/// degrees of n can cover: the surface's pieces that face n's way, cut by that ball. Where
+/// the surface is wider than the disc and flat that is the disc pi r2; at a contact with
+/// another surface (a box's foot on the floor, a wall's corner) a half or a quarter of it;
+/// on a part narrower than it (a leg, a wire, a vent's slat) a band of it.
 LINKGI_HOST_DEVICE inline float photonArea(const SurfaceView& m, const Vec3f& q, const Vec3f& n, float r2)
 {
   const float disc = kPi * r2;
@@ -70,27 +129,24 @@ LINKGI_HOST_DEVICE inline float photonArea(const SurfaceView& m, const Vec3f& q,
   {
     return disc;
   }
-  const float thin = kThinPartShare * disc;
-  float area = 0.f, bound = r2; // the search ends (bound < 0) once the disc is not thin
-  std::uint32_t count = 0;
-  visitNear(m.tree, q, [&bound]() { return bound; }, [&](Index v, float) {
-    const float c = dot(m.normals[v], n);
+  const float reach = std::sqrt(r2) + m.reach;
+  float area = 0.f;
+  visitNear(m.tree, q, [reach]() { return reach * reach; }, [&](Index i, float) {
+    const float c = dot(m.normals[i], n);
     if (c > kEstimateCos || (m.twoSided && -c > kEstimateCos))
     {
-      area += m.areas[v];
-      ++count;
-      bound = area < thin ? bound : -1.f;
+      area += triangleAreaInBall(q, r2, m.corners[3 * i], m.corners[3 * i + 1], m.corners[3 * i + 2]);
     }
   });
-  return count >= kThinPartVertices && area < thin ? area : disc;
+  return area > 0.f ? area : disc;
 }
 
 /// The outgoing radiance a diffuse surface reflects at photon i (Christensen's precomputed
 /// estimate) from its k nearest photons, as Jensen estimates it: the flux of those within 37
-/// degrees of its normal / the area they can cover (photonArea: pi r^2 but on thin parts) /
-/// pi, r the k-th one's distance, or sqrt(max2) where fewer are that near; zero from fewer
-/// than two. Jensen's pi r^2 alone darkened thin parts (a scanned spider's legs, 52% of their
-/// indirect light) by the share of the disc they do not fill. The search takes every photon,
+/// degrees of its normal / the area they can cover (photonArea) / pi, r the k-th one's
+/// distance, or sqrt(max2) where fewer are that near; zero from fewer than two. Jensen's
+/// pi r^2 alone darkened thin parts (a scanned spider's legs, 52% of their indirect light)
+/// and contacts (a CAD case's corners) by the share of the disc they do not fill. The search takes every photon,
 /// not only those facing its way: a photon on a thin part in a crowd of photons facing
 /// elsewhere would otherwise search all of them. `radius2` gets r^2, the disc the estimate
 /// speaks for. `heap`: room for k.

@@ -23,7 +23,7 @@ namespace
 {
 using namespace engine;
 
-/// Host bytes of an update: the geometry (and the vertices' tree); the photon stage's path slots (one Vpl per bounce
+/// Host bytes of an update: the geometry (and the surface's pieces with their tree); the photon stage's path slots (one Vpl per bounce
 /// and path of the first pass; a second pass, up to 64 times as many paths where most leave
 /// the scene, is checked against what the budget leaves beyond the geometry when it is
 /// known, and the estimate raised to hold both: lightPathsHeldBytes) and the map (per photon: position, normal, flux, the
@@ -37,9 +37,11 @@ MemoryEstimate estimatePmMemory(const MemoryShape& shape, const SolverOptions& o
   m.hostBytes = cpuSolutionBytes(shape, o);
   if (!cuda && (stale & (1u << kGeometryStage)))
   {
-    // and the vertices' tree the estimates measure thin parts by (SurfaceTree)
-    m.hostBytes += cpuGeometryBytes(shape) +
-      shape.vertices * (2 * sizeof(Vec3f) + sizeof(float) + sizeof(Index) + sizeof(std::uint8_t));
+    // and the pieces the estimates measure their discs by (SurfaceTree): centroid, three
+    // corners, normal and their kd-tree's order and axis each, at most kSurfacePieces more
+    // than the triangles
+    m.hostBytes += cpuGeometryBytes(shape) + (shape.triangles + kSurfacePieces) *
+      (5 * sizeof(Vec3f) + sizeof(Index) + sizeof(std::uint8_t));
   }
   if (stale & (1u << kPhotonStage))
   {

@@ -68,8 +68,13 @@ private:
     mesh.update(c.scene, c.changes, stream, &c.stats);
     if (c.changes & (kTopology | kPositions))
     {
-      areas.upload(vertexAreas(c.scene), stream); // the caustics' one-ring discs, the thin parts' areas
-      vertexTree.build(mesh.positions.data(), mesh.vertexCount, stream);
+      areas.upload(vertexAreas(c.scene), stream); // the caustics' one-ring discs
+      const SurfacePieces pieces = surfacePieces(c.scene);
+      pieceCentroids.upload(pieces.centroids, stream);
+      pieceCorners.upload(pieces.corners, stream);
+      pieceNormals.upload(pieces.normals, stream);
+      pieceReach = pieces.reach;
+      pieceTree.build(pieceCentroids.data(), Index(pieces.centroids.size()), stream);
     }
   }
 
@@ -116,7 +121,7 @@ private:
     const float radius = kEstimateRadius * mesh.extent.diagonal;
     estimateMax2 = radius * radius;
     gpu::estimateSites({ photonView, sorted.normals.data(), sorted.flux.data() }, photonTree.view().order,
-      { vertexTree.view(), mesh.normals.data(), areas.data(), o.twoSided }, stride, o.photonMapping.estimatePhotons, estimateMax2, sitePositions.data(), siteNormals.data(), siteRadiance.data(),
+      { pieceTree.view(), pieceCorners.data(), pieceNormals.data(), pieceReach, o.twoSided }, stride, o.photonMapping.estimatePhotons, estimateMax2, sitePositions.data(), siteNormals.data(), siteRadiance.data(),
       siteRadius2.data(), flags, scan, temp, stream);
     siteTree.build(sitePositions.data(), siteCount, stream);
     // The estimates in the site tree's order (their radiance in `flux`'s place).
@@ -253,7 +258,10 @@ private:
   GPUBuffer<Offset> scan;
   GPUBuffer<unsigned char> temp;
   gpu::DevicePointTree photonTree, siteTree, causticTree;
-  gpu::DevicePointTree vertexTree; ///< the estimates measure thin parts by (SurfaceView)
+  /// The surface's pieces the estimates measure their discs by (SurfaceView).
+  GPUBuffer<Vec3f> pieceCentroids, pieceCorners, pieceNormals;
+  float pieceReach = 0.f;
+  gpu::DevicePointTree pieceTree;
   gpu::DevicePhotons sorted, sites; ///< the photons and the estimates in their trees' orders
   GPUBuffer<Vec3f> sitePositions, siteNormals, siteRadiance;
   GPUBuffer<float> siteRadius2, treeRadius2; ///< the estimates' discs, in site and in site-tree order
