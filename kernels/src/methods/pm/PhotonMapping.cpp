@@ -238,9 +238,10 @@ SurfacePieces surfacePieces(const Scene& scene)
   const Vec3f u0(1.f, 0.f, 0.f), u1(0.f, 1.f, 0.f), u2(0.f, 0.f, 1.f);
   const auto count = [](const Vec3f&, const Vec3f&, const Vec3f&, const Vec3f&) {};
   float edge2 = float(4.0 * total / kSurfacePieces);
+  std::uint64_t added = 0;
   for (int attempt = 0; attempt < 16 && edge2 > 0.f; ++attempt, edge2 *= 4.f)
   {
-    std::uint64_t added = 0;
+    added = 0;
     for (std::size_t t = 0; t < scene.triangles.size() && added <= kSurfacePieces; ++t)
     {
       const Triangle& tri = scene.triangles[t];
@@ -252,9 +253,12 @@ SurfacePieces surfacePieces(const Scene& scene)
     }
   }
   SurfacePieces out;
-  out.centroids.reserve(scene.triangles.size());
-  out.normals.reserve(scene.triangles.size());
-  out.corners.reserve(3 * scene.triangles.size());
+  const std::size_t pieces = scene.triangles.size() + std::size_t(std::min<std::uint64_t>(added, kSurfacePieces));
+  out.centroids.reserve(pieces);
+  out.normals.reserve(pieces);
+  out.areas.reserve(pieces);
+  out.radii.reserve(pieces);
+  out.corners.reserve(3 * pieces);
   float reach2 = 0.f;
   for (const Triangle& t : scene.triangles)
   {
@@ -263,11 +267,15 @@ SurfacePieces surfacePieces(const Scene& scene)
       const Vec3f n = scene.normals[t.v[0]] * w.x + scene.normals[t.v[1]] * w.y + scene.normals[t.v[2]] * w.z;
       out.centroids.push_back(centroid);
       out.normals.push_back(unitOr(n, scene.normals[t.v[0]]));
+      out.areas.push_back(0.5f * length(cross(b - a, c - a)));
+      float radius2 = 0.f;
       for (const Vec3f* p : { &a, &b, &c })
       {
         out.corners.push_back(*p);
-        reach2 = std::max(reach2, dot(*p - centroid, *p - centroid));
+        radius2 = std::max(radius2, dot(*p - centroid, *p - centroid));
       }
+      out.radii.push_back(std::sqrt(radius2));
+      reach2 = std::max(reach2, radius2);
     });
   }
   out.reach = std::sqrt(reach2);
@@ -282,7 +290,8 @@ SurfaceTree::SurfaceTree(const Scene& scene)
 
 SurfaceView SurfaceTree::view(bool twoSided) const
 {
-  return { tree.view(), pieces.corners.data(), pieces.normals.data(), pieces.reach, twoSided };
+  return { tree.view(), pieces.corners.data(), pieces.normals.data(), pieces.areas.data(), pieces.radii.data(),
+    pieces.reach, twoSided };
 }
 
 void estimateRadiance(PhotonMap& map, const SurfaceView& surface, std::uint32_t k, std::uint32_t siteStride,

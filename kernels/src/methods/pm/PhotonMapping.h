@@ -88,11 +88,12 @@ constexpr std::uint32_t kSurfacePieces = 65536;
 /// A / kSurfacePieces (A the mesh's area) is cut by halving its longest edge until none is,
 /// and the others stay whole; a sliver is cut along its length only. That edge is made longer
 /// while the cuts would add more than kSurfacePieces pieces. Each piece has its corners, its
-/// centroid and the vertex normals interpolated there; `reach`: the farthest a corner lies
-/// from its centroid.
+/// centroid, its area, the farthest its corners lie from its centroid (radii) and the
+/// vertex normals interpolated there; `reach`: the largest of those radii.
 struct SurfacePieces
 {
   std::vector<Vec3f> centroids, corners, normals;
+  std::vector<float> areas, radii;
   float reach = 0.f;
 };
 SurfacePieces surfacePieces(const Scene& scene);

@@ -43,13 +43,16 @@ struct PhotonsView
 
 /// The surface as the estimates measure the area their photons can cover by: small
 /// triangles that tile it (surfacePieces, PhotonMapping.h), a tree over their centroids,
-/// their corners (three per piece) and unit normals, and the farthest any corner lies from
-/// its piece's centroid. Empty: every estimate divides by its whole disc.
+/// their corners (three per piece), unit normals, areas and radii (the farthest a corner
+/// lies from the centroid), and the largest radius. Empty: every estimate divides by its
+/// whole disc.
 struct SurfaceView
 {
   PointTreeView tree; ///< over the pieces' centroids
   const Vec3f* corners = nullptr;
   const Vec3f* normals = nullptr;
+  const float* areas = nullptr;
+  const float* radii = nullptr;
   float reach = 0.f;
   bool twoSided = false; ///< photons land on backs too, with the back's normal
 };
@@ -129,13 +132,22 @@ LINKGI_HOST_DEVICE inline float photonArea(const SurfaceView& m, const Vec3f& q,
   {
     return disc;
   }
-  const float reach = std::sqrt(r2) + m.reach;
+  // A piece whose centroid lies within r - radius of q lies in the ball whole, one beyond
+  // r + radius wholly outside it.
+  const float r = std::sqrt(r2), reach = r + m.reach;
   float area = 0.f;
-  visitNear(m.tree, q, [reach]() { return reach * reach; }, [&](Index i, float) {
+  visitNear(m.tree, q, [reach]() { return reach * reach; }, [&](Index i, float d2) {
+    const float radius = m.radii[i], outer = r + radius, inner = r - radius;
+    if (d2 > outer * outer)
+    {
+      return;
+    }
     const float c = dot(m.normals[i], n);
     if (c > kEstimateCos || (m.twoSided && -c > kEstimateCos))
     {
-      area += triangleAreaInBall(q, r2, m.corners[3 * i], m.corners[3 * i + 1], m.corners[3 * i + 2]);
+      area += inner > 0.f && d2 <= inner * inner
+        ? m.areas[i]
+        : triangleAreaInBall(q, r2, m.corners[3 * i], m.corners[3 * i + 1], m.corners[3 * i + 2]);
     }
   });
   return area > 0.f ? area : disc;

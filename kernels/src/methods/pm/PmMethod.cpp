@@ -38,10 +38,10 @@ MemoryEstimate estimatePmMemory(const MemoryShape& shape, const SolverOptions& o
   if (!cuda && (stale & (1u << kGeometryStage)))
   {
     // and the pieces the estimates measure their discs by (SurfaceTree): centroid, three
-    // corners, normal and their kd-tree's order and axis each, at most kSurfacePieces more
-    // than the triangles
+    // corners, normal, area, radius and their kd-tree's order and axis each, at most
+    // kSurfacePieces more than the triangles
     m.hostBytes += cpuGeometryBytes(shape) + (shape.triangles + kSurfacePieces) *
-      (5 * sizeof(Vec3f) + sizeof(Index) + sizeof(std::uint8_t));
+      (5 * sizeof(Vec3f) + 2 * sizeof(float) + sizeof(Index) + sizeof(std::uint8_t));
   }
   if (stale & (1u << kPhotonStage))
   {

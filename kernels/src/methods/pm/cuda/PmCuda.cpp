@@ -73,6 +73,8 @@ private:
       pieceCentroids.upload(pieces.centroids, stream);
       pieceCorners.upload(pieces.corners, stream);
       pieceNormals.upload(pieces.normals, stream);
+      pieceAreas.upload(pieces.areas, stream);
+      pieceRadii.upload(pieces.radii, stream);
       pieceReach = pieces.reach;
       pieceTree.build(pieceCentroids.data(), Index(pieces.centroids.size()), stream);
     }
@@ -121,7 +123,8 @@ private:
     const float radius = kEstimateRadius * mesh.extent.diagonal;
     estimateMax2 = radius * radius;
     gpu::estimateSites({ photonView, sorted.normals.data(), sorted.flux.data() }, photonTree.view().order,
-      { pieceTree.view(), pieceCorners.data(), pieceNormals.data(), pieceReach, o.twoSided }, stride, o.photonMapping.estimatePhotons, estimateMax2, sitePositions.data(), siteNormals.data(), siteRadiance.data(),
+      { pieceTree.view(), pieceCorners.data(), pieceNormals.data(), pieceAreas.data(), pieceRadii.data(), pieceReach,
+        o.twoSided }, stride, o.photonMapping.estimatePhotons, estimateMax2, sitePositions.data(), siteNormals.data(), siteRadiance.data(),
       siteRadius2.data(), flags, scan, temp, stream);
     siteTree.build(sitePositions.data(), siteCount, stream);
     // The estimates in the site tree's order (their radiance in `flux`'s place).
@@ -260,6 +263,7 @@ private:
   gpu::DevicePointTree photonTree, siteTree, causticTree;
   /// The surface's pieces the estimates measure their discs by (SurfaceView).
   GPUBuffer<Vec3f> pieceCentroids, pieceCorners, pieceNormals;
+  GPUBuffer<float> pieceAreas, pieceRadii;
   float pieceReach = 0.f;
   gpu::DevicePointTree pieceTree;
   gpu::DevicePhotons sorted, sites; ///< the photons and the estimates in their trees' orders

@@ -63,7 +63,8 @@ void splitPhotons(const paths::Vpl* hits, std::size_t count, DevicePhotons& out,
 /// written in the tree's order (so that a
 /// warp searches one neighbourhood). `photons`: the map in tree order (inTreeOrder); `order`:
 /// the photon numbers at the tree positions (view().order), which say which are sites;
-/// `surface`: the mesh the estimates measure thin parts by. `scratch`, `scan`, `temp`: scratch.
+/// `surface`: the pieces of the mesh the estimates measure their discs by. `scratch`, `scan`,
+/// `temp`: scratch.
 void estimateSites(const PhotonsView& photons, const Index* order, const SurfaceView& surface, std::uint32_t stride,
   std::uint32_t k, float max2, Vec3f* sitePositions, Vec3f* siteNormals, Vec3f* siteRadiance, float* siteRadius2,
   cuda::GPUBuffer<Index>& scratch, cuda::GPUBuffer<Offset>& scan, cuda::GPUBuffer<unsigned char>& temp,
