@@ -150,6 +150,40 @@ TEST(TestPhotonMapping, EstimatesDivideByTheSurfaceTheirPhotonsCanCover)
   EXPECT_NEAR(pm::photonArea(few.view(false), Vec3f(0.f), Vec3f(0.f, 0.f, 1.f), 0.09f), band, 1e-5f);
 }
 
+TEST(TestPhotonMapping, TheAreaABallCutsFromATriangleIsExact)
+{
+  // Against counting the cells of a fine grid over the triangle that lie in the ball, for
+  // random triangles and balls of every relation: inside, outside, crossing an edge or a
+  // corner, the triangle's plane at any height in the ball.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    const Vec3f a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+    const Vec3f q(0.5f * u(rng), 0.5f * u(rng), 0.5f * u(rng));
+    const float r = 0.2f + 0.6f * std::abs(u(rng)), r2 = r * r;
+    const int n = 400; // cells along each edge: n^2 triangles of the triangle's subdivision
+    double inside = 0.0;
+    for (int i = 0; i < n; ++i)
+    {
+      for (int j = 0; i + j < n; ++j)
+      {
+        for (int up = 0; up < (i + j + 1 < n ? 2 : 1); ++up)
+        {
+          const float s = (float(i) + (up ? 2.f : 1.f) / 3.f) / n, t = (float(j) + (up ? 2.f : 1.f) / 3.f) / n;
+          const Vec3f p = a + (b - a) * s + (c - a) * t;
+          inside += dot(p - q, p - q) <= r2 ? 1.0 : 0.0;
+        }
+      }
+    }
+    const double whole = 0.5 * double(length(cross(b - a, c - a)));
+    const double counted = whole * inside / (double(n) * double(n));
+    const float exact = pm::triangleAreaInBall(q, r2, a, b, c);
+    EXPECT_NEAR(exact, counted, 0.01 * whole + 1e-6) << trial;
+    EXPECT_NEAR(pm::triangleAreaInBall(q, r2, c, b, a), exact, 1e-5f * float(whole) + 1e-7f) << "either winding";
+  }
+}
+
 TEST(TestPhotonMapping, EstimatesAtAContactDivideByTheSurfaceBesideIt)
 {
   // A floor of two large triangles meeting a wall along x = 0 (the wall stands on the

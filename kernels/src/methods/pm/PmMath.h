@@ -158,9 +158,9 @@ LINKGI_HOST_DEVICE inline float photonArea(const SurfaceView& m, const Vec3f& q,
 /// degrees of its normal / the area they can cover (photonArea) / pi, r the k-th one's
 /// distance, or sqrt(max2) where fewer are that near; zero from fewer than two. Jensen's
 /// pi r^2 alone darkened thin parts (a scanned spider's legs, 52% of their indirect light)
-/// and contacts (a CAD case's corners) by the share of the disc they do not fill. The search takes every photon,
-/// not only those facing its way: a photon on a thin part in a crowd of photons facing
-/// elsewhere would otherwise search all of them. `radius2` gets r^2, the disc the estimate
+/// and contacts (a CAD case's corners) by the share of the disc they do not fill. The
+/// search takes every photon, not only those facing its way: a photon on a thin part in a
+/// crowd of photons facing elsewhere would otherwise search all of them. `radius2` gets r^2, the disc the estimate
 /// speaks for. `heap`: room for k.
 LINKGI_HOST_DEVICE inline Vec3f siteRadiance(const PhotonsView& p, const SurfaceView& surface, Index i,
   std::uint32_t k, float max2, Neighbour* heap, float& radius2)
