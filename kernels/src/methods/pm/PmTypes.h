@@ -15,8 +15,11 @@ namespace linkgi::pm
 {
 /// Ranges of at most this many points are leaves (PointTree::build stops there).
 constexpr std::uint32_t kTreeLeaf = 8;
-/// A gather hit reads the nearest estimate whose normal is within 60 degrees of its own...
-constexpr float kLookupCos = 0.5f;
+/// A gather hit reads the nearest estimate whose normal is within 37 degrees of its own, the
+/// cone of the photons the estimate averages (kEstimateCos, PmMath.h): an estimate speaks
+/// for the surface that faces its way; at 60 degrees, hits on the dark flank of a thin part
+/// (a spider's leg) read the estimates of its lit top...
+constexpr float kLookupCos = 0.8f;
 /// ...and that lies within 30 degrees of its tangent plane (sin 30 = 0.5): an estimate on
 /// another surface that faces the same way, across a thin wall or a fold (the bright inside
 /// of a double-walled lamp shade behind its outside), lies off that plane. On a curved
@@ -198,7 +201,7 @@ struct RadianceSitesView
 };
 
 /// The estimate a gather ray reads at surface point y (unit normal n): the nearest within
-/// sqrt(maxDistance2) that faces within 60 degrees of n and lies within 30 degrees of y's
+/// sqrt(maxDistance2) that faces within 37 degrees of n and lies within 30 degrees of y's
 /// tangent plane, where its photons' disc holds y; kInvalidIndex otherwise. An estimate is an
 /// average over its disc: read further out, where its photons say nothing, it lit the floor
 /// under an object resting on it, which no photon reaches, with the light of the floor around
