@@ -83,6 +83,15 @@ struct PathScene
 /// reflection could otherwise keep it inside glass for ever).
 constexpr std::uint32_t kMaxSpecularBounces = 16;
 
+/// The shading normal at barycentric (1 - u - v, u, v) of triangle t, whose face normal is
+/// fn: the vertex normals interpolated, or fn where they vanish or turn against it. What a
+/// photon is stored with at a hit, and what reads photons there.
+LINKGI_HOST_DEVICE inline Vec3f hitNormal(const PathScene& s, const Triangle& t, float u, float v, const Vec3f& fn)
+{
+  const Vec3f n = normalize(s.normals[t.v[0]] * (1.f - u - v) + s.normals[t.v[1]] * u + s.normals[t.v[2]] * v);
+  return dot(n, n) > 0.f && dot(n, fn) > 0.f ? n : fn;
+}
+
 /// Reflection of unit d about unit n.
 LINKGI_HOST_DEVICE inline Vec3f reflect(const Vec3f& d, const Vec3f& n)
 {
@@ -326,11 +335,7 @@ LINKGI_HOST_DEVICE int traceLightPath(const PathScene& s, std::uint32_t path, Vp
     const Triangle t = s.triangles[h.triangle];
     const float b0 = 1.f - h.u - h.v;
     const Vec3f p = s.positions[t.v[0]] * b0 + s.positions[t.v[1]] * h.u + s.positions[t.v[2]] * h.v;
-    Vec3f n = normalize(s.normals[t.v[0]] * b0 + s.normals[t.v[1]] * h.u + s.normals[t.v[2]] * h.v);
-    if (!(dot(n, n) > 0.f) || dot(n, fn) <= 0.f)
-    {
-      n = fn;
-    }
+    const Vec3f n = hitNormal(s, t, h.u, h.v, fn);
     const std::uint8_t material = s.materials ? s.materials[h.triangle] : 0u;
     if (material != 0u)
     {

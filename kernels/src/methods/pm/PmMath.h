@@ -252,11 +252,7 @@ LINKGI_HOST_DEVICE inline GatherHit shadeGatherRay(const paths::PathScene& s, co
     const Triangle& t = s.triangles[h.triangle];
     const float b0 = 1.f - h.u - h.v;
     const Vec3f p = s.positions[t.v[0]] * b0 + s.positions[t.v[1]] * h.u + s.positions[t.v[2]] * h.v;
-    Vec3f n = normalize(s.normals[t.v[0]] * b0 + s.normals[t.v[1]] * h.u + s.normals[t.v[2]] * h.v);
-    if (!(dot(n, n) > 0.f) || dot(n, fn) <= 0.f)
-    {
-      n = fn;
-    }
+    const Vec3f n = paths::hitNormal(s, t, h.u, h.v, fn);
     const Vec3f d = normalize(ray.direction);
     const bool back = dot(d, fn) > 0.f;
     const Vec3f facing = back ? -n : n;
@@ -278,19 +274,20 @@ LINKGI_HOST_DEVICE inline GatherHit shadeGatherRay(const paths::PathScene& s, co
   }
   out.hit = true;
   out.distance = h.t * length(ray.direction);
-  Vec3f fn = s.faceNormals[h.triangle];
-  if (dot(ray.direction, fn) > 0.f)
+  const Vec3f front = s.faceNormals[h.triangle];
+  const bool back = dot(ray.direction, front) > 0.f;
+  if (back && !twoSided)
   {
-    if (!twoSided)
-    {
-      return out;
-    }
-    fn = -fn;
+    return out;
   }
+  const Vec3f fn = back ? -front : front;
   const Triangle& t = s.triangles[h.triangle];
   const float b0 = 1.f - h.u - h.v;
   const Vec3f y = s.positions[t.v[0]] * b0 + s.positions[t.v[1]] * h.u + s.positions[t.v[2]] * h.v;
-  const Index e = estimateAt(sites, y, fn);
+  // The estimates' normals are their photons' (the shading normal of the side they landed
+  // on): compared with the same at the hit.
+  const Vec3f n = paths::hitNormal(s, t, h.u, h.v, front);
+  const Index e = estimateAt(sites, y, back ? -n : n);
   if (e == kInvalidIndex)
   {
     return out;
