@@ -184,6 +184,48 @@ TEST(TestPhotonMapping, TheAreaABallCutsFromATriangleIsExact)
   }
 }
 
+TEST(TestPhotonMapping, SurfacePiecesAreBoundedAtAnyScaleAndShape)
+{
+  // A large face, or slivers a millionth as wide as long, are cut into at most
+  // kSurfacePieces more pieces than triangles; a surface 1e-20 across, or one of needles of
+  // almost no area (whose cuts would be too many at any length) keep their triangles whole;
+  // the pieces' areas sum to the surface's.
+  const auto check = [](const Scene& scene, bool cut) {
+    const pm::SurfacePieces pieces = pm::surfacePieces(scene);
+    double area = 0.0, whole = 0.0;
+    for (float a : pieces.areas)
+    {
+      area += a;
+    }
+    for (const Triangle& t : scene.triangles)
+    {
+      whole += 0.5 * double(length(cross(scene.positions[t.v[1]] - scene.positions[t.v[0]],
+                        scene.positions[t.v[2]] - scene.positions[t.v[0]])));
+    }
+    EXPECT_LE(pieces.areas.size(), scene.triangles.size() + pm::kSurfacePieces);
+    EXPECT_EQ(pieces.areas.size() > scene.triangles.size(), cut);
+    EXPECT_NEAR(area, whole, 1e-4 * whole);
+    EXPECT_EQ(pieces.corners.size(), 3 * pieces.areas.size());
+  };
+  MeshBuilder face;
+  face.addQuadGrid({ 0.f, 0.f, 0.f }, { 1.f, 0.f, 0.f }, { 0.f, 1.f, 0.f }, 1, 1, Vec3f(0.5f));
+  check(face.scene(), true);
+  Scene tiny = face.take();
+  for (Vec3f& p : tiny.positions)
+  {
+    p = p * 1e-20f;
+  }
+  check(tiny, false);
+  MeshBuilder slivers, needles;
+  for (int i = 0; i < 64; ++i)
+  {
+    slivers.addQuadGrid({ 0.f, float(i), 0.f }, { 1.f, 0.f, 0.f }, { 0.f, 1e-6f, 0.f }, 1, 1, Vec3f(0.5f));
+    needles.addQuadGrid({ 0.f, 0.f, float(i) }, { 1.f, 0.f, 0.f }, { 0.f, 1e-30f, 0.f }, 1, 1, Vec3f(0.5f));
+  }
+  check(slivers.scene(), true);
+  check(needles.scene(), false);
+}
+
 TEST(TestPhotonMapping, EstimatesAtAContactDivideByTheSurfaceBesideIt)
 {
   // A floor of two large triangles meeting a wall along x = 0 (the wall stands on the
