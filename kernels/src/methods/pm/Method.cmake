@@ -2,5 +2,5 @@
 linkgi_method(ENUM PhotonMapping VALUE 3 LABEL "Photon Mapping"
   DESCRIPTION "photons from the lights, a final gather at one sample vertex per cluster of vertices, interpolated to the others (a light move keeps the clusters; mirrors, glass and caustics)."
   SPEC pm::photonMappingMethod
-  SOURCES PhotonMapping.cpp PmCpu.cpp PmMethod.cpp PointTree.cpp
+  SOURCES PhotonMapping.cpp PmCpu.cpp PmMethod.cpp PointTree.cpp SurfacePieces.cpp
   CUDA_SOURCES cuda/PmCuda.cpp cuda/PmKernels.cu)

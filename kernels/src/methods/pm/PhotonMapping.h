@@ -19,6 +19,7 @@
 #include "linkgi/SolverTypes.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -78,6 +79,13 @@ std::uint64_t tracePhotons(const Scene& scene, const std::vector<Vec3f>& faceNor
   const std::vector<RayOrigin>& origins, const RayTracer& tracer,
   const SolverOptions& options, PhotonMap& map, const ProgressCallback& progress = {},
   std::uint64_t secondPassBytes = UINT64_MAX);
+
+/// v made unit length, or `fallback` where v is zero.
+inline Vec3f unitOr(const Vec3f& v, const Vec3f& fallback)
+{
+  const float l2 = dot(v, v);
+  return l2 > 0.f ? v * (1.f / std::sqrt(l2)) : fallback;
+}
 
 /// At most this many pieces beyond the mesh's triangles measure the surface for the
 /// estimates (surfacePieces).
